@@ -1,0 +1,80 @@
+// Honda's parametric binary tree as an L-system (Prusinkiewicz, Hammel, Hanan & Měch 1996).
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "generators/lsystem.h"
+
+namespace sylva {
+namespace {
+
+// An unrewritten apex A(s,w) with the turtle state it was created in.
+struct apex {
+  glm::mat3 frame;   // columns: heading H, left L, up U (ABOP §1.5)
+  glm::vec3 base;    // model units
+  float s, w;
+  int32_t node;      // node at the apex's base
+  uint8_t order;
+};
+
+// ABOP §1.5: +(δ) turns left about U, /(δ) rolls about H. Angles compose in the turtle's frame.
+glm::mat3 turn(const glm::mat3& f, float deg) {
+  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(0, 0, 1)));
+}
+glm::mat3 roll(const glm::mat3& f, float deg) {
+  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(1, 0, 0)));
+}
+
+}  // namespace
+
+tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_report* report) {
+  grow_report local;
+  grow_report& rep = report ? *report : local;
+  const int steps = o.steps >= 0 ? o.steps : p.derivations;
+  const float radius_of_width = 0.5f * p.scale * p.width_scale;
+
+  tree_skeleton t;
+  // H = +Y (up), L = -X, U = +Z: a right-handed turtle frame standing on the ground.
+  const glm::mat3 frame0(glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1));
+  t.add_node(glm::vec3(0), -1, p.w0 * radius_of_width, 0, 0);
+
+  // Derivations proceed in parallel over all apices (breadth first), so the nodes of derivation
+  // k follow those of k-1: growing s steps yields exactly the prefix born <= s.
+  std::vector<apex> current{{frame0, glm::vec3(0), p.s0, p.w0, 0, 0}}, next;
+  const float wq1 = std::pow(p.q, p.e), wq2 = std::pow(1 - p.q, p.e);
+  int step = 0;
+  for (int k = 1; k <= steps && !current.empty(); ++k) {
+    if (o.cancelled()) { rep.cancelled = true; break; }
+    next.clear();
+    for (const apex& a : current) {
+      if (!(a.s >= p.min_length)) continue;  // condition fails: A stays as it is, forever
+      if (int64_t(t.size()) >= p.node_cap) {
+        rep.hit_node_cap = true;
+        break;
+      }
+      // !(w)F(s): draw an internode of length s and width w.
+      const glm::vec3 tip = a.base + a.frame[0] * a.s;
+      const int32_t node = t.add_node(tip * p.scale, a.node, a.w * radius_of_width, uint16_t(k), a.order);
+      // Daughters; the longer one continues the axis (same order), the other is a lateral.
+      const bool first_main = p.r1 >= p.r2;
+      next.push_back({roll(turn(a.frame, p.alpha1), p.phi1), tip, a.s * p.r1, a.w * wq1, node,
+                      uint8_t(a.order + (first_main ? 0 : 1))});
+      next.push_back({roll(turn(a.frame, p.alpha2), p.phi2), tip, a.s * p.r2, a.w * wq2, node,
+                      uint8_t(a.order + (first_main ? 1 : 0))});
+    }
+    step = k;
+    std::swap(current, next);
+    if (rep.hit_node_cap) break;
+    if (o.progress) o.progress(float(k) / float(std::max(steps, 1)));
+  }
+  t.steps = step;
+  if (rep.hit_node_cap)
+    rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) at derivation " +
+                  std::to_string(step) + "; raise node_cap or lower the derivation count";
+  rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "derivations done";
+  return t;
+}
+
+}  // namespace sylva

@@ -1,0 +1,62 @@
+// L-system generator: Honda's parametric tree (Prusinkiewicz, Hammel, Hanan & Měch 1996) and
+// general bracketed, parametric L-systems (ABOP) interpreted by a 3D turtle.
+#pragma once
+
+#include <string>
+
+#include "generators/params.h"
+#include "generators/skeleton.h"
+
+namespace sylva {
+
+enum class lsystem_mode : int { honda = 0, text = 1 };
+inline constexpr const char* lsystem_mode_names[] = {"honda", "text", nullptr};
+
+struct lsystem_params {
+  lsystem_mode mode = lsystem_mode::honda;
+  // Honda's model, axiom A(s0, w0):
+  //   A(s,w) : s >= min -> !(w)F(s) [+(α1)/(φ1)A(s·r1, w·q^e)] [+(α2)/(φ2)A(s·r2, w·(1−q)^e)]
+  // Defaults are tree a of the 1996 paper's Table 1.
+  float s0 = 100, w0 = 30, min_length = 0;
+  float alpha1 = 35, alpha2 = -35, phi1 = 0, phi2 = 0;  // degrees
+  float r1 = 0.75f, r2 = 0.77f, q = 0.5f, e = 0.4f;
+  int derivations = 10;
+  float scale = 0.02f;     // metres per model unit
+  float width_scale = 1;   // multiplies every radius (the paper's widths are diameters in model units)
+  // General L-systems (text mode): the full source with #define constants, axiom and productions.
+  std::string source;
+  int node_cap = 2000000;
+  int module_cap = 4000000;
+  bool operator==(const lsystem_params&) const = default;
+};
+
+template <params_of<lsystem_params> P, class V>
+void visit_params(P& p, V&& v) {
+  v(p.mode, param_info{"mode", "Model", "", 0, 1, "honda: Honda's binary tree (Prusinkiewicz et al. 1996); text: a general L-system", 0, "Model", lsystem_mode_names});
+  v(p.derivations, param_info{"derivations", "Derivations", "n", 0, 24, "Number of derivation steps; derivation k is growth step k", param_on_release});
+  v(p.s0, param_info{"s0", "Trunk length", "s₀", 1, 1000, "Length of the first internode, in model units (axiom A(s₀,w₀))", 0, "Honda tree"});
+  v(p.w0, param_info{"w0", "Trunk width", "w₀", 0.1f, 200, "Width of the first internode, in model units"});
+  v(p.min_length, param_info{"min", "Minimum length", "min", 0, 100, "Apices shorter than this stop growing (condition s ≥ min)"});
+  v(p.alpha1, param_info{"alpha1", "Branch angle 1", "α₁", -180, 180, "Turn (+) of the first daughter branch", param_degrees});
+  v(p.alpha2, param_info{"alpha2", "Branch angle 2", "α₂", -180, 180, "Turn (+) of the second daughter branch", param_degrees});
+  v(p.phi1, param_info{"phi1", "Divergence 1", "φ₁", -180, 180, "Roll (/) of the first daughter branch", param_degrees});
+  v(p.phi2, param_info{"phi2", "Divergence 2", "φ₂", -180, 180, "Roll (/) of the second daughter branch", param_degrees});
+  v(p.r1, param_info{"r1", "Length ratio 1", "r₁", 0.05f, 1.2f, "First daughter's length = s·r₁"});
+  v(p.r2, param_info{"r2", "Length ratio 2", "r₂", 0.05f, 1.2f, "Second daughter's length = s·r₂"});
+  v(p.q, param_info{"q", "Width split", "q", 0, 1, "Share of the parent's width going to the first daughter (w·q^e vs w·(1−q)^e)"});
+  v(p.e, param_info{"e", "Width exponent", "e", 0, 1, "Width decrease exponent; widths then obey w^(1/e) = w₁^(1/e) + w₂^(1/e)"});
+  v(p.scale, param_info{"scale", "Scale", "", 0.0005f, 1, "Metres per model unit", param_log, "Output"});
+  v(p.width_scale, param_info{"width_scale", "Width scale", "", 0.05f, 5, "Multiplies every branch radius"});
+  v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
+  v(p.source, param_info{"source", "L-system", "", 0, 0, "The L-system text (text mode)", param_multiline, "L-system text"});
+  v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
+}
+
+// Honda's tree (derivation k = growth step k). Deterministic; no randomness.
+tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_report* report = nullptr);
+
+// Dispatches on p.mode.
+tree_skeleton grow_lsystem(const lsystem_params& p, const grow_options& o, grow_report* report = nullptr,
+                           growth_debug* debug = nullptr);
+
+}  // namespace sylva

@@ -1,0 +1,98 @@
+// The parameter schema: each parameter is declared once, in a visit_params overload (DESIGN §4).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace sylva {
+
+enum param_flags : unsigned {
+  param_log = 1u << 0,           // slider on a logarithmic scale
+  param_degrees = 1u << 1,       // value is in degrees (shown with a ° suffix)
+  param_on_release = 1u << 2,    // expensive: apply when the slider is released, not while dragging
+  param_advanced = 1u << 3,      // shown in a collapsed "advanced" part of its group
+  param_multiline = 1u << 4,     // strings: a multi-line text box (L-system source)
+  param_path = 1u << 5,          // strings: a file path
+  param_direction = 1u << 6,     // vec3: a direction (normalised where used)
+};
+
+// Everything but the value: consumers (editor, preset JSON, CLI --set, `sylva params`, tests)
+// derive their behaviour from this record.
+struct param_info {
+  const char* key;         // stable JSON / CLI key, unique within one params struct
+  const char* label;       // human label
+  const char* symbol;      // the paper's symbol: "λ", "σ" ... ("" when none)
+  float min, max;          // inclusive range (ints and vector elements too)
+  const char* help;        // tooltip: meaning and source
+  unsigned flags = 0;
+  const char* group = nullptr;               // starts a new collapsible group in the editor
+  const char* const* options = nullptr;      // enums: nullptr-terminated option names, index = value
+};
+
+// Supported value types: float, int, bool, enum (with options), glm::vec3, std::string,
+// std::vector<float>, std::vector<glm::vec3>. A visitor is called as v(value&, const param_info&).
+
+// `template <params_of<foo_params> P, class V> void visit_params(P& p, V&& v)` declares one visitor
+// for both the mutable and the const struct.
+template <class P, class T>
+concept params_of = std::is_same_v<std::remove_const_t<P>, T>;
+
+inline int option_count(const param_info& info) {
+  int n = 0;
+  while (info.options && info.options[n]) ++n;
+  return n;
+}
+
+// Clamps a value into its declared range; returns false when it had to change it (NaN included).
+template <class T>
+bool clamp_param(T& value, const param_info& info) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (std::isnan(value)) { value = info.min; return false; }
+    if (value < info.min) { value = info.min; return false; }
+    if (value > info.max) { value = info.max; return false; }
+    return true;
+  } else if constexpr (std::is_same_v<T, int>) {
+    if (value < (int)info.min) { value = (int)info.min; return false; }
+    if (value > (int)info.max) { value = (int)info.max; return false; }
+    return true;
+  } else if constexpr (std::is_enum_v<T>) {
+    const int n = option_count(info);
+    if ((int)value < 0 || (int)value >= n) { value = T(0); return false; }
+    return true;
+  } else if constexpr (std::is_same_v<T, glm::vec3>) {
+    bool ok = true;
+    for (int i = 0; i < 3; ++i) {
+      float c = value[i];
+      ok &= clamp_param(c, info);
+      value[i] = c;
+    }
+    return ok;
+  } else if constexpr (std::is_same_v<T, std::vector<float>>) {
+    bool ok = true;
+    for (float& c : value) ok &= clamp_param(c, info);
+    return ok;
+  } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
+    bool ok = true;
+    for (glm::vec3& c : value) ok &= clamp_param(c, info);
+    return ok;
+  } else {
+    return true;  // bool, string
+  }
+}
+
+// Clamps every parameter of a params struct; returns the keys that were changed.
+template <class P>
+std::vector<std::string> clamp_all_params(P& p) {
+  std::vector<std::string> changed;
+  visit_params(p, [&](auto& value, const param_info& info) {
+    if (!clamp_param(value, info)) changed.emplace_back(info.key);
+  });
+  return changed;
+}
+
+}  // namespace sylva

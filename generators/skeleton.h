@@ -1,0 +1,113 @@
+// The tree every generator produces: flat arrays with a birth/death step per node (DESIGN §2).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+namespace sylva {
+
+inline constexpr uint16_t never_died = std::numeric_limits<uint16_t>::max();
+
+struct leaf {
+  glm::vec3 position{0};      // metres
+  glm::quat orientation{1, 0, 0, 0};  // leaf blade in local XY, normal +Z, petiole along -Y
+  float size = 0.1f;          // blade length in metres
+  uint16_t born = 0;          // growth step in which it appeared
+  uint16_t died = never_died; // step in which it was shed (with its node)
+  int32_t node = -1;          // node it hangs on
+};
+
+struct tree_skeleton {               // node i is the tip of the internode from parent[i] to i
+  std::vector<glm::vec3> position;   // metres, +Y up (glTF convention)
+  std::vector<int32_t> parent;       // -1 for a root; always parent[i] < i
+  std::vector<float> radius;         // at the node, once fully grown (the final tree)
+  std::vector<uint16_t> born;        // growth step in which the node appeared (0 = seedling)
+  std::vector<uint16_t> died;        // step in which it was shed, or never_died
+  std::vector<uint8_t> order;        // branch order: 0 trunk, 1 first lateral, ...
+  std::vector<leaf> leaves;
+  // When pipe_exponent > 0 the radii are pipe-model radii of the living tree, so they change over
+  // time: the view at step s recomputes them from the nodes alive at s (O(n), DESIGN §2).
+  // When 0, each node keeps `radius` from birth to death.
+  float pipe_exponent = 0;
+  float pipe_tip_radius = 0;
+  int steps = 0;                     // number of growth steps taken
+  int tree_count = 1;                // forests: roots are the nodes with parent -1, one per tree
+
+  size_t size() const { return position.size(); }
+  bool alive(size_t i, int step) const { return born[i] <= step && step < died[i]; }
+  // Appends a node and returns its index.
+  int32_t add_node(const glm::vec3& p, int32_t par, float r, uint16_t born_step, uint8_t ord);
+  void reserve(size_t n);
+};
+
+// Checks every invariant of DESIGN §2; returns "" when valid, else the first violation.
+std::string validate_skeleton(const tree_skeleton& s);
+
+// Pipe model (Shinozaki et al. 1964; Macdonald 1983): r^n = Σ r_i^n over the children, with
+// terminal nodes at r_tip. Writes radius for the nodes alive at `step` (every node when step < 0);
+// the others get 0. Relies on parent[i] < i, so one reverse sweep suffices.
+void compute_pipe_radii(const std::vector<int32_t>& parent, const std::vector<uint16_t>& born,
+                        const std::vector<uint16_t>& died, int step, float exponent, float r_tip,
+                        std::vector<float>& radius);
+// Sets s.radius to the pipe radii of the final tree (step s.steps) and records the exponent so
+// that radii_at_step recomputes earlier steps.
+void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip);
+
+// Radii of the tree as it stood at `step` (same node indices; nodes not alive at step get 0).
+std::vector<float> radii_at_step(const tree_skeleton& s, int step);
+
+// A generator's debug output, drawn as overlays in the editor.
+struct growth_debug {
+  std::vector<glm::vec3> points;         // attraction points / markers / shadow samples
+  std::vector<float> point_value;        // per point: shade, or the step it was killed (-1 alive)
+  std::vector<glm::vec3> lines;          // pairs of endpoints: graph edges, influence links, arrows
+  std::vector<glm::vec3> line_color;     // one colour per pair
+  std::vector<uint8_t> node_fate;        // per node: 0 grew, 1 dormant, 2 shed
+  std::vector<float> node_flow;          // per node: resource flow (for line width)
+};
+
+using progress_fn = std::function<void(float)>;
+
+struct grow_options {
+  uint64_t seed = 1;
+  int steps = -1;                                  // -1: the params' own step count
+  const std::atomic<uint32_t>* cancel = nullptr;   // non-zero: stop and return what is grown
+  uint32_t cancel_value = 0;                       // cancelled when *cancel != cancel_value
+  progress_fn progress;
+  bool cancelled() const {
+    return cancel && cancel->load(std::memory_order_relaxed) != cancel_value;
+  }
+};
+
+// Why growth stopped and what the user should know.
+struct grow_report {
+  bool hit_node_cap = false;
+  bool cancelled = false;
+  std::string stop_reason;    // e.g. "no attraction points left"
+  std::string message;        // warning or error for the status bar ("" when all is well)
+  bool error = false;         // true when the result is not a tree the user asked for
+};
+
+// A small, fast, seedable RNG (SplitMix64, Steele et al. 2014) owned by each generator.
+struct rng {
+  uint64_t state;
+  explicit rng(uint64_t seed) : state(seed * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull) {}
+  uint64_t next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }  // [0,1)
+  float uniform(float a, float b) { return a + (b - a) * uniform(); }
+  int uniform_int(int n) { return int((next() >> 33) % uint64_t(n)); }      // [0,n)
+};
+
+}  // namespace sylva

@@ -1,0 +1,49 @@
+// Generator dispatch over the tree spec.
+#include "generators/tree_spec.h"
+
+#include <cstring>
+
+namespace sylva {
+
+int generator_index(const std::string& name) {
+  for (int i = 0; generator_names[i]; ++i)
+    if (name == generator_names[i]) return i;
+  return -1;
+}
+
+const char* generator_name(const tree_spec& s) { return generator_names[s.params.index()]; }
+
+generator_params default_params(int generator) {
+  switch (generator) {
+    case 0: return self_organizing_params{};
+    case 1: return space_colonization_params{};
+    case 2: return guiding_vectors_params{};
+    default: return lsystem_params{};
+  }
+}
+
+int default_steps(const generator_params& p) {
+  return std::visit(
+      [](const auto& q) -> int {
+        if constexpr (std::is_same_v<std::decay_t<decltype(q)>, lsystem_params>) return q.derivations;
+        else return q.steps;
+      },
+      p);
+}
+
+tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* report, growth_debug* debug) {
+  grow_options opt = o;
+  opt.seed = spec.seed;
+  tree_skeleton t = std::visit(
+      [&](const auto& p) -> tree_skeleton {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, self_organizing_params>) return grow_self_organizing(p, opt, report, debug);
+        else if constexpr (std::is_same_v<P, space_colonization_params>) return grow_space_colonization(p, opt, report, debug);
+        else if constexpr (std::is_same_v<P, guiding_vectors_params>) return grow_guiding_vectors(p, opt, report, debug);
+        else return grow_lsystem(p, opt, report, debug);
+      },
+      spec.params);
+  return t;
+}
+
+}  // namespace sylva

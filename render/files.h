@@ -1,0 +1,49 @@
+// Presets (DESIGN §6) and safe file writing. Core I/O returns errors as values, never throws.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "generators/tree_spec.h"
+#include "render/mesh.h"
+#include "render/render_params.h"
+
+namespace sylva {
+
+inline constexpr int preset_version = 1;
+
+struct preset {
+  std::string name = "Untitled";
+  std::string description;
+  std::vector<std::string> tags;
+  tree_spec spec;
+  mesh_params mesh;
+  render_params render;
+  bool operator==(const preset&) const = default;
+};
+
+struct load_result {
+  bool ok = false;
+  std::string error;                  // set when !ok; `out` is then untouched
+  std::vector<std::string> warnings;  // unknown keys, clamped values, upgraded versions
+};
+
+// Tolerant load: missing keys keep defaults, unknown keys warn, out-of-range or NaN values are
+// clamped with a warning, wrong types and malformed JSON are errors.
+load_result load_preset_json(std::string_view text, preset& out);
+load_result load_preset_file(const std::string& path, preset& out);
+std::string save_preset_json(const preset& p);
+// Writes through a temporary file and a rename; returns "" or the error.
+std::string save_preset_file(const preset& p, const std::string& path);
+
+// `key=value` for the current generator's params, mesh or render params (CLI --set).
+// Returns "" or the error.
+std::string set_preset_param(preset& p, std::string_view assignment);
+
+// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
+// Returns "" or a message naming the path and the reason.
+std::string write_file_atomic(const std::string& path, std::string_view bytes);
+std::string read_file(const std::string& path, std::string& out);
+
+}  // namespace sylva

@@ -1,0 +1,2 @@
+// Placeholder translation unit until the renderer lands.
+namespace sylva {}

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Sylva builds and tests with; installs nothing already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libimgui-dev libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev
+  libepoxy-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  fonts-dejavu-core xvfb xauth libgl1-mesa-dri imagemagick
+)
+if [ "${SYLVA_WITH_NPM:-0}" = 1 ]; then packages+=(nodejs npm); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  if [ "$(id -u)" = 0 ]; then sudo=(); else sudo=(sudo); fi
+  echo "install-deps: installing ${missing[*]}"
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
