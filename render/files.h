@@ -40,6 +40,12 @@ std::string save_preset_file(const preset& p, const std::string& path);
 // `key=value` for the current generator's params, mesh or render params (CLI --set).
 // Returns "" or the error.
 std::string set_preset_param(preset& p, std::string_view assignment);
+// CLI `--set key=a:b:n` for a numeric parameter: appends n assignments from a to b, evenly spaced
+// (rounded for integers); any other assignment is appended unchanged. Returns "" or the error.
+std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out);
+
+// The tree `sylva` shows when started without a preset: Honda's tree a (lsystem_params defaults).
+preset default_preset();
 
 // Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
 // Returns "" or a message naming the path and the reason.

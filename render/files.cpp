@@ -1,0 +1,618 @@
+// Preset JSON (DESIGN §6) driven by visit_params, `--set` assignments, and atomic file writes.
+#include "render/files.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace sylva {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Numbers: floats are written in their shortest round-trip form, so 0.77f saves as 0.77 rather
+// than 0.7699999809265137 and loads back to the identical float.
+
+double float_for_json(float f) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, f);
+  *r.ptr = 0;
+  return std::strtod(buf, nullptr);
+}
+
+std::string format_number(double d) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", d);
+  return buf;
+}
+
+// Built with += because GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
+std::string range_text(const param_info& info) {
+  std::string r = "[";
+  r += format_number(info.min);
+  r += ", ";
+  r += format_number(info.max);
+  r += ']';
+  return r;
+}
+
+std::string quote_text(std::string_view s) {
+  std::string r = "\"";
+  r += s;
+  r += '"';
+  return r;
+}
+
+const char* json_type_name(const json& j) {
+  if (j.is_string()) return "a string";
+  if (j.is_boolean()) return "a boolean";
+  if (j.is_number()) return "a number";
+  if (j.is_array()) return "an array";
+  if (j.is_object()) return "an object";
+  if (j.is_null()) return "null";
+  return "an unsupported value";
+}
+
+// ---------------------------------------------------------------------------------------------
+// One value <-> JSON, for every type params.h allows.
+
+template <class T>
+json value_to_json(const T& v, const param_info& info) {
+  if constexpr (std::is_same_v<T, float>) {
+    return float_for_json(v);
+  } else if constexpr (std::is_same_v<T, int> || std::is_same_v<T, bool> || std::is_same_v<T, std::string>) {
+    return v;
+  } else if constexpr (std::is_enum_v<T>) {
+    const int i = int(v);
+    if (i >= 0 && i < option_count(info)) return info.options[i];
+    return i;
+  } else if constexpr (std::is_same_v<T, glm::vec3>) {
+    return json::array({float_for_json(v.x), float_for_json(v.y), float_for_json(v.z)});
+  } else if constexpr (std::is_same_v<T, std::vector<float>>) {
+    json a = json::array();
+    for (float f : v) a.push_back(float_for_json(f));
+    return a;
+  } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
+    json a = json::array();
+    for (const glm::vec3& c : v) a.push_back(value_to_json(c, info));
+    return a;
+  } else {
+    static_assert(sizeof(T) == 0, "value type not supported by preset JSON (see params.h)");
+  }
+}
+
+bool json_to_float(const json& j, float& out) {
+  if (!j.is_number()) return false;
+  out = float(j.get<double>());  // beyond float's range becomes ±inf, which the clamp catches
+  return true;
+}
+
+bool json_to_vec3(const json& j, glm::vec3& out) {
+  if (!j.is_array() || j.size() != 3) return false;
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i)
+    if (!json_to_float(j[size_t(i)], v[i])) return false;
+  out = v;
+  return true;
+}
+
+// Reads one value. Returns "" or a type error (without the key); appends soft problems to `notes`.
+template <class T>
+std::string json_to_value(const json& j, T& out, const param_info& info, std::vector<std::string>& notes) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (!json_to_float(j, out)) return std::string("expected a number, got ") + json_type_name(j);
+  } else if constexpr (std::is_same_v<T, int>) {
+    if (!j.is_number()) return std::string("expected an integer, got ") + json_type_name(j);
+    double d = j.get<double>();
+    if (j.is_number_float() && d != std::floor(d)) {
+      notes.push_back(format_number(d) + " is not an integer; rounded");
+      d = std::round(d);
+    }
+    // Far outside int's range: park at the limits so the declared range clamps with a warning.
+    d = std::clamp(d, double(std::numeric_limits<int>::min()), double(std::numeric_limits<int>::max()));
+    out = int(d);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (!j.is_boolean()) return std::string("expected true or false, got ") + json_type_name(j);
+    out = j.get<bool>();
+  } else if constexpr (std::is_enum_v<T>) {
+    const int n = option_count(info);
+    if (j.is_string()) {
+      const std::string s = j.get<std::string>();
+      for (int i = 0; i < n; ++i)
+        if (s == info.options[i]) { out = T(i); return ""; }
+      std::string names;
+      for (int i = 0; i < n; ++i) names += std::string(i ? ", " : "") + info.options[i];
+      notes.push_back("unknown option \"" + s + "\" (expected one of " + names + "); kept " +
+                      (int(out) >= 0 && int(out) < n ? info.options[int(out)] : "the default"));
+    } else if (j.is_number_integer()) {
+      out = T(int(std::clamp<int64_t>(j.get<int64_t>(), -1, n)));  // the clamp below reports it
+    } else {
+      return std::string("expected an option name, got ") + json_type_name(j);
+    }
+  } else if constexpr (std::is_same_v<T, glm::vec3>) {
+    if (!json_to_vec3(j, out)) return "expected [x, y, z]";
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if (!j.is_string()) return std::string("expected a string, got ") + json_type_name(j);
+    out = j.get<std::string>();
+  } else if constexpr (std::is_same_v<T, std::vector<float>>) {
+    if (!j.is_array()) return std::string("expected an array of numbers, got ") + json_type_name(j);
+    std::vector<float> v(j.size());
+    for (size_t i = 0; i < j.size(); ++i)
+      if (!json_to_float(j[i], v[i])) return "expected an array of numbers";
+    out = std::move(v);
+  } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
+    if (!j.is_array()) return std::string("expected an array of [x, y, z], got ") + json_type_name(j);
+    std::vector<glm::vec3> v(j.size());
+    for (size_t i = 0; i < j.size(); ++i)
+      if (!json_to_vec3(j[i], v[i])) return "expected an array of [x, y, z]";
+    out = std::move(v);
+  } else {
+    static_assert(sizeof(T) == 0, "value type not supported by preset JSON (see params.h)");
+  }
+  return "";
+}
+
+template <class P>
+json params_to_json(const P& p) {
+  json o = json::object();
+  visit_params(p, [&](const auto& value, const param_info& info) { o[info.key] = value_to_json(value, info); });
+  return o;
+}
+
+// Reads a section object into p. Returns "" or the first type error (naming section.key).
+template <class P>
+std::string params_from_json(const json& o, const std::string& section, P& p, std::vector<std::string>& warnings) {
+  if (!o.is_object()) return quote_text(section) + " must be an object, got " + json_type_name(o);
+  std::set<std::string> known;
+  std::string error;
+  visit_params(p, [&](auto& value, const param_info& info) {
+    known.insert(info.key);
+    if (!error.empty()) return;
+    auto it = o.find(info.key);
+    if (it == o.end()) return;  // missing: keeps its default
+    const std::string name = section + "." + info.key;
+    std::vector<std::string> notes;
+    auto v = value;
+    if (std::string e = json_to_value(*it, v, info, notes); !e.empty()) {
+      error = name + ": " + e;
+      return;
+    }
+    for (const std::string& n : notes) warnings.push_back(name + ": " + n);
+    if (!clamp_param(v, info)) {
+      std::string shown = it->dump();
+      if (shown.size() > 40) shown = shown.substr(0, 37) + "...";
+      warnings.push_back(name + ": " + shown + " is outside " + range_text(info) + "; clamped");
+    }
+    value = std::move(v);
+  });
+  if (!error.empty()) return error;
+  for (auto it = o.begin(); it != o.end(); ++it)
+    if (!known.count(it.key())) warnings.push_back(section + "." + it.key() + ": unknown key, ignored");
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Versions. upgrade_steps[v - 1] turns a version-v document into version v+1; when the schema
+// changes, bump preset_version and append one step (renamed keys, changed units ...), so a file
+// of any older version is walked forward one version at a time before it is read.
+
+using upgrade_step = std::function<void(json&, std::vector<std::string>&)>;
+const std::vector<upgrade_step>& upgrade_steps() {
+  static const std::vector<upgrade_step> steps;  // version 1 is the first schema: nothing to upgrade yet
+  return steps;
+}
+
+std::string upgrade_preset(json& doc, int64_t version, std::vector<std::string>& warnings) {
+  if (version < 1) return "sylva_preset version " + std::to_string(version) + " is not valid (expected >= 1)";
+  if (version > preset_version) {
+    warnings.push_back("written by a newer Sylva (preset version " + std::to_string(version) + ", this one reads " +
+                       std::to_string(preset_version) + "); unknown keys are ignored");
+    return "";
+  }
+  for (int64_t v = version; v < preset_version; ++v) {
+    if (size_t(v - 1) >= upgrade_steps().size()) return "no upgrade from preset version " + std::to_string(v);
+    upgrade_steps()[size_t(v - 1)](doc, warnings);
+    warnings.push_back("upgraded from preset version " + std::to_string(v) + " to " + std::to_string(v + 1));
+  }
+  return "";
+}
+
+std::string parse_error_text(std::string_view text, const nlohmann::json::parse_error& e) {
+  // nlohmann reports a byte offset (1-based, one past the failure); turn it into line:column.
+  const size_t byte = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+  size_t line = 1, col = 1;
+  for (size_t i = 0; i < byte; ++i) {
+    if (text[i] == '\n') { ++line; col = 1; }
+    else ++col;
+  }
+  std::string what = e.what();
+  // Keep only the reason after nlohmann's own "parse error at line L, column C: " prefix.
+  if (auto p = what.find(": "); p != std::string::npos && what.compare(0, 15, "[json.exception") == 0)
+    what = what.substr(p + 2);
+  const bool truncated = byte >= text.size();
+  return "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(col) +
+         (truncated ? " (the file ends too early)" : "") + ": " + what;
+}
+
+load_result load_preset_doc(json& doc, preset& out) {
+  load_result r;
+  auto fail = [&](std::string e) { r.error = std::move(e); r.ok = false; return r; };
+  if (!doc.is_object()) return fail(std::string("a preset must be a JSON object, got ") + json_type_name(doc));
+
+  int64_t version = preset_version;
+  if (auto it = doc.find("sylva_preset"); it == doc.end()) {
+    r.warnings.push_back("no \"sylva_preset\" version; read as version " + std::to_string(preset_version));
+  } else if (!it->is_number_integer()) {
+    return fail(std::string("sylva_preset: expected an integer version, got ") + json_type_name(*it));
+  } else {
+    version = it->get<int64_t>();
+  }
+  if (std::string e = upgrade_preset(doc, version, r.warnings); !e.empty()) return fail(e);
+
+  preset p;  // built aside so `out` stays untouched on error
+  auto get_string = [&](const char* key, std::string& dst) -> std::string {
+    auto it = doc.find(key);
+    if (it == doc.end()) return "";
+    if (!it->is_string()) return std::string(key) + ": expected a string, got " + json_type_name(*it);
+    dst = it->get<std::string>();
+    return "";
+  };
+  if (std::string e = get_string("name", p.name); !e.empty()) return fail(e);
+  if (std::string e = get_string("description", p.description); !e.empty()) return fail(e);
+  if (auto it = doc.find("tags"); it != doc.end()) {
+    if (!it->is_array()) return fail(std::string("tags: expected an array of strings, got ") + json_type_name(*it));
+    for (const json& t : *it) {
+      if (!t.is_string()) return fail("tags: expected an array of strings");
+      p.tags.push_back(t.get<std::string>());
+    }
+  }
+  if (auto it = doc.find("generator"); it != doc.end()) {
+    if (!it->is_string()) return fail(std::string("generator: expected a string, got ") + json_type_name(*it));
+    const int g = generator_index(it->get<std::string>());
+    if (g < 0) {
+      std::string names;
+      for (int i = 0; generator_names[i]; ++i) names += std::string(i ? ", " : "") + generator_names[i];
+      return fail("generator: unknown generator \"" + it->get<std::string>() + "\" (expected one of " + names + ")");
+    }
+    p.spec.params = default_params(g);
+  }
+  if (auto it = doc.find("seed"); it != doc.end()) {
+    if (it->is_number_unsigned()) p.spec.seed = it->get<uint64_t>();
+    else if (it->is_number_integer()) {
+      r.warnings.push_back("seed: " + it->dump() + " is negative; clamped to 0");
+      p.spec.seed = 0;
+    } else return fail(std::string("seed: expected a non-negative integer, got ") + json_type_name(*it));
+  }
+  static const json empty = json::object();
+  auto section = [&](const char* key) -> const json& {
+    auto it = doc.find(key);
+    return it == doc.end() ? empty : *it;
+  };
+  std::string e = std::visit([&](auto& gp) { return params_from_json(section("params"), "params", gp, r.warnings); },
+                             p.spec.params);
+  if (!e.empty()) return fail(e);
+  if (e = params_from_json(section("mesh"), "mesh", p.mesh, r.warnings); !e.empty()) return fail(e);
+  if (e = params_from_json(section("render"), "render", p.render, r.warnings); !e.empty()) return fail(e);
+
+  static const std::set<std::string> top = {"sylva_preset", "name", "description", "tags", "generator",
+                                            "seed",         "params", "mesh",      "render"};
+  for (auto it = doc.begin(); it != doc.end(); ++it)
+    if (!top.count(it.key())) r.warnings.push_back(it.key() + ": unknown key, ignored");
+
+  out = std::move(p);
+  r.ok = true;
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// `--set`: text -> value, strict (an argument typo should stop the command, not be clamped).
+
+bool parse_float_text(std::string_view s, float& out) {
+  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  float f = 0;
+  auto r = std::from_chars(s.data(), s.data() + s.size(), f);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(f)) return false;
+  out = f;
+  return true;
+}
+
+std::vector<std::string_view> split(std::string_view s, char sep) {
+  std::vector<std::string_view> parts;
+  size_t start = 0;
+  for (size_t i = 0; i <= s.size(); ++i)
+    if (i == s.size() || s[i] == sep) {
+      parts.push_back(s.substr(start, i - start));
+      start = i + 1;
+    }
+  return parts;
+}
+
+bool parse_vec3_text(std::string_view s, glm::vec3& out) {
+  auto parts = split(s, ',');
+  if (parts.size() != 3) return false;
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i)
+    if (!parse_float_text(parts[size_t(i)], v[i])) return false;
+  out = v;
+  return true;
+}
+
+template <class T>
+std::string text_to_value(std::string_view s, T& out, const param_info& info) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (!parse_float_text(s, out)) return quote_text(s) + " is not a finite number";
+  } else if constexpr (std::is_same_v<T, int>) {
+    float f;
+    if (!parse_float_text(s, f) || f != std::floor(f) || std::fabs(f) > 2e9f)
+      return quote_text(s) + " is not an integer";
+    out = int(f);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (s == "true" || s == "1" || s == "on" || s == "yes") out = true;
+    else if (s == "false" || s == "0" || s == "off" || s == "no") out = false;
+    else return quote_text(s) + " is not true or false";
+  } else if constexpr (std::is_enum_v<T>) {
+    const int n = option_count(info);
+    std::string names;
+    for (int i = 0; i < n; ++i) {
+      if (s == info.options[i]) { out = T(i); return ""; }
+      names += std::string(i ? ", " : "") + info.options[i];
+    }
+    return quote_text(s) + " is not one of " + names;
+  } else if constexpr (std::is_same_v<T, glm::vec3>) {
+    if (!parse_vec3_text(s, out)) return quote_text(s) + " is not x,y,z";
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    out = std::string(s);
+  } else if constexpr (std::is_same_v<T, std::vector<float>>) {
+    std::vector<float> v;
+    if (!s.empty())
+      for (std::string_view part : split(s, ',')) {
+        v.push_back(0);
+        if (!parse_float_text(part, v.back())) return quote_text(part) + " is not a finite number";
+      }
+    out = std::move(v);
+  } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
+    std::vector<glm::vec3> v;
+    if (!s.empty())
+      for (std::string_view part : split(s, ';')) {
+        v.emplace_back(0);
+        if (!parse_vec3_text(part, v.back())) return quote_text(part) + " is not x,y,z";
+      }
+    out = std::move(v);
+  } else {
+    static_assert(sizeof(T) == 0, "value type not supported by --set (see params.h)");
+  }
+  return "";
+}
+
+// Calls f(value, info) on the parameter `key` (optionally "params.", "mesh." or "render."
+// qualified). Returns "" or why no single parameter matched.
+template <class F>
+std::string with_param(preset& p, std::string_view key, F&& f) {
+  std::string_view only;
+  for (std::string_view s : {"params", "mesh", "render"})
+    if (key.size() > s.size() && key.substr(0, s.size()) == s && key[s.size()] == '.') {
+      only = s;
+      key.remove_prefix(s.size() + 1);
+    }
+  std::vector<std::string> hits;
+  std::function<void()> apply;
+  auto look = [&](std::string_view section, auto& params) {
+    if (!only.empty() && only != section) return;
+    visit_params(params, [&](auto& value, const param_info& info) {
+      if (key != info.key) return;
+      hits.push_back(std::string(section) + "." + info.key);
+      apply = [&value, info, &f] { f(value, info); };
+    });
+  };
+  std::visit([&](auto& gp) { look("params", gp); }, p.spec.params);
+  look("mesh", p.mesh);
+  look("render", p.render);
+  if (hits.empty())
+    return "unknown parameter \"" + std::string(key) + "\" for generator " + generator_name(p.spec) +
+           " (see `sylva params`)";
+  if (hits.size() > 1) {
+    std::string names;
+    for (const std::string& h : hits) names += (names.empty() ? "" : " or ") + h;
+    return quote_text(key) + " is ambiguous: write " + names;
+  }
+  apply();
+  return "";
+}
+
+}  // namespace
+
+load_result load_preset_json(std::string_view text, preset& out) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    load_result r;
+    r.error = parse_error_text(text, e);
+    return r;
+  } catch (const std::exception& e) {
+    load_result r;
+    r.error = std::string("malformed JSON: ") + e.what();
+    return r;
+  }
+  try {
+    return load_preset_doc(doc, out);
+  } catch (const std::exception& e) {  // a json type accessor we did not guard: still no throw out
+    load_result r;
+    r.error = std::string("unreadable preset: ") + e.what();
+    return r;
+  }
+}
+
+load_result load_preset_file(const std::string& path, preset& out) {
+  std::string text;
+  if (std::string e = read_file(path, text); !e.empty()) {
+    load_result r;
+    r.error = e;
+    return r;
+  }
+  load_result r = load_preset_json(text, out);
+  if (!r.ok) r.error = path + ": " + r.error;
+  return r;
+}
+
+std::string save_preset_json(const preset& p) {
+  json doc = json::object();
+  doc["sylva_preset"] = preset_version;
+  doc["name"] = p.name;
+  doc["description"] = p.description;
+  doc["tags"] = p.tags;
+  doc["generator"] = generator_name(p.spec);
+  doc["seed"] = p.spec.seed;
+  doc["params"] = std::visit([](const auto& gp) { return params_to_json(gp); }, p.spec.params);
+  doc["mesh"] = params_to_json(p.mesh);
+  doc["render"] = params_to_json(p.render);
+  return doc.dump(2) + "\n";
+}
+
+std::string save_preset_file(const preset& p, const std::string& path) {
+  return write_file_atomic(path, save_preset_json(p));
+}
+
+std::string set_preset_param(preset& p, std::string_view assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string_view::npos || eq == 0)
+    return "--set expects key=value, got \"" + std::string(assignment) + "\"";
+  const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  std::string error;
+  std::string found = with_param(p, key, [&](auto& value, const param_info& info) {
+    auto v = value;
+    error = text_to_value(text, v, info);
+    if (error.empty() && !clamp_param(v, info)) error = quote_text(text) + " is outside " + range_text(info);
+    if (error.empty()) value = std::move(v);
+  });
+  if (!found.empty()) return found;
+  if (!error.empty()) return std::string(key) + ": " + error;
+  return "";
+}
+
+std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string_view::npos || eq == 0)
+    return "--set expects key=value, got \"" + std::string(assignment) + "\"";
+  const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  const auto parts = split(text, ':');
+  preset copy = p;
+  bool numeric = false, integral = false;
+  std::string found = with_param(copy, key, [&](auto& value, const param_info&) {
+    using T = std::decay_t<decltype(value)>;
+    numeric = std::is_same_v<T, float> || std::is_same_v<T, int>;
+    integral = std::is_same_v<T, int>;
+  });
+  if (!found.empty()) return found;
+  if (!numeric || parts.size() != 3) {  // a plain value (strings such as L-system text may hold ':')
+    out.emplace_back(assignment);
+    return "";
+  }
+  float a, b, n;
+  if (!parse_float_text(parts[0], a) || !parse_float_text(parts[1], b) || !parse_float_text(parts[2], n) ||
+      n != std::floor(n) || n < 1 || n > 100000)
+    return std::string(key) + ": a sweep is from:to:count with a whole count >= 1, got \"" + std::string(text) + "\"";
+  const int count = int(n);
+  for (int i = 0; i < count; ++i) {
+    const double t = count == 1 ? 0.0 : double(i) / double(count - 1);
+    double v = double(a) + (double(b) - double(a)) * t;
+    if (integral) v = std::round(v);
+    char buf[32];
+    if (integral) std::snprintf(buf, sizeof buf, "%lld", (long long)v);
+    else {
+      auto r = std::to_chars(buf, buf + sizeof buf - 1, float(v));
+      *r.ptr = 0;
+    }
+    out.push_back(std::string(key) + "=" + buf);
+  }
+  return "";
+}
+
+preset default_preset() {
+  preset p;
+  p.name = "Honda tree a";
+  p.description = "Honda's binary tree a (Prusinkiewicz et al. 1996, Table 1): the built-in default.";
+  p.tags = {"lsystem", "honda", "paper"};
+  p.spec.params = lsystem_params{};
+  return p;
+}
+
+std::string write_file_atomic(const std::string& path, std::string_view bytes) {
+  namespace fs = std::filesystem;
+  if (path.empty()) return "cannot write: empty path";
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  static std::atomic<unsigned> counter{0};
+  const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(counter.fetch_add(1)));
+  auto fail = [&](const char* what, int err) {
+    return "cannot write " + path + ": " + what + ": " + std::strerror(err);
+  };
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) return fail("cannot create a file in its folder", errno);
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      ::close(fd);
+      ::unlink(temp.c_str());
+      return fail("write failed", err);  // e.g. a full disk: the partial temp file is removed
+    }
+    done += size_t(n);
+  }
+  // fsync before rename: otherwise a crash can leave the new name pointing at an empty file.
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(temp.c_str());
+    return fail("fsync failed", err);
+  }
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    return fail("close failed", err);
+  }
+  if (::rename(temp.c_str(), target.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    return fail("rename failed", err);
+  }
+  if (const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+    ::fsync(dfd);  // makes the rename itself durable; failure here loses nothing already written
+    ::close(dfd);
+  }
+  return "";
+}
+
+std::string read_file(const std::string& path, std::string& out) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return "cannot read " + path + ": it is a folder";
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return "cannot read " + path + ": " + std::strerror(errno);
+  std::ostringstream s;
+  s << f.rdbuf();
+  if (f.bad()) return "cannot read " + path + ": read error";
+  out = std::move(s).str();
+  return "";
+}
+
+}  // namespace sylva
