@@ -1,2 +1,158 @@
-// Placeholder translation unit until the renderer lands.
-namespace sylva {}
+// GL handles, shader compilation, error counting and PNG I/O.
+#include "render/gl/gl_util.h"
+
+#include <atomic>
+#include <cstdio>
+#include <mutex>
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb_image.h>
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace sylva {
+
+namespace {
+std::atomic<int> g_errors{0};
+std::mutex g_message_mutex;
+std::string g_message;
+
+void set_message(const std::string& m) {
+  std::lock_guard<std::mutex> lock(g_message_mutex);
+  g_message = m;
+  std::fprintf(stderr, "sylva gl: %s\n", m.c_str());
+}
+
+void GLAPIENTRY on_debug_message(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* text,
+                                 const void*) {
+  // Only real errors count: llvmpipe reports performance notes we have no reason to fail on.
+  if (type != GL_DEBUG_TYPE_ERROR && severity != GL_DEBUG_SEVERITY_HIGH) return;
+  ++g_errors;
+  set_message(std::string("GL debug: ") + text);
+}
+
+GLuint compile_stage(const char* name, GLenum stage, const char* src, std::string& log) {
+  GLuint s = glCreateShader(stage);
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint n = 0;
+    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &n);
+    std::string text(size_t(n > 1 ? n : 1), '\0');
+    glGetShaderInfoLog(s, n, nullptr, text.data());
+    log = std::string(name) + (stage == GL_VERTEX_SHADER ? " (vertex): " : " (fragment): ") + text.c_str();
+    glDeleteShader(s);
+    return 0;
+  }
+  return s;
+}
+}  // namespace
+
+void delete_gl(gl_buffer& b) { if (b.id) glDeleteBuffers(1, &b.id); b.id = 0; }
+void delete_gl(gl_texture& t) { if (t.id) glDeleteTextures(1, &t.id); t.id = 0; }
+void delete_gl(gl_vertex_array& v) { if (v.id) glDeleteVertexArrays(1, &v.id); v.id = 0; }
+void delete_gl(gl_framebuffer& f) { if (f.id) glDeleteFramebuffers(1, &f.id); f.id = 0; }
+void delete_gl(gl_program& p) { if (p.id) glDeleteProgram(p.id); p.id = 0; }
+
+gl_program compile_program(const char* name, const char* vertex_src, const char* fragment_src) {
+  gl_program p;
+  std::string log;
+  GLuint vs = compile_stage(name, GL_VERTEX_SHADER, vertex_src, log);
+  GLuint fs = vs ? compile_stage(name, GL_FRAGMENT_SHADER, fragment_src, log) : 0;
+  if (!vs || !fs) {
+    if (vs) glDeleteShader(vs);
+    set_message("shader " + log);
+    p.failed = true;
+    return p;
+  }
+  p.id = glCreateProgram();
+  glAttachShader(p.id, vs);
+  glAttachShader(p.id, fs);
+  glLinkProgram(p.id);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint n = 0;
+    glGetProgramiv(p.id, GL_INFO_LOG_LENGTH, &n);
+    std::string text(size_t(n > 1 ? n : 1), '\0');
+    glGetProgramInfoLog(p.id, n, nullptr, text.data());
+    set_message(std::string("shader ") + name + " (link): " + text.c_str());
+    glDeleteProgram(p.id);
+    p.id = 0;
+    p.failed = true;
+  }
+  return p;
+}
+
+void install_gl_debug_output() {
+  if (!epoxy_has_gl_extension("GL_KHR_debug") && epoxy_gl_version() < 43) return;
+  glEnable(GL_DEBUG_OUTPUT);
+  glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  glDebugMessageCallback(on_debug_message, nullptr);
+}
+
+int check_gl(const char* where) {
+  int n = 0;
+  for (GLenum e = glGetError(); e != GL_NO_ERROR && n < 16; e = glGetError()) {
+    ++n;
+    char text[128];
+    std::snprintf(text, sizeof text, "glGetError 0x%04x after %s", unsigned(e), where);
+    set_message(text);
+  }
+  g_errors += n;
+  return n;
+}
+
+int gl_error_count() { return g_errors.load(); }
+void reset_gl_error_count() { g_errors = 0; }
+std::string gl_last_message() {
+  std::lock_guard<std::mutex> lock(g_message_mutex);
+  return g_message;
+}
+
+void set_uniform(const gl_program& p, const char* name, float v) { glUniform1f(glGetUniformLocation(p.id, name), v); }
+void set_uniform(const gl_program& p, const char* name, int v) { glUniform1i(glGetUniformLocation(p.id, name), v); }
+void set_uniform(const gl_program& p, const char* name, const glm::vec2& v) {
+  glUniform2fv(glGetUniformLocation(p.id, name), 1, glm::value_ptr(v));
+}
+void set_uniform(const gl_program& p, const char* name, const glm::vec3& v) {
+  glUniform3fv(glGetUniformLocation(p.id, name), 1, glm::value_ptr(v));
+}
+void set_uniform(const gl_program& p, const char* name, const glm::vec4& v) {
+  glUniform4fv(glGetUniformLocation(p.id, name), 1, glm::value_ptr(v));
+}
+void set_uniform(const gl_program& p, const char* name, const glm::mat4& v) {
+  glUniformMatrix4fv(glGetUniformLocation(p.id, name), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+std::string save_png_rgba(const std::string& path, int width, int height, const unsigned char* rgba) {
+  if (width <= 0 || height <= 0 || !rgba) return "empty image";
+  if (!stbi_write_png(path.c_str(), width, height, 4, rgba, width * 4))
+    return "cannot write PNG '" + path + "'";
+  return "";
+}
+
+std::string load_png_rgba(const std::string& path, int& width, int& height, std::string& rgba_out) {
+  int n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &width, &height, &n, 4);
+  if (!data) return "cannot read image '" + path + "': " + (stbi_failure_reason() ? stbi_failure_reason() : "?");
+  rgba_out.assign(reinterpret_cast<const char*>(data), size_t(width) * size_t(height) * 4);
+  stbi_image_free(data);
+  return "";
+}
+
+}  // namespace sylva

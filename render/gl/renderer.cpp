@@ -1,0 +1,917 @@
+// The frame renderer: programs, procedural textures, tree upload, and the passes of DESIGN §8.
+#include "render/gl/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace sylva {
+
+namespace {
+
+// ---------------------------------------------------------------- shaders
+
+// Shared lighting: sun + hemispheric ambient, shadow lookups with normal offset and PCF.
+const char* lighting_glsl = R"(
+uniform vec3 u_sun_dir; uniform vec3 u_sun_light; uniform vec3 u_sky_zenith; uniform vec3 u_ground_color;
+uniform float u_ambient;
+uniform sampler2DShadow u_shadow; uniform mat4 u_light_viewproj; uniform int u_shadows; uniform int u_pcf;
+uniform float u_bias; uniform float u_normal_offset; uniform float u_shadow_texel;
+const vec2 poisson16[16] = vec2[](
+  vec2(-0.94201624,-0.39906216), vec2(0.94558609,-0.76890725), vec2(-0.09418410,-0.92938870), vec2(0.34495938,0.29387760),
+  vec2(-0.91588581,0.45771432), vec2(-0.81544232,-0.87912464), vec2(-0.38277543,0.27676845), vec2(0.97484398,0.75648379),
+  vec2(0.44323325,-0.97511554), vec2(0.53742981,-0.47373420), vec2(-0.26496911,-0.41893023), vec2(0.79197514,0.19090188),
+  vec2(-0.24188840,0.99706507), vec2(-0.81409955,0.91437590), vec2(0.19984126,0.78641367), vec2(0.14383161,-0.14100790));
+float shadow_at(vec3 world, vec3 n) {
+  if (u_shadows == 0) return 1.0;
+  // Normal offset (seed 001: acne vs peter-panning): move the lookup off the surface, more at grazing light.
+  float ndl = clamp(dot(n, u_sun_dir), -1.0, 1.0);
+  vec3 p = world + n * (u_normal_offset * u_shadow_texel * sqrt(1.0 - ndl * ndl));
+  vec4 c = u_light_viewproj * vec4(p, 1.0);
+  vec3 s = c.xyz / c.w * 0.5 + 0.5;
+  if (s.x < 0.0 || s.y < 0.0 || s.x > 1.0 || s.y > 1.0 || s.z > 1.0) return 1.0;  // outside the map: lit
+  float ref = s.z - u_bias;
+  vec2 texel = vec2(1.0 / float(textureSize(u_shadow, 0).x));
+  float sum = 0.0, count = 0.0;
+  if (u_pcf == 2) {
+    for (int i = 0; i < 16; ++i) { sum += texture(u_shadow, vec3(s.xy + poisson16[i] * 2.5 * texel, ref)); count += 1.0; }
+  } else {
+    int k = u_pcf == 0 ? 1 : 2;
+    for (int y = -k; y <= k; ++y)
+      for (int x = -k; x <= k; ++x) { sum += texture(u_shadow, vec3(s.xy + vec2(x, y) * texel, ref)); count += 1.0; }
+  }
+  return sum / count;
+}
+vec3 ambient_light(vec3 n) {
+  return mix(u_ground_color * 0.6, u_sky_zenith, 0.5 + 0.5 * n.y) * u_ambient;
+}
+)";
+
+const char* bark_vs = R"(#version 330 core
+layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node;
+uniform mat4 u_viewproj; uniform samplerBuffer u_radius;
+out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive;
+void main() {
+  // (radius the vertex was built with, radius at the shown step or -1 when not alive)
+  vec2 r = texelFetch(u_radius, int(a_node)).xy;
+  v_alive = r.y >= 0.0 ? 1.0 : 0.0;
+  v_world = a_position + a_normal * (max(r.y, 0.0) - r.x);
+  v_normal = a_normal; v_uv = a_uv;
+  gl_Position = u_viewproj * vec4(v_world, 1.0);
+}
+)";
+
+const char* bark_fs_body = R"(
+in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive;
+uniform sampler2D u_bark; uniform vec3 u_bark_color;
+out vec4 o_color;
+void main() {
+  if (v_alive < 0.999) discard;  // a triangle touching a dead or unborn node
+  vec3 n = normalize(v_normal);
+  vec3 albedo = u_bark_color * texture(u_bark, v_uv).rgb * 2.0;
+  float sh = shadow_at(v_world, n);
+  vec3 c = albedo * (u_sun_light * max(dot(n, u_sun_dir), 0.0) * sh + ambient_light(n));
+  o_color = vec4(c, 1.0);
+}
+)";
+
+const char* depth_fs = R"(#version 330 core
+in float v_alive;
+void main() { if (v_alive < 0.999) discard; }
+)";
+
+const char* leaf_vs = R"(#version 330 core
+layout(location = 0) in vec2 a_corner;
+layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
+layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture;
+uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation;
+out vec3 v_world; out vec3 v_normal; out vec2 v_uv; flat out float v_layer; flat out vec3 v_tint;
+vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
+float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
+void main() {
+  bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
+  // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h).
+  vec3 local = vec3(a_corner.x * 0.6, a_corner.y, 0.0) * i_size;
+  v_world = i_position + rotate(i_rotation, local);
+  v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
+  v_uv = vec2(a_corner.x + 0.5, a_corner.y);
+  v_layer = float(i_texture);
+  float h = hash(i_position);
+  v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
+  gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+}
+)";
+
+const char* leaf_fs_body = R"(
+in vec3 v_world; in vec3 v_normal; in vec2 v_uv; flat in float v_layer; flat in vec3 v_tint;
+uniform sampler2DArray u_leaf; uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
+out vec4 o_color;
+void main() {
+  vec4 t = texture(u_leaf, vec3(v_uv, v_layer));
+  if (t.a < u_cutoff) discard;
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;   // two-sided: light the side we see
+  float ndl = dot(n, u_sun_dir);
+  vec3 albedo = u_leaf_color * t.rgb * v_tint * 2.0;
+  float sh = shadow_at(v_world, ndl >= 0.0 ? n : -n);
+  // Transmission: sunlight arriving on the far side glows through the blade, tinted by it.
+  vec3 transmitted = u_translucency * max(-ndl, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
+  vec3 c = albedo * (u_sun_light * max(ndl, 0.0) * sh + ambient_light(n)) + u_sun_light * sh * transmitted;
+  o_color = vec4(c, 1.0);
+}
+)";
+
+const char* leaf_depth_fs = R"(#version 330 core
+in vec3 v_world; in vec3 v_normal; in vec2 v_uv; flat in float v_layer; flat in vec3 v_tint;
+uniform sampler2DArray u_leaf; uniform float u_cutoff;
+void main() { if (texture(u_leaf, vec3(v_uv, v_layer)).a < u_cutoff) discard; }
+)";
+
+// A full-screen triangle from gl_VertexID; no vertex buffer.
+const char* fullscreen_vs = R"(#version 330 core
+out vec2 v_uv;
+void main() {
+  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  v_uv = p * 0.5 + 0.5;
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+// Sky direction for a screen position, shared by the sky and the occlusion pass.
+const char* sky_glsl = R"(
+uniform mat4 u_inv_viewproj; uniform vec3 u_eye; uniform vec3 u_sun_dir;
+vec3 view_dir(vec2 uv) {
+  vec4 w = u_inv_viewproj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+  return normalize(w.xyz / w.w - u_eye);
+}
+float sun_disc(vec3 d) {   // ~0.8° disc with a soft rim
+  return smoothstep(0.99985, 0.99992, dot(d, u_sun_dir));
+}
+)";
+
+const char* sky_fs_body = R"(
+in vec2 v_uv;
+uniform vec3 u_sky_zenith; uniform vec3 u_sky_horizon; uniform vec3 u_ground_color; uniform vec3 u_sun_light;
+out vec4 o_color;
+void main() {
+  vec3 d = view_dir(v_uv);
+  vec3 c = d.y >= 0.0 ? mix(u_sky_horizon, u_sky_zenith, pow(d.y, 0.6))
+                      : mix(u_sky_horizon, u_ground_color * 0.8, clamp(-d.y * 8.0, 0.0, 1.0));
+  float cs = max(dot(d, u_sun_dir), 0.0);
+  c += u_sun_light * (0.03 * pow(cs, 64.0) + 0.15 * pow(cs, 800.0));   // glow around the sun
+  c += u_sun_light * 8.0 * sun_disc(d);
+  o_color = vec4(c, 1.0);
+}
+)";
+
+const char* ground_vs = R"(#version 330 core
+uniform mat4 u_viewproj; uniform vec3 u_center; uniform float u_extent;
+out vec3 v_world;
+void main() {
+  vec2 c = vec2((gl_VertexID & 1) != 0 ? 1.0 : -1.0, (gl_VertexID & 2) != 0 ? 1.0 : -1.0);
+  v_world = vec3(u_center.x + c.x * u_extent, 0.0, u_center.z + c.y * u_extent);
+  gl_Position = u_viewproj * vec4(v_world, 1.0);
+}
+)";
+
+const char* ground_fs_body = R"(
+in vec3 v_world;
+uniform vec3 u_center; uniform float u_extent; uniform vec3 u_sky_horizon;
+out vec4 o_color;
+void main() {
+  vec3 n = vec3(0.0, 1.0, 0.0);
+  float sh = shadow_at(v_world, n);
+  vec3 c = u_ground_color * (u_sun_light * max(u_sun_dir.y, 0.0) * sh + ambient_light(n));
+  // Fade into the horizon haze so the plane's edge never shows.
+  float f = smoothstep(0.4, 1.0, length(v_world.xz - u_center.xz) / u_extent);
+  o_color = vec4(mix(c, u_sky_horizon * 0.9, f), 1.0);
+}
+)";
+
+// Occlusion (Mitchell, GPU Gems 3 ch. 13): sun disc and sky bright, geometry black.
+const char* occlusion_fs_body = R"(
+in vec2 v_uv;
+uniform sampler2D u_depth; uniform vec3 u_sun_color;
+out vec4 o_color;
+void main() {
+  if (texture(u_depth, v_uv).r < 1.0) { o_color = vec4(0.0, 0.0, 0.0, 1.0); return; }
+  vec3 d = view_dir(v_uv);
+  float cs = max(dot(d, u_sun_dir), 0.0);
+  float bright = sun_disc(d) + 0.35 * pow(cs, 300.0) + 0.04;
+  o_color = vec4(u_sun_color * bright, 1.0);
+}
+)";
+
+// Radial blur toward the sun: Mitchell, GPU Gems 3 ch. 13, example 13-1.
+const char* radial_fs = R"(#version 330 core
+in vec2 v_uv;
+uniform sampler2D u_occlusion; uniform vec2 u_light_uv; uniform int u_samples;
+uniform float u_density; uniform float u_weight; uniform float u_decay; uniform float u_exposure;
+out vec4 o_color;
+void main() {
+  vec2 tc = v_uv;
+  vec2 delta = (tc - u_light_uv) * (1.0 / float(u_samples)) * u_density;
+  vec3 color = texture(u_occlusion, tc).rgb;
+  float illumination_decay = 1.0;
+  for (int i = 0; i < u_samples; ++i) {
+    tc -= delta;
+    vec3 s = texture(u_occlusion, tc).rgb * illumination_decay * u_weight;
+    color += s;
+    illumination_decay *= u_decay;
+  }
+  o_color = vec4(color * u_exposure, 1.0);
+}
+)";
+
+// Composite and tonemap: ACES filmic fit (Narkowicz 2015), then the sRGB transfer curve.
+const char* composite_fs = R"(#version 330 core
+in vec2 v_uv;
+uniform sampler2D u_hdr; uniform sampler2D u_rays; uniform float u_ray_strength; uniform float u_exposure;
+out vec4 o_color;
+vec3 aces(vec3 x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
+vec3 to_srgb(vec3 c) {
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+void main() {
+  vec3 c = texture(u_hdr, v_uv).rgb;
+  if (u_ray_strength > 0.0) c += u_ray_strength * texture(u_rays, v_uv).rgb;   // unused targets may hold NaN
+  o_color = vec4(to_srgb(aces(c * u_exposure)), 1.0);
+}
+)";
+
+const char* lines_vs = R"(#version 330 core
+layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_color;
+uniform mat4 u_viewproj;
+out vec3 v_color;
+void main() { v_color = a_color; gl_Position = u_viewproj * vec4(a_position, 1.0); gl_PointSize = 4.0; }
+)";
+const char* lines_fs = R"(#version 330 core
+in vec3 v_color; out vec4 o_color;
+void main() { o_color = vec4(v_color, 1.0); }
+)";
+
+// Used when a lit program fails to compile: flat colour, no lighting, never a crash.
+const char* fallback_fs = R"(#version 330 core
+uniform vec3 u_color; out vec4 o_color;
+void main() { o_color = vec4(u_color, 1.0); }
+)";
+
+std::string lit_source(const char* body) { return std::string("#version 330 core\n") + lighting_glsl + body; }
+std::string sky_source(const char* body) { return std::string("#version 330 core\n") + sky_glsl + body; }
+
+// ---------------------------------------------------------------- procedural textures
+
+float hash2(int x, int y, int seed) {
+  uint32_t h = uint32_t(x) * 374761393u + uint32_t(y) * 668265263u + uint32_t(seed) * 2246822519u;
+  h = (h ^ (h >> 13)) * 1274126177u;
+  return float((h ^ (h >> 16)) & 0xffffffu) / 16777216.0f;
+}
+
+// Value noise, tileable with period `period` cells.
+float tile_noise(float x, float y, int period, int seed) {
+  int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  float fx = x - float(x0), fy = y - float(y0);
+  fx = fx * fx * (3 - 2 * fx);
+  fy = fy * fy * (3 - 2 * fy);
+  auto h = [&](int i, int j) { return hash2(((i % period) + period) % period, ((j % period) + period) % period, seed); };
+  float a = h(x0, y0), b = h(x0 + 1, y0), c = h(x0, y0 + 1), d = h(x0 + 1, y0 + 1);
+  return (a + (b - a) * fx) + ((c + (d - c) * fx) - (a + (b - a) * fx)) * fy;
+}
+
+// Bark: ridges running along the branch (v), broken by noise; grey-brown, multiplied by the tint.
+std::vector<unsigned char> make_bark_texture(int n) {
+  std::vector<unsigned char> px(size_t(n) * n * 4);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      float u = float(x) / n, v = float(y) / n;
+      float warp = tile_noise(u * 8, v * 4, 8, 3) * 0.6f;
+      float ridge = 0.5f + 0.5f * std::sin((u * 12 + warp) * 6.2831853f);
+      float crack = std::pow(1 - ridge, 6.0f);
+      float grain = tile_noise(u * 32, v * 8, 32, 7) * 0.5f + tile_noise(u * 64, v * 32, 64, 11) * 0.5f;
+      float l = 0.5f + 0.25f * grain - 0.35f * crack;
+      unsigned char* p = &px[(size_t(y) * n + x) * 4];
+      p[0] = (unsigned char)std::clamp(l * 255.0f, 0.0f, 255.0f);
+      p[1] = (unsigned char)std::clamp(l * 0.95f * 255.0f, 0.0f, 255.0f);
+      p[2] = (unsigned char)std::clamp(l * 0.9f * 255.0f, 0.0f, 255.0f);
+      p[3] = 255;
+    }
+  return px;
+}
+
+// Four leaf blades (Runions 2007 uses textured leaves): different widths and tips, a midrib and veins.
+std::vector<unsigned char> make_leaf_textures(int n, int layers) {
+  std::vector<unsigned char> px(size_t(n) * n * 4 * layers);
+  const float widths[4] = {0.42f, 0.30f, 0.48f, 0.36f};
+  const float tips[4] = {1.6f, 2.2f, 1.2f, 1.8f};
+  for (int l = 0; l < layers; ++l)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        float u = (x + 0.5f) / n - 0.5f, v = (y + 0.5f) / n;   // v: 0 petiole .. 1 tip
+        float t = (v - 0.08f) / 0.9f;                          // blade parameter
+        float half = t > 0 && t < 1 ? widths[l % 4] * std::pow(std::sin(3.14159265f * std::pow(t, 0.8f)), 1.0f / tips[l % 4]) * 0.95f : 0;
+        bool petiole = v < 0.12f && std::abs(u) < 0.02f;
+        float inside = half - std::abs(u);
+        float a = petiole ? 1.0f : std::clamp(inside * n * 0.5f + 0.5f, 0.0f, 1.0f);
+        float vein = std::abs(u) < 0.012f ? 1.0f : 0.0f;
+        float side = std::abs(std::fmod(t * 7 - std::abs(u) * 6 + 10, 1.0f) - 0.5f) < 0.05f ? 0.5f : 0.0f;
+        float shade = 0.85f + 0.15f * tile_noise(u * 16 + 8, v * 16, 16, 20 + l) - 0.15f * std::max(vein, side);
+        shade *= 0.9f + 0.2f * (1 - std::abs(u) / std::max(half, 0.01f));
+        unsigned char* p = &px[((size_t(l) * n + y) * n + x) * 4];
+        p[0] = (unsigned char)std::clamp(shade * 0.45f * 255.0f, 0.0f, 255.0f);
+        p[1] = (unsigned char)std::clamp(shade * 0.5f * 255.0f, 0.0f, 255.0f);
+        p[2] = (unsigned char)std::clamp(shade * 0.38f * 255.0f, 0.0f, 255.0f);
+        p[3] = (unsigned char)(a * 255.0f);
+      }
+  return px;
+}
+
+// ---------------------------------------------------------------- helpers
+
+gl_texture make_color_target(int w, int h, GLenum internal_format) {
+  gl_texture t;
+  glGenTextures(1, &t.id);
+  glBindTexture(GL_TEXTURE_2D, t.id);
+  glTexImage2D(GL_TEXTURE_2D, 0, internal_format, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+gl_framebuffer make_framebuffer(const gl_texture& color, const gl_texture& depth) {
+  gl_framebuffer f;
+  glGenFramebuffers(1, &f.id);
+  glBindFramebuffer(GL_FRAMEBUFFER, f.id);
+  if (color.id) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+  if (depth.id) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id, 0);
+  if (!color.id) {
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+  }
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) check_gl("incomplete framebuffer");
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return f;
+}
+
+gl_texture make_depth_texture(int w, int h, bool compare) {
+  gl_texture t;
+  glGenTextures(1, &t.id);
+  glBindTexture(GL_TEXTURE_2D, t.id);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, w, h, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, compare ? GL_LINEAR : GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, compare ? GL_LINEAR : GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  if (compare) {  // hardware 2x2 compare under each PCF tap
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+  return t;
+}
+
+void resize_targets(renderer_state& r, int w, int h) {
+  if (r.width == w && r.height == h) return;
+  r.width = w;
+  r.height = h;
+  for (gl_framebuffer* f : {&r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo}) delete_gl(*f);
+  for (gl_texture* t : {&r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex}) delete_gl(*t);
+  r.hdr_color = make_color_target(w, h, GL_RGBA16F);
+  r.hdr_depth = make_depth_texture(w, h, false);
+  r.hdr_fbo = make_framebuffer(r.hdr_color, r.hdr_depth);
+  const int hw = std::max(1, w / 2), hh = std::max(1, h / 2);   // god rays at half resolution
+  r.occlusion_tex = make_color_target(hw, hh, GL_RGBA16F);
+  r.occlusion_fbo = make_framebuffer(r.occlusion_tex, {});
+  r.rays_tex = make_color_target(hw, hh, GL_RGBA16F);
+  r.rays_fbo = make_framebuffer(r.rays_tex, {});
+  check_gl("resize targets");
+}
+
+void resize_shadow(renderer_state& r, int size) {
+  if (r.shadow_size == size) return;
+  r.shadow_size = size;
+  delete_gl(r.shadow_fbo);
+  delete_gl(r.shadow_tex);
+  r.shadow_tex = make_depth_texture(size, size, true);
+  r.shadow_fbo = make_framebuffer({}, r.shadow_tex);
+  check_gl("resize shadow map");
+}
+
+// Orthographic sun frustum fitted to the tree's bounds (DESIGN §8 pass 1).
+glm::mat4 light_viewproj(const renderer_state& r, const glm::vec3& sun, float* texel_world) {
+  glm::vec3 lo = r.bounds_min, hi = r.bounds_max;
+  glm::vec3 center = 0.5f * (lo + hi);
+  float radius = std::max(glm::length(hi - lo) * 0.5f, 0.01f);
+  glm::vec3 up = std::abs(sun.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  glm::mat4 view = glm::lookAt(center + sun * radius * 2.0f, center, up);
+  glm::vec3 a(1e30f), b(-1e30f);
+  for (int i = 0; i < 8; ++i) {
+    glm::vec3 c((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+    glm::vec3 v = glm::vec3(view * glm::vec4(c, 1));
+    a = glm::min(a, v);
+    b = glm::max(b, v);
+  }
+  const float pad = radius * 0.02f;
+  glm::mat4 proj = glm::ortho(a.x - pad, b.x + pad, a.y - pad, b.y + pad, -b.z - pad, -a.z + pad);
+  if (texel_world) *texel_world = std::max(b.x - a.x, b.y - a.y) / float(std::max(r.shadow_size, 1));
+  return proj * view;
+}
+
+void set_lighting(const renderer_state& r, const gl_program& p, const render_params& rp, const glm::vec3& sun,
+                  const glm::mat4& light, float texel_world) {
+  set_uniform(p, "u_sun_dir", sun);
+  // The sun dims as it sets: nothing lights the ground from below the horizon.
+  float above = std::clamp((sun.y + 0.05f) / 0.15f, 0.0f, 1.0f);
+  set_uniform(p, "u_sun_light", rp.sun_color * rp.sun_intensity * above);
+  set_uniform(p, "u_sky_zenith", rp.sky_zenith);
+  set_uniform(p, "u_ground_color", rp.ground_color);
+  set_uniform(p, "u_ambient", rp.ambient);
+  set_uniform(p, "u_shadows", rp.shadows && r.has_tree ? 1 : 0);
+  set_uniform(p, "u_pcf", int(rp.shadow_pcf));
+  set_uniform(p, "u_bias", rp.shadow_bias);
+  set_uniform(p, "u_normal_offset", rp.shadow_normal_offset);
+  set_uniform(p, "u_shadow_texel", texel_world);
+  set_uniform(p, "u_light_viewproj", light);
+  set_uniform(p, "u_shadow", 1);
+}
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void bind_tree_textures(const renderer_state& r) {
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, r.shadow_tex.id);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void draw_bark(const renderer_state& r) {
+  uint32_t n = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)];
+  if (!n) return;
+  glBindVertexArray(r.bark_vao.id);
+  glDrawElements(GL_TRIANGLES, GLsizei(n), GL_UNSIGNED_INT, nullptr);
+}
+
+uint32_t leaf_count(const renderer_state& r) {
+  return r.leaf_end.empty() ? 0 : r.leaf_end[std::clamp(r.step, 0, int(r.leaf_end.size()) - 1)];
+}
+
+// All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
+void draw_leaves(const renderer_state& r) {
+  uint32_t n = leaf_count(r);
+  if (!n) return;
+  glBindVertexArray(r.leaf_vao.id);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- camera
+
+void orbit_camera_rotate(orbit_camera& c, float dx, float dy) {
+  c.yaw -= dx * 0.3f;
+  c.pitch = std::clamp(c.pitch + dy * 0.3f, -89.0f, 89.0f);
+}
+
+void orbit_camera_pan(orbit_camera& c, float dx, float dy, int viewport_height) {
+  glm::vec3 eye = camera_eye(c);
+  glm::vec3 fwd = glm::normalize(c.target - eye);
+  glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0, 1, 0)));
+  glm::vec3 up = glm::cross(right, fwd);
+  float per_pixel = 2.0f * c.distance * std::tan(glm::radians(c.fov) * 0.5f) / float(std::max(viewport_height, 1));
+  c.target += (-dx * right + dy * up) * per_pixel;
+}
+
+void orbit_camera_zoom(orbit_camera& c, float wheel) {
+  c.distance = std::clamp(c.distance * std::pow(0.88f, wheel), 0.01f, 1e5f);
+}
+
+void frame_camera(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi) {
+  c.target = 0.5f * (lo + hi);
+  float radius = std::max(glm::length(hi - lo) * 0.5f, 0.05f);
+  c.distance = radius / std::sin(glm::radians(c.fov) * 0.5f) * 1.05f;
+}
+
+glm::vec3 camera_eye(const orbit_camera& c) {
+  float y = glm::radians(c.yaw), p = glm::radians(c.pitch);
+  return c.target + c.distance * glm::vec3(std::sin(y) * std::cos(p), std::sin(p), std::cos(y) * std::cos(p));
+}
+
+glm::vec3 sun_direction(const render_params& p) {
+  float a = glm::radians(p.sun_azimuth), e = glm::radians(p.sun_elevation);
+  return glm::vec3(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
+}
+
+// ---------------------------------------------------------------- lifetime
+
+bool init_renderer(renderer_state& r) {
+  const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
+                    ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
+                    occ_fs = sky_source(occlusion_fs_body);
+  r.bark = compile_program("bark", bark_vs, bark_fs.c_str());
+  r.bark_depth = compile_program("bark depth", bark_vs, depth_fs);
+  r.leaf = compile_program("leaf", leaf_vs, leaf_fs.c_str());
+  r.leaf_depth = compile_program("leaf depth", leaf_vs, leaf_depth_fs);
+  r.sky = compile_program("sky", fullscreen_vs, sky_fs.c_str());
+  r.ground = compile_program("ground", ground_vs, ground_fs.c_str());
+  r.occlusion = compile_program("occlusion", fullscreen_vs, occ_fs.c_str());
+  r.radial = compile_program("radial blur", fullscreen_vs, radial_fs);
+  r.composite = compile_program("composite", fullscreen_vs, composite_fs);
+  r.lines = compile_program("lines", lines_vs, lines_fs);
+  r.fallback = compile_program("fallback", bark_vs, fallback_fs);
+  if (r.composite.failed || r.fallback.failed) {
+    r.error = "renderer: " + gl_last_message();
+    r.ok = false;
+  } else {
+    r.ok = true;
+  }
+
+  glGenVertexArrays(1, &r.empty_vao.id);
+  glGenVertexArrays(1, &r.bark_vao.id);
+  glGenVertexArrays(1, &r.leaf_vao.id);
+  glGenVertexArrays(1, &r.overlay_vao.id);
+  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
+                       &r.leaf_instances, &r.node_radius, &r.overlay_vertices})
+    glGenBuffers(1, &b->id);
+
+  // Bark: one buffer per attribute, matching tree_mesh's arrays so upload is a straight copy.
+  glBindVertexArray(r.bark_vao.id);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_position.id);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_normal.id);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_uv.id);
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_node.id);
+  glEnableVertexAttribArray(3);
+  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, 0, nullptr);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.bark_index.id);
+
+  // Leaves: a unit quad plus one leaf_instance per instance.
+  const float corners[8] = {-0.5f, 0, 0.5f, 0, -0.5f, 1, 0.5f, 1};
+  glBindVertexArray(r.leaf_vao.id);
+  glBindBuffer(GL_ARRAY_BUFFER, r.leaf_corner.id);
+  glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
+  const GLsizei stride = sizeof(leaf_instance);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, position));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, orientation));
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, size));
+  static_assert(offsetof(leaf_instance, died) == offsetof(leaf_instance, born) + 2, "born/died read as a pair");
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
+  glEnableVertexAttribArray(5);
+  glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
+  for (int i = 1; i <= 5; ++i) glVertexAttribDivisor(i, 1);
+
+  // Overlays: interleaved position + colour.
+  glBindVertexArray(r.overlay_vao.id);
+  glBindBuffer(GL_ARRAY_BUFFER, r.overlay_vertices.id);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (void*)12);
+  glBindVertexArray(0);
+
+  // Per-node radii for scrubbing, read in the vertex shader through a buffer texture.
+  glGenTextures(1, &r.node_radius_tex.id);
+  glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
+  glBufferData(GL_TEXTURE_BUFFER, 8, nullptr, GL_DYNAMIC_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, r.node_radius.id);
+
+  // Procedural textures: the app needs no asset files.
+  const int bark_n = 256, leaf_n = 128, leaf_layers = 4;
+  std::vector<unsigned char> bark = make_bark_texture(bark_n);
+  glGenTextures(1, &r.bark_tex.id);
+  glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, bark_n, bark_n, 0, GL_RGBA, GL_UNSIGNED_BYTE, bark.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  std::vector<unsigned char> leaves = make_leaf_textures(leaf_n, leaf_layers);
+  glGenTextures(1, &r.leaf_tex.id);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, leaf_n, leaf_n, leaf_layers, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               leaves.data());
+  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+  resize_shadow(r, 2048);
+  check_gl("init renderer");
+  return r.ok;
+}
+
+void destroy_renderer(renderer_state& r) {
+  for (gl_program* p : {&r.bark, &r.bark_depth, &r.leaf, &r.leaf_depth, &r.sky, &r.ground, &r.occlusion, &r.radial,
+                        &r.composite, &r.lines, &r.fallback})
+    delete_gl(*p);
+  for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao, &r.overlay_vao}) delete_gl(*v);
+  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
+                       &r.leaf_instances, &r.node_radius, &r.overlay_vertices})
+    delete_gl(*b);
+  for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.leaf_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth,
+                        &r.occlusion_tex, &r.rays_tex})
+    delete_gl(*t);
+  for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo}) delete_gl(*f);
+  r.width = r.height = r.shadow_size = 0;
+  r.ok = false;
+}
+
+// ---------------------------------------------------------------- uploads
+
+void upload_tree(renderer_state& r, const tree_mesh& m) {
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_position.id);
+  glBufferData(GL_ARRAY_BUFFER, m.position.size() * sizeof(glm::vec3), m.position.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_normal.id);
+  glBufferData(GL_ARRAY_BUFFER, m.normal.size() * sizeof(glm::vec3), m.normal.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_uv.id);
+  glBufferData(GL_ARRAY_BUFFER, m.uv.size() * sizeof(glm::vec2), m.uv.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_node.id);
+  glBufferData(GL_ARRAY_BUFFER, m.node.size() * sizeof(uint32_t), m.node.data(), GL_STATIC_DRAW);
+  glBindVertexArray(r.bark_vao.id);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, m.index.size() * sizeof(uint32_t), m.index.data(), GL_STATIC_DRAW);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
+  glBufferData(GL_ARRAY_BUFFER, m.leaves.size() * sizeof(leaf_instance), m.leaves.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  r.index_end = m.index_end;
+  r.leaf_end = m.leaf_end;
+  r.final_radius = m.final_radius;
+  r.node_count = int(m.final_radius.size());
+  r.radius_upload.assign(size_t(r.node_count) * 2, 0.0f);
+  glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
+  glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(8, r.radius_upload.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  r.steps = m.steps;
+  r.step = m.steps;
+  r.has_tree = !m.index.empty() || !m.leaves.empty();
+  if (r.has_tree) {
+    r.bounds_min = m.bounds_min;
+    r.bounds_max = m.bounds_max;
+  } else {
+    r.bounds_min = glm::vec3(-1, 0, -1);
+    r.bounds_max = glm::vec3(1, 2, 1);
+  }
+  check_gl("upload tree");
+}
+
+void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step) {
+  r.step = std::clamp(step, 0, std::max(r.steps, 0));
+  if (r.node_count == 0) return;
+  std::vector<float> radii = radii_at_step(t, r.step);
+  const size_t n = std::min(radii.size(), size_t(r.node_count));
+  for (size_t i = 0; i < size_t(r.node_count); ++i) {
+    const bool alive = i < n && i < t.size() && t.alive(i, r.step);
+    r.radius_upload[2 * i] = r.final_radius[i];
+    r.radius_upload[2 * i + 1] = alive ? std::max(radii[i], min_radius) : -1.0f;
+  }
+  glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
+  glBufferSubData(GL_TEXTURE_BUFFER, 0, r.radius_upload.size() * sizeof(float), r.radius_upload.data());
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  check_gl("set tree step");
+}
+
+void upload_overlays(renderer_state& r, const growth_debug& d) {
+  std::vector<float> v;
+  v.reserve((d.lines.size() + d.points.size()) * 6);
+  for (size_t i = 0; i + 1 < d.lines.size(); i += 2) {
+    glm::vec3 c = i / 2 < d.line_color.size() ? d.line_color[i / 2] : glm::vec3(1, 0.8f, 0.2f);
+    for (size_t k = 0; k < 2; ++k) v.insert(v.end(), {d.lines[i + k].x, d.lines[i + k].y, d.lines[i + k].z, c.x, c.y, c.z});
+  }
+  r.overlay_line_vertices = int(v.size() / 6);
+  for (size_t i = 0; i < d.points.size(); ++i) {
+    float val = i < d.point_value.size() ? d.point_value[i] : 0;
+    glm::vec3 c = val < 0 ? glm::vec3(1, 0.2f, 0.9f) : glm::mix(glm::vec3(1, 1, 0.3f), glm::vec3(0.2f, 0.4f, 1), std::clamp(val, 0.0f, 1.0f));
+    v.insert(v.end(), {d.points[i].x, d.points[i].y, d.points[i].z, c.x, c.y, c.z});
+  }
+  r.overlay_point_vertices = int(v.size() / 6) - r.overlay_line_vertices;
+  glBindBuffer(GL_ARRAY_BUFFER, r.overlay_vertices.id);
+  glBufferData(GL_ARRAY_BUFFER, v.size() * sizeof(float), v.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  check_gl("upload overlays");
+}
+
+// ---------------------------------------------------------------- the frame
+
+void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+                gl_framebuffer target, bool overlays) {
+  if (width <= 0 || height <= 0) return;
+  resize_targets(r, width, height);
+  resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
+  double t0 = now_ms();
+  auto mark = [&](double& slot) {
+    if (!r.measure_passes) return;
+    glFinish();
+    double t = now_ms();
+    slot = t - t0;
+    t0 = t;
+  };
+
+  const glm::vec3 sun = sun_direction(rp);
+  const glm::vec3 eye = camera_eye(cam);
+  const float scene = std::max(glm::length(r.bounds_max - r.bounds_min), 1.0f);
+  const float ground_extent = std::max(30.0f, scene * 10.0f);
+  const float near_plane = std::max(cam.distance * 0.01f, 0.005f);
+  const float far_plane = cam.distance + ground_extent * 3.0f;
+  const glm::mat4 proj = glm::perspective(glm::radians(cam.fov), float(width) / float(height), near_plane, far_plane);
+  const glm::mat4 view = glm::lookAt(eye, cam.target, glm::vec3(0, 1, 0));
+  const glm::mat4 viewproj = proj * view;
+  float texel_world = 0;
+  const glm::mat4 light = light_viewproj(r, sun, &texel_world);
+  const bool lit_ok = !r.bark.failed && !r.leaf.failed;
+  r.triangles_drawn = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)] / 3;
+  r.leaves_drawn = leaf_count(r);
+  glBindVertexArray(r.empty_vao.id);
+  bind_tree_textures(r);
+
+  // 1. Shadow pass: depth from the sun, back faces, slope-scaled bias.
+  glBindFramebuffer(GL_FRAMEBUFFER, r.shadow_fbo.id);
+  glViewport(0, 0, r.shadow_size, r.shadow_size);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  if (rp.shadows && r.has_tree && lit_ok) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(rp.shadow_slope_bias, 1.0f);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    glUseProgram(r.bark_depth.id);
+    set_uniform(r.bark_depth, "u_viewproj", light);
+    set_uniform(r.bark_depth, "u_radius", 2);
+    draw_bark(r);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
+    set_uniform(r.leaf_depth, "u_viewproj", light);
+    set_uniform(r.leaf_depth, "u_step", r.step);
+    set_uniform(r.leaf_depth, "u_leaf", 3);
+    set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
+    draw_leaves(r);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  mark(r.timings.shadow);
+
+  // 2. Lit pass into the linear HDR target.
+  glBindFramebuffer(GL_FRAMEBUFFER, r.hdr_fbo.id);
+  glViewport(0, 0, width, height);
+  glClearColor(0, 0, 0, 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const glm::mat4 inv_viewproj = glm::inverse(viewproj);
+  if (!r.sky.failed) {   // sky first, without depth, so the depth buffer stays 1 where sky shows
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glUseProgram(r.sky.id);
+    set_uniform(r.sky, "u_inv_viewproj", inv_viewproj);
+    set_uniform(r.sky, "u_eye", eye);
+    set_uniform(r.sky, "u_sun_dir", sun);
+    set_uniform(r.sky, "u_sky_zenith", rp.sky_zenith);
+    set_uniform(r.sky, "u_sky_horizon", rp.sky_horizon);
+    set_uniform(r.sky, "u_ground_color", rp.ground_color);
+    set_uniform(r.sky, "u_sun_light", rp.sun_color * rp.sun_intensity);
+    glBindVertexArray(r.empty_vao.id);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+  }
+  if (rp.ground && !r.ground.failed) {
+    glUseProgram(r.ground.id);
+    set_lighting(r, r.ground, rp, sun, light, texel_world);
+    set_uniform(r.ground, "u_viewproj", viewproj);
+    glm::vec3 center = 0.5f * (r.bounds_min + r.bounds_max);
+    set_uniform(r.ground, "u_center", center);
+    set_uniform(r.ground, "u_extent", ground_extent);
+    set_uniform(r.ground, "u_sky_horizon", rp.sky_horizon);
+    glBindVertexArray(r.empty_vao.id);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  }
+  if (r.has_tree) {
+    if (lit_ok) {
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      glUseProgram(r.bark.id);
+      set_lighting(r, r.bark, rp, sun, light, texel_world);
+      set_uniform(r.bark, "u_viewproj", viewproj);
+      set_uniform(r.bark, "u_radius", 2);
+      set_uniform(r.bark, "u_bark", 0);
+      set_uniform(r.bark, "u_bark_color", rp.bark_color);
+      draw_bark(r);
+      glDisable(GL_CULL_FACE);
+      glUseProgram(r.leaf.id);
+      set_lighting(r, r.leaf, rp, sun, light, texel_world);
+      set_uniform(r.leaf, "u_viewproj", viewproj);
+      set_uniform(r.leaf, "u_step", r.step);
+      set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
+      set_uniform(r.leaf, "u_leaf", 3);
+      set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
+      set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
+      set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
+      draw_leaves(r);
+    } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
+      glUseProgram(r.fallback.id);
+      set_uniform(r.fallback, "u_viewproj", viewproj);
+      set_uniform(r.fallback, "u_radius", 2);
+      set_uniform(r.fallback, "u_color", rp.bark_color);
+      draw_bark(r);
+    }
+  }
+  if (overlays && !r.lines.failed && r.overlay_line_vertices + r.overlay_point_vertices > 0) {
+    glUseProgram(r.lines.id);
+    set_uniform(r.lines, "u_viewproj", viewproj);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glDepthFunc(GL_LEQUAL);
+    glBindVertexArray(r.overlay_vao.id);
+    if (r.overlay_line_vertices) glDrawArrays(GL_LINES, 0, r.overlay_line_vertices);
+    if (r.overlay_point_vertices) glDrawArrays(GL_POINTS, r.overlay_line_vertices, r.overlay_point_vertices);
+    glDepthFunc(GL_LESS);
+  }
+  mark(r.timings.lit);
+
+  // 3 + 4. God rays: occlusion at half resolution, then the radial blur toward the sun.
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(r.empty_vao.id);
+  const glm::vec4 sun_clip = viewproj * glm::vec4(eye + sun * far_plane * 0.5f, 1.0f);
+  const glm::vec3 fwd = glm::normalize(cam.target - eye);
+  // Rays fade out as the sun leaves the view or goes behind the camera.
+  float ray_fade = std::clamp((glm::dot(fwd, sun) - 0.1f) / 0.4f, 0.0f, 1.0f);
+  ray_fade *= std::clamp((sun.y + 0.05f) / 0.1f, 0.0f, 1.0f);
+  const bool rays = rp.god_rays && ray_fade > 0 && sun_clip.w > 0 && !r.occlusion.failed && !r.radial.failed;
+  const int hw = std::max(1, width / 2), hh = std::max(1, height / 2);
+  if (rays) {
+    const glm::vec2 light_uv = glm::vec2(sun_clip.x, sun_clip.y) / sun_clip.w * 0.5f + 0.5f;
+    glBindFramebuffer(GL_FRAMEBUFFER, r.occlusion_fbo.id);
+    glViewport(0, 0, hw, hh);
+    glUseProgram(r.occlusion.id);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
+    set_uniform(r.occlusion, "u_depth", 0);
+    set_uniform(r.occlusion, "u_inv_viewproj", inv_viewproj);
+    set_uniform(r.occlusion, "u_eye", eye);
+    set_uniform(r.occlusion, "u_sun_dir", sun);
+    set_uniform(r.occlusion, "u_sun_color", rp.sun_color * rp.sun_intensity);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    mark(r.timings.occlusion);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, r.rays_fbo.id);
+    glUseProgram(r.radial.id);
+    glBindTexture(GL_TEXTURE_2D, r.occlusion_tex.id);
+    set_uniform(r.radial, "u_occlusion", 0);
+    set_uniform(r.radial, "u_light_uv", light_uv);
+    set_uniform(r.radial, "u_samples", std::clamp(rp.ray_samples, 1, 256));
+    set_uniform(r.radial, "u_density", rp.ray_density);
+    set_uniform(r.radial, "u_weight", rp.ray_weight);
+    set_uniform(r.radial, "u_decay", rp.ray_decay);
+    set_uniform(r.radial, "u_exposure", rp.ray_exposure);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    mark(r.timings.blur);
+  } else {
+    r.timings.occlusion = r.timings.blur = 0;
+  }
+
+  // 5. Composite and tonemap into the target.
+  glBindFramebuffer(GL_FRAMEBUFFER, target.id);
+  glViewport(0, 0, width, height);
+  glUseProgram(r.composite.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, r.rays_tex.id);
+  set_uniform(r.composite, "u_hdr", 0);
+  set_uniform(r.composite, "u_rays", 1);
+  set_uniform(r.composite, "u_ray_strength", rays ? ray_fade : 0.0f);
+  set_uniform(r.composite, "u_exposure", rp.exposure);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glActiveTexture(GL_TEXTURE0);
+  glUseProgram(0);
+  glBindVertexArray(0);
+  mark(r.timings.composite);
+  check_gl("draw frame");
+}
+
+}  // namespace sylva

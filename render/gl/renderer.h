@@ -1,0 +1,75 @@
+// The frame renderer: shadow -> lit -> occlusion (half res) -> radial blur -> composite (DESIGN §8).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "generators/skeleton.h"
+#include "render/gl/gl_util.h"
+#include "render/mesh.h"
+#include "render/render_params.h"
+
+namespace sylva {
+
+struct orbit_camera {
+  glm::vec3 target{0, 2, 0};
+  float distance = 8;
+  float yaw = 30;      // degrees around +Y
+  float pitch = 10;    // degrees above the horizon
+  float fov = 45;      // vertical, degrees
+};
+
+void orbit_camera_rotate(orbit_camera& c, float dx_pixels, float dy_pixels);
+void orbit_camera_pan(orbit_camera& c, float dx_pixels, float dy_pixels, int viewport_height);
+void orbit_camera_zoom(orbit_camera& c, float wheel);
+// Fits the whole box in view from the current direction.
+void frame_camera(orbit_camera& c, const glm::vec3& bounds_min, const glm::vec3& bounds_max);
+glm::vec3 camera_eye(const orbit_camera& c);
+glm::vec3 sun_direction(const render_params& p);   // unit vector toward the sun
+
+struct pass_timings { double shadow = 0, lit = 0, occlusion = 0, blur = 0, composite = 0; };
+
+struct renderer_state {
+  bool ok = false;
+  std::string error;
+  gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, composite, lines, fallback;
+  gl_vertex_array bark_vao, leaf_vao, empty_vao, overlay_vao;
+  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius,
+      overlay_vertices;
+  gl_texture node_radius_tex, bark_tex, leaf_tex, shadow_tex, hdr_color, hdr_depth, occlusion_tex, rays_tex;
+  gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo;
+  int shadow_size = 0, width = 0, height = 0;
+  // The uploaded tree.
+  std::vector<uint32_t> index_end, leaf_end;
+  std::vector<float> final_radius;
+  std::vector<float> radius_upload;   // reused scratch: (final, shown) per node
+  int steps = 0, step = 0, node_count = 0;
+  glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
+  bool has_tree = false;
+  int overlay_line_vertices = 0, overlay_point_vertices = 0;
+  // Measurements.
+  bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
+  pass_timings timings;
+  size_t triangles_drawn = 0, leaves_drawn = 0;
+};
+
+// Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.
+bool init_renderer(renderer_state& r);
+void destroy_renderer(renderer_state& r);
+
+// Uploads a meshed tree; the scrub position is then set with set_tree_step.
+void upload_tree(renderer_state& r, const tree_mesh& m);
+// Shows the tree as it stood at `step`: draw counts plus one small per-node radius upload.
+void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step);
+// Growth-debug overlays as lines and points (empty debug clears them).
+void upload_overlays(renderer_state& r, const growth_debug& d);
+
+// Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
+void draw_frame(renderer_state& r, const render_params& p, const orbit_camera& cam, int width, int height,
+                gl_framebuffer target = {}, bool overlays = false);
+
+}  // namespace sylva
