@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -57,6 +58,7 @@ struct tree_mesh {
   std::vector<float> final_radius;   // per node, the radius the vertices were built with
   glm::vec3 bounds_min{0}, bounds_max{0};
   int steps = 0;
+  int radial_segments = 0;           // ring stride is radial_segments + 1
   size_t triangles() const { return index.size() / 3; }
 };
 
@@ -64,5 +66,14 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed 
 
 // Checks the mesh invariants (indices in range, offsets monotone, no NaN); "" when valid.
 std::string validate_mesh(const tree_mesh& m);
+
+// The tree as it stood at `step`: only nodes alive then (born <= step < died), compacted with
+// parent < i kept, radii of that step, leaves alive then. steps = step.
+tree_skeleton skeleton_at_step(const tree_skeleton& t, int step);
+
+// The mesh of the tree at `step` for export: bark re-meshed from skeleton_at_step (radii of that
+// step, dead branches gone) and the leaves of `full` alive at `step`, so the foliage matches the
+// editor's view of that step. A step outside 0..t.steps-1 returns a copy of `full`.
+tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const mesh_params& p, int step);
 
 }  // namespace sylva
