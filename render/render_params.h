@@ -14,7 +14,7 @@ struct render_params {
   float sun_azimuth = 35;       // degrees, from +Z toward +X
   float sun_elevation = 40;     // degrees above the horizon
   glm::vec3 sun_color{1.0f, 0.95f, 0.85f};
-  float sun_intensity = 3.0f;
+  float sun_intensity = 2.2f;
   glm::vec3 sky_zenith{0.25f, 0.45f, 0.85f};
   glm::vec3 sky_horizon{0.75f, 0.85f, 0.95f};
   float ambient = 0.35f;
@@ -22,7 +22,7 @@ struct render_params {
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};
   bool ground = true;
-  glm::vec3 ground_color{0.30f, 0.33f, 0.20f};
+  glm::vec3 ground_color{0.16f, 0.20f, 0.09f};
   // Leaves (seed 001 names opaque leaves its main flaw: light passes through these).
   float leaf_translucency = 0.6f;
   float alpha_cutoff = 0.5f;

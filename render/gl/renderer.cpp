@@ -160,7 +160,7 @@ uniform vec3 u_sky_zenith; uniform vec3 u_sky_horizon; uniform vec3 u_ground_col
 out vec4 o_color;
 void main() {
   vec3 d = view_dir(v_uv);
-  vec3 c = d.y >= 0.0 ? mix(u_sky_horizon, u_sky_zenith, pow(d.y, 0.6))
+  vec3 c = d.y >= 0.0 ? mix(u_sky_horizon, u_sky_zenith, pow(d.y, 0.45))
                       : mix(u_sky_horizon, u_ground_color * 0.8, clamp(-d.y * 8.0, 0.0, 1.0));
   float cs = max(dot(d, u_sun_dir), 0.0);
   c += u_sun_light * (0.03 * pow(cs, 64.0) + 0.15 * pow(cs, 800.0));   // glow around the sun
@@ -202,7 +202,8 @@ void main() {
   if (texture(u_depth, v_uv).r < 1.0) { o_color = vec4(0.0, 0.0, 0.0, 1.0); return; }
   vec3 d = view_dir(v_uv);
   float cs = max(dot(d, u_sun_dir), 0.0);
-  float bright = sun_disc(d) + 0.35 * pow(cs, 300.0) + 0.04;
+  // Kept in 0..1 (not HDR): the blur sums ~120 weighted samples, so a bright sky would wash out.
+  float bright = sun_disc(d) + 0.3 * pow(cs, 400.0) + 0.005;
   o_color = vec4(u_sun_color * bright, 1.0);
 }
 )";
@@ -874,7 +875,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.occlusion, "u_inv_viewproj", inv_viewproj);
     set_uniform(r.occlusion, "u_eye", eye);
     set_uniform(r.occlusion, "u_sun_dir", sun);
-    set_uniform(r.occlusion, "u_sun_color", rp.sun_color * rp.sun_intensity);
+    set_uniform(r.occlusion, "u_sun_color", rp.sun_color);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     mark(r.timings.occlusion);
 

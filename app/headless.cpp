@@ -1,0 +1,119 @@
+// Off-screen PNG rendering: a hidden GLFW window, the editor's renderer, one frame, read back.
+#include "app/headless.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+
+#include "render/gl/renderer.h"
+
+namespace sylva {
+
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+}  // namespace
+
+std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height) {
+  return render_preset_png(p, step, path, width, height, nullptr);
+}
+
+std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height,
+                              headless_stats* stats) {
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!display || !*display) && (!wayland || !*wayland))
+    return "PNG rendering needs a display: DISPLAY is not set (run under xvfb-run -a)";
+  if (width < 16 || height < 16 || width > 8192 || height > 8192)
+    return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 16..8192";
+
+  // Grow and mesh first: no window is opened for a tree that cannot be built.
+  auto t0 = std::chrono::steady_clock::now();
+  grow_report report;
+  tree_skeleton tree = grow(p.spec, grow_options{}, &report);
+  const double grow_ms = ms_since(t0);
+  if (report.error) return "growth failed: " + report.message;
+  t0 = std::chrono::steady_clock::now();
+  tree_mesh mesh = mesh_tree(tree, p.mesh, p.spec.seed);
+  const double mesh_ms = ms_since(t0);
+
+  if (!glfwInit()) return "cannot initialise GLFW (is the X server at DISPLAY reachable?)";
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(64, 64, "sylva render", nullptr, nullptr);
+  if (!window) {
+    glfwTerminate();
+    return "cannot create an OpenGL 3.3 core context";
+  }
+  glfwMakeContextCurrent(window);
+  install_gl_debug_output();
+  const int errors_before = gl_error_count();
+
+  std::string error;
+  renderer_state r;
+  if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
+  if (error.empty()) {
+    upload_tree(r, mesh);
+    set_tree_step(r, tree, p.mesh.min_radius, step < 0 ? tree.steps : std::min(step, tree.steps));
+    orbit_camera cam;
+    frame_camera(cam, r.bounds_min, r.bounds_max);
+
+    // An off-screen RGBA8 target: hidden windows have no reliable back buffer to read.
+    gl_texture color, depth;
+    gl_framebuffer fbo;
+    glGenTextures(1, &color.id);
+    glBindTexture(GL_TEXTURE_2D, color.id);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glGenFramebuffers(1, &fbo.id);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the image target";
+
+    if (error.empty()) {
+      t0 = std::chrono::steady_clock::now();
+      draw_frame(r, p.render, cam, width, height, fbo);
+      std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
+      glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+      const double frame_ms = ms_since(t0);
+      check_gl("read pixels");
+      // GL rows run bottom to top; PNG rows top to bottom.
+      std::vector<unsigned char> flipped(pixels.size());
+      const size_t row = size_t(width) * 4;
+      for (int y = 0; y < height; ++y)
+        std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
+      const int errors = gl_error_count() - errors_before;
+      if (errors > 0) error = std::to_string(errors) + " GL error(s): " + gl_last_message();
+      else error = save_png_rgba(path, width, height, flipped.data());
+      if (stats) {
+        stats->gl_errors = errors;
+        stats->grow_ms = grow_ms;
+        stats->mesh_ms = mesh_ms;
+        stats->frame_ms = frame_ms;
+        stats->triangles = r.triangles_drawn;
+        stats->leaves = r.leaves_drawn;
+      }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    delete_gl(fbo);
+    delete_gl(color);
+    delete_gl(depth);
+  }
+  destroy_renderer(r);
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return error;
+}
+
+}  // namespace sylva

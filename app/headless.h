@@ -1,0 +1,22 @@
+// Off-screen rendering of a preset to PNG with the editor's renderer (hidden GLFW window).
+#pragma once
+
+#include <string>
+
+#include "render/files.h"
+
+namespace sylva {
+
+struct headless_stats {
+  int gl_errors = 0;         // GL errors seen while rendering (debug callback + glGetError)
+  double grow_ms = 0, mesh_ms = 0, frame_ms = 0;
+  size_t triangles = 0, leaves = 0;
+};
+
+// Grows and meshes the preset, renders it as it stood at `step` (-1: final) at width x height and
+// writes a PNG. Returns "" or an error; without DISPLAY a clear error. Any GL error is an error.
+std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height);
+std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height,
+                              headless_stats* stats);
+
+}  // namespace sylva
