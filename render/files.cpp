@@ -446,9 +446,12 @@ load_result load_preset_json(std::string_view text, preset& out) {
     load_result r;
     r.error = parse_error_text(text, e);
     return r;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // e.g. a number beyond a double's range
     load_result r;
-    r.error = std::string("malformed JSON: ") + e.what();
+    std::string what = e.what();
+    if (what.compare(0, 15, "[json.exception") == 0 && what.find("] ") != std::string::npos)
+      what = what.substr(what.find("] ") + 2);
+    r.error = "unreadable JSON: " + what;
     return r;
   }
   try {
