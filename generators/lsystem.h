@@ -24,7 +24,11 @@ struct lsystem_params {
   float scale = 0.02f;     // metres per model unit
   float width_scale = 1;   // multiplies every radius (the paper's widths are diameters in model units)
   // General L-systems (text mode): the full source with #define constants, axiom and productions.
-  std::string source;
+  // Default: ABOP Fig. 1.24d, so that switching to text mode shows a plant at once.
+  std::string source =
+      "// ABOP Fig. 1.24d\n#define delta 20 // [0,90] branching angle\n#angle delta\n#axiom X\n"
+      "X -> F[+X]F[-X]+X\nF -> FF\n";
+  float leaf_size = 0.08f;  // metres, for L without a parameter
   int node_cap = 2000000;
   int module_cap = 4000000;
   bool operator==(const lsystem_params&) const = default;
@@ -49,6 +53,7 @@ void visit_params(P& p, V&& v) {
   v(p.width_scale, param_info{"width_scale", "Width scale", "", 0.05f, 5, "Multiplies every branch radius"});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
   v(p.source, param_info{"source", "L-system", "", 0, 0, "The L-system text (text mode)", param_multiline, "L-system text"});
+  v(p.leaf_size, param_info{"turtle_leaf_size", "Leaf size", "", 0.005f, 1, "Blade length in metres of a leaf placed by L (L(s) gives s model units instead)", param_log});
   v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
 }
 
