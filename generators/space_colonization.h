@@ -1,24 +1,108 @@
-// Space colonization (Runions, Lane & Prusinkiewicz 2007).
+// Space colonization (Runions, Lane & Prusinkiewicz 2007) with the envelopes, widths and spiral leaves of seed 003.
 #pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "generators/params.h"
 #include "generators/skeleton.h"
 
 namespace sylva {
 
+enum class envelope_shape : int { box = 0, sphere, ellipsoid, hemisphere, cylinder, cone, slab, mesh };
+inline constexpr const char* envelope_shape_names[] = {"box",      "sphere", "ellipsoid", "hemisphere", "cylinder",
+                                                       "cone",     "slab",   "mesh",      nullptr};
+
 struct space_colonization_params {
-  int steps = 20;
+  // Envelope: where the attraction points lie.
+  envelope_shape envelope = envelope_shape::ellipsoid;
+  int points = 4000;
+  glm::vec3 size{10, 8, 10};
+  glm::vec3 offset{0, 7, 0};
+  float slab_thickness = 0.3f;
+  std::string envelope_mesh;
+  // Growth (Runions 2007 §3).
+  float segment_length = 0.25f;
+  float influence_radius = 2.0f;
+  float kill_distance = 0.5f;
+  float trunk_length = 3.0f;
+  glm::vec3 tropism{0, -1, 0};
+  float tropism_weight = 0.0f;
+  int max_branches = 100000;
+  int steps = 400;
   int node_cap = 2000000;
+  // Widths: pipe model (seed 003's "Da Vinci" rule).
+  float pipe_exponent = 2.0f;
+  float min_width = 0.01f;
+  float max_width = 50.0f;
+  // Leaves on terminal branches along a logarithmic spiral (seed 003).
+  int leaves_min = 3;
+  int leaves_max = 6;
+  float leaf_size_min = 0.12f;
+  float leaf_size_max = 0.2f;
+  float spiral_a = 0.03f;
+  float spiral_k = 0.15f;
+  float spiral_e = 2.7182817f;
+  float spiral_rounds = 1.0f;
   bool operator==(const space_colonization_params&) const = default;
 };
 
 template <params_of<space_colonization_params> P, class V>
 void visit_params(P& p, V&& v) {
-  v(p.steps, param_info{"steps", "Growth steps", "N", 0, 200, "Number of growth steps (iterations)", param_on_release, "Growth"});
+  v(p.envelope, param_info{"envelope", "Envelope", "", 0, 7, "Shape the attraction points fill uniformly; mesh: a closed OBJ file", param_on_release, "Envelope", envelope_shape_names});
+  v(p.points, param_info{"points", "Attraction points", "N", 0, 2000000, "Number of attraction points sampled in the envelope (seeded)", param_log | param_on_release});
+  v(p.size, param_info{"size", "Size", "", 0.01f, 1000, "Bounding box of the envelope in metres (x, y up, z); a sphere uses x as its diameter, a slab x and y", param_on_release});
+  v(p.offset, param_info{"offset", "Offset", "", -1000, 1000, "Centre of the envelope's bounding box in metres; the root stands at the origin", param_on_release});
+  v(p.slab_thickness, param_info{"slab_thickness", "Slab thickness", "", 0.001f, 100, "Depth (z) of the slab envelope, for planar trees (seed 003)", param_log | param_on_release});
+  v(p.envelope_mesh, param_info{"envelope_mesh", "Envelope mesh", "", 0, 0, "Path of a closed OBJ mesh; it is scaled to fill the size box", param_path | param_on_release});
+  v(p.segment_length, param_info{"segment_length", "Segment length", "D", 0.005f, 10, "Distance between a node and the node it grows (Runions 2007 §3)", param_log | param_on_release, "Growth"});
+  v(p.influence_radius, param_info{"influence_radius", "Influence radius", "dᵢ", 0.01f, 100, "A point attracts its nearest node only within this distance (Runions 2007 §3)", param_log | param_on_release});
+  v(p.kill_distance, param_info{"kill_distance", "Kill distance", "dₖ", 0, 50, "Points this close to a node are removed (Runions 2007 §3)", param_on_release});
+  v(p.trunk_length, param_info{"trunk_length", "Trunk length", "", 0, 100, "The root grows straight up this far, and on until the crown's points reach it", param_on_release});
+  v(p.tropism, param_info{"tropism", "Tropism", "g", -1, 1, "Direction blended into every growth direction (gravity, light)", param_direction | param_on_release});
+  v(p.tropism_weight, param_info{"tropism_weight", "Tropism weight", "", 0, 1, "Blend: direction = normalize((1−w)·n̂ + w·ĝ)", param_on_release});
+  v(p.max_branches, param_info{"max_branches", "Max branches", "", 1, 10000000, "Growth stops cleanly at this many internodes (seed 003's -b)", param_log | param_on_release});
+  v(p.steps, param_info{"steps", "Growth steps", "", 0, 20000, "Iterations; each one is a scrubbable growth step (trunk internodes included)", param_on_release});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
+  v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (seed 003's Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
+  v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
+  v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
+  v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment", 0, "Leaves"});
+  v(p.leaves_max, param_info{"leaves_max", "Leaves per segment (max)", "", 0, 64, "Most leaves on a terminal segment; 0 for a bare tree"});
+  v(p.leaf_size_min, param_info{"leaf_size_min", "Leaf size (min)", "", 0.001f, 2, "Smallest leaf blade length in metres", param_log});
+  v(p.leaf_size_max, param_info{"leaf_size_max", "Leaf size (max)", "", 0.001f, 2, "Largest leaf blade length in metres", param_log});
+  v(p.spiral_a, param_info{"spiral_a", "Spiral a", "a", 0, 1, "Logarithmic spiral r = a·e^(kθ): distance of the first leaf from the axis, metres"});
+  v(p.spiral_k, param_info{"spiral_k", "Spiral k", "k", -1, 1, "Logarithmic spiral r = a·e^(kθ): growth rate per radian"});
+  v(p.spiral_e, param_info{"spiral_e", "Spiral base", "e", 1, 10, "Base of the spiral's exponential (Euler's number by default)"});
+  v(p.spiral_rounds, param_info{"spiral_rounds", "Spiral rounds", "", 0, 8, "Turns of the spiral along one terminal segment"});
 }
 
-tree_skeleton grow_space_colonization(const space_colonization_params& p, const grow_options& o, grow_report* report = nullptr,
-                  growth_debug* debug = nullptr);
+// Attraction points sampled uniformly inside the envelope, and its outline as line pairs.
+struct envelope_sample {
+  std::vector<glm::vec3> points;
+  std::vector<glm::vec3> outline;  // pairs of endpoints
+  std::string error;               // "" unless the envelope is unusable (missing or open OBJ mesh)
+};
+envelope_sample sample_envelope(const space_colonization_params& p, uint64_t seed, bool want_outline = false);
+
+// One influence step: for each point, the index of its nearest node closer than d_i (ties: the lower
+// index), or -1. Uses the same incremental grid as the generator.
+std::vector<int32_t> find_influencing_nodes(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& nodes,
+                                            float d_i);
+
+// Growth direction from the sum of unit pulls; a zero sum (opposite points) keeps `previous`.
+glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous, const glm::vec3& tropism,
+                           float weight);
+
+// Grows from the given attraction points (the root at the origin). debug->point_value is the step a
+// point was removed in, or -1.
+tree_skeleton grow_colonization_from_points(const space_colonization_params& p, const std::vector<glm::vec3>& points,
+                                            const grow_options& o, grow_report* report = nullptr,
+                                            growth_debug* debug = nullptr);
+
+tree_skeleton grow_space_colonization(const space_colonization_params& p, const grow_options& o,
+                                      grow_report* report = nullptr, growth_debug* debug = nullptr);
 
 }  // namespace sylva

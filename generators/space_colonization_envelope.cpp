@@ -1,0 +1,243 @@
+// Envelopes for space colonization: analytic shapes and closed OBJ meshes, seeded uniform sampling, outlines.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tuple>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "generators/space_colonization.h"
+
+namespace sylva {
+namespace {
+
+// A triangle soup normalised into [-1,1]^3 with a (y,z) bin grid for +x ray casts.
+struct envelope_mesh_data {
+  std::vector<glm::vec3> v;
+  std::vector<glm::ivec3> tri;
+  std::vector<std::pair<int, int>> edges;  // unique undirected edges, for the outline
+  int bins = 1;
+  std::vector<int> bin_begin, bin_tri;
+};
+
+// Reads positions and faces; welds equal positions so that UV seams do not look like holes.
+std::string load_envelope_mesh(const std::string& path, envelope_mesh_data& m) {
+  if (path.empty()) return "envelope is 'mesh' but envelope_mesh (an OBJ path) is empty";
+  std::ifstream in(path);
+  if (!in) return "cannot open envelope mesh '" + path + "'";
+  std::vector<glm::vec3> raw;
+  std::vector<int> weld;
+  std::map<std::tuple<float, float, float>, int> seen;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      glm::vec3 q;
+      if (!(ls >> q.x >> q.y >> q.z) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+        return "envelope mesh '" + path + "' line " + std::to_string(line_no) + ": bad vertex";
+      raw.push_back(q);
+      auto [it, fresh] = seen.emplace(std::make_tuple(q.x, q.y, q.z), int(m.v.size()));
+      if (fresh) m.v.push_back(q);
+      weld.push_back(it->second);
+    } else if (tag == "f") {
+      std::vector<int> f;
+      std::string tok;
+      while (ls >> tok) {
+        long idx = std::strtol(tok.c_str(), nullptr, 10);  // "7/2/5" -> 7
+        if (idx < 0) idx += long(raw.size()) + 1;           // OBJ relative indices
+        if (idx < 1 || idx > long(raw.size()))
+          return "envelope mesh '" + path + "' line " + std::to_string(line_no) + ": face index out of range";
+        f.push_back(weld[size_t(idx - 1)]);
+      }
+      if (f.size() < 3) return "envelope mesh '" + path + "' line " + std::to_string(line_no) + ": face with < 3 vertices";
+      for (size_t k = 1; k + 1 < f.size(); ++k) m.tri.push_back({f[0], f[k], f[k + 1]});
+    }
+  }
+  if (m.tri.empty()) return "envelope mesh '" + path + "' has no faces";
+  // Closed (watertight) means every edge is shared by exactly two triangles; the parity inside test
+  // below is only meaningful then.
+  std::map<std::pair<int, int>, int> count;
+  for (const glm::ivec3& t : m.tri)
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[e], b = t[(e + 1) % 3];
+      if (a == b) continue;
+      ++count[{std::min(a, b), std::max(a, b)}];
+    }
+  for (const auto& [e, c] : count)
+    if (c != 2)
+      return "envelope mesh '" + path + "' is not closed: edge " + std::to_string(e.first + 1) + "-" +
+             std::to_string(e.second + 1) + " is shared by " + std::to_string(c) +
+             " face(s), not 2; the inside test needs a watertight mesh";
+  for (const auto& [e, c] : count) m.edges.push_back(e);
+  // Normalise into [-1,1]^3 so that `size` and `offset` place it like the analytic shapes.
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& q : m.v) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  const glm::vec3 ext = hi - lo;
+  if (!(ext.x > 0 && ext.y > 0 && ext.z > 0)) return "envelope mesh '" + path + "' is flat: it encloses no volume";
+  for (glm::vec3& q : m.v) q = (q - lo) / ext * 2.0f - 1.0f;
+  // Bin triangles by their (y,z) bounds, padded for the ray's slight tilt.
+  m.bins = std::clamp(int(std::sqrt(float(m.tri.size()))), 1, 128);
+  const float pad = 2e-3f, scale = float(m.bins) / 2.0f;
+  auto bin_of = [&](float c) { return std::clamp(int((c + 1.0f) * scale), 0, m.bins - 1); };
+  std::vector<std::vector<int>> bins(size_t(m.bins * m.bins));
+  for (size_t k = 0; k < m.tri.size(); ++k) {
+    const glm::vec3 a = m.v[m.tri[k][0]], b = m.v[m.tri[k][1]], c = m.v[m.tri[k][2]];
+    const int y0 = bin_of(std::min({a.y, b.y, c.y}) - pad), y1 = bin_of(std::max({a.y, b.y, c.y}) + pad);
+    const int z0 = bin_of(std::min({a.z, b.z, c.z}) - pad), z1 = bin_of(std::max({a.z, b.z, c.z}) + pad);
+    for (int z = z0; z <= z1; ++z)
+      for (int y = y0; y <= y1; ++y) bins[size_t(z * m.bins + y)].push_back(int(k));
+  }
+  m.bin_begin.assign(bins.size() + 1, 0);
+  for (size_t b = 0; b < bins.size(); ++b) m.bin_begin[b + 1] = m.bin_begin[b] + int(bins[b].size());
+  for (const auto& b : bins) m.bin_tri.insert(m.bin_tri.end(), b.begin(), b.end());
+  return "";
+}
+
+// Ray parity along a slightly tilted +x ray (the tilt keeps it off edges and vertices of axis-aligned
+// meshes); Möller & Trumbore 1997 ray-triangle test.
+bool inside_mesh(const envelope_mesh_data& m, const glm::vec3& q) {
+  const glm::vec3 dir = glm::normalize(glm::vec3(1.0f, 3.1e-4f, 1.7e-4f));
+  const float scale = float(m.bins) / 2.0f;
+  const int by = std::clamp(int((q.y + 1.0f) * scale), 0, m.bins - 1);
+  const int bz = std::clamp(int((q.z + 1.0f) * scale), 0, m.bins - 1);
+  const int b = bz * m.bins + by;
+  int hits = 0;
+  for (int k = m.bin_begin[b]; k < m.bin_begin[b + 1]; ++k) {
+    const glm::ivec3 t = m.tri[size_t(m.bin_tri[size_t(k)])];
+    const glm::vec3 a = m.v[t[0]], e1 = m.v[t[1]] - a, e2 = m.v[t[2]] - a;
+    const glm::vec3 pv = glm::cross(dir, e2);
+    const float det = glm::dot(e1, pv);
+    if (std::fabs(det) < 1e-12f) continue;
+    const float inv = 1.0f / det;
+    const glm::vec3 tv = q - a;
+    const float u = glm::dot(tv, pv) * inv;
+    if (u < 0 || u > 1) continue;
+    const glm::vec3 qv = glm::cross(tv, e1);
+    const float w = glm::dot(dir, qv) * inv;
+    if (w < 0 || u + w > 1) continue;
+    if (glm::dot(e2, qv) * inv > 0) ++hits;
+  }
+  return hits & 1;
+}
+
+// Inside test in the envelope's normalised box [-1,1]^3.
+bool inside_shape(envelope_shape s, const glm::vec3& q, const envelope_mesh_data* m) {
+  switch (s) {
+    case envelope_shape::box:
+    case envelope_shape::slab: return true;
+    case envelope_shape::sphere:
+    case envelope_shape::ellipsoid: return glm::dot(q, q) <= 1.0f;
+    case envelope_shape::hemisphere: {  // flat base at y = -1, dome up to y = +1
+      const float y = (q.y + 1.0f) * 0.5f;
+      return q.x * q.x + y * y + q.z * q.z <= 1.0f;
+    }
+    case envelope_shape::cylinder: return q.x * q.x + q.z * q.z <= 1.0f;
+    case envelope_shape::cone: {  // base at y = -1, apex at y = +1
+      const float f = (1.0f - q.y) * 0.5f;
+      return q.x * q.x + q.z * q.z <= f * f;
+    }
+    case envelope_shape::mesh: return m && inside_mesh(*m, q);
+  }
+  return false;
+}
+
+glm::vec3 half_extent(const space_colonization_params& p) {
+  switch (p.envelope) {
+    case envelope_shape::sphere: return glm::vec3(p.size.x * 0.5f);
+    case envelope_shape::slab: return glm::vec3(p.size.x, p.size.y, p.slab_thickness) * 0.5f;
+    default: return p.size * 0.5f;
+  }
+}
+
+// Appends an elliptic arc centre + cos·a + sin·b for t in [t0, t1] as line pairs.
+void add_arc(std::vector<glm::vec3>& out, glm::vec3 c, glm::vec3 a, glm::vec3 b, float t0, float t1, int segs) {
+  for (int i = 0; i < segs; ++i) {
+    const float u0 = t0 + (t1 - t0) * float(i) / float(segs), u1 = t0 + (t1 - t0) * float(i + 1) / float(segs);
+    out.push_back(c + std::cos(u0) * a + std::sin(u0) * b);
+    out.push_back(c + std::cos(u1) * a + std::sin(u1) * b);
+  }
+}
+
+// The outline in normalised coordinates.
+std::vector<glm::vec3> outline_shape(envelope_shape s, const envelope_mesh_data* m) {
+  std::vector<glm::vec3> o;
+  const float pi = 3.14159265f;
+  const glm::vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1), O(0);
+  auto box = [&] {
+    for (int axis = 0; axis < 3; ++axis)
+      for (int a = -1; a <= 1; a += 2)
+        for (int b = -1; b <= 1; b += 2) {
+          glm::vec3 p0(0), p1(0);
+          p0[axis] = -1, p1[axis] = 1;
+          p0[(axis + 1) % 3] = p1[(axis + 1) % 3] = float(a);
+          p0[(axis + 2) % 3] = p1[(axis + 2) % 3] = float(b);
+          o.push_back(p0), o.push_back(p1);
+        }
+  };
+  switch (s) {
+    case envelope_shape::box:
+    case envelope_shape::slab: box(); break;
+    case envelope_shape::sphere:
+    case envelope_shape::ellipsoid:
+      add_arc(o, O, X, Z, 0, 2 * pi, 48), add_arc(o, O, X, Y, 0, 2 * pi, 48), add_arc(o, O, Z, Y, 0, 2 * pi, 48);
+      break;
+    case envelope_shape::hemisphere:
+      add_arc(o, -Y, X, Z, 0, 2 * pi, 48), add_arc(o, -Y, X, 2.0f * Y, 0, pi, 24), add_arc(o, -Y, Z, 2.0f * Y, 0, pi, 24);
+      break;
+    case envelope_shape::cylinder:
+      add_arc(o, -Y, X, Z, 0, 2 * pi, 48), add_arc(o, Y, X, Z, 0, 2 * pi, 48);
+      for (glm::vec3 d : {X, -X, Z, -Z}) o.push_back(d - Y), o.push_back(d + Y);
+      break;
+    case envelope_shape::cone:
+      add_arc(o, -Y, X, Z, 0, 2 * pi, 48);
+      for (glm::vec3 d : {X, -X, Z, -Z}) o.push_back(d - Y), o.push_back(Y);
+      break;
+    case envelope_shape::mesh:
+      if (m)
+        for (size_t k = 0; k < m->edges.size() && k < 50000; ++k)
+          o.push_back(m->v[size_t(m->edges[k].first)]), o.push_back(m->v[size_t(m->edges[k].second)]);
+      break;
+  }
+  return o;
+}
+
+}  // namespace
+
+envelope_sample sample_envelope(const space_colonization_params& p_in, uint64_t seed, bool want_outline) {
+  space_colonization_params p = p_in;
+  clamp_all_params(p);
+  envelope_sample out;
+  envelope_mesh_data mesh;
+  const bool is_mesh = p.envelope == envelope_shape::mesh;
+  if (is_mesh) {
+    out.error = load_envelope_mesh(p.envelope_mesh, mesh);
+    if (!out.error.empty()) return out;
+  }
+  const glm::vec3 h = half_extent(p);
+  // Rejection sampling from the bounding box is uniform inside the shape; the attempt limit keeps a
+  // mesh with a tiny volume from spinning forever.
+  rng r(seed ^ 0xe1e7e10feull);
+  out.points.reserve(size_t(p.points));
+  const int64_t max_tries = int64_t(p.points) * 200 + 1000;
+  for (int64_t tries = 0; int64_t(out.points.size()) < p.points && tries < max_tries; ++tries) {
+    const glm::vec3 q(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
+    if (inside_shape(p.envelope, q, is_mesh ? &mesh : nullptr)) out.points.push_back(p.offset + q * h);
+  }
+  if (int64_t(out.points.size()) < p.points)
+    out.error = "the envelope mesh encloses too little volume: only " + std::to_string(out.points.size()) + " of " +
+                std::to_string(p.points) + " points landed inside";
+  if (want_outline) {
+    out.outline = outline_shape(p.envelope, is_mesh ? &mesh : nullptr);
+    for (glm::vec3& q : out.outline) q = p.offset + q * h;
+  }
+  return out;
+}
+
+}  // namespace sylva
