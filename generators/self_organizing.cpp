@@ -1,16 +1,556 @@
 // Self-organizing trees (Palubicki et al. 2009) with the extensions of seed 001.
 #include "generators/self_organizing.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "generators/self_organizing_grid.h"
+
 namespace sylva {
 
-tree_skeleton grow_self_organizing(const self_organizing_params& p, const grow_options& o, grow_report* report, growth_debug*) {
-  (void)p;
-  (void)o;
+void split_borchert_honda(float v, float q_main, float q_lateral, float lambda, float& v_main, float& v_lateral) {
+  // Palubicki 2009 eqs. 4–5 (seed 001 eqs. 4–5): v_m = v·λQ_m / (λQ_m + (1−λ)Q_l), v_l likewise.
+  const float m = lambda * std::max(q_main, 0.0f), l = (1 - lambda) * std::max(q_lateral, 0.0f);
+  const float d = m + l;
+  if (!(d > 0)) {
+    v_main = v;
+    v_lateral = 0;
+    return;
+  }
+  v_main = v * m / d;
+  v_lateral = v * l / d;
+}
+
+float priority_weight(int i, int n, float w_max, float w_min, float kappa) {
+  // Seed 000 eq. 2 (Palubicki 2009 eq. 6): linear from w_max at rank 0 to w_min at rank κN.
+  const float kn = kappa * float(n);
+  if (float(i) >= kn) return w_min;
+  return w_max - (w_max - w_min) * float(i) / kn;
+}
+
+void allocate_priority(float v, const std::vector<float>& q, float w_max, float w_min, float kappa,
+                       std::vector<float>& out) {
+  // Seed 000 eq. 1 (Palubicki 2009 eq. 5): v_i = v·Q_i·w_i / Σ_j Q_j·w_j.
+  const int n = int(q.size());
+  out.resize(q.size());
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    out[i] = std::max(q[i], 0.0f) * priority_weight(i, n, w_max, w_min, kappa);
+    sum += out[i];
+  }
+  const float f = sum > 0 ? float(double(v) / sum) : 0.0f;
+  for (float& x : out) x *= f;
+}
+
+shoot_plan plan_shoot(float v, float internode_length) {
+  // Palubicki 2009 §5: n = ⌊v⌋ metamers, each of length l·v/n.
+  if (!(v >= 1)) return {};
+  const float n = std::floor(std::min(v, 1e6f));
+  return {int(n), internode_length * std::min(v, 1e6f) / n};
+}
+
+std::vector<uint8_t> select_shed(const std::vector<int32_t>& parent, const std::vector<float>& flow,
+                                 const std::vector<int32_t>& buds, int n_min) {
+  std::vector<uint8_t> shed(parent.size(), 0);
+  if (n_min <= 0) return shed;
+  for (size_t i = 0; i < parent.size(); ++i) {
+    if (parent[i] < 0) continue;
+    // Parents precede children, so a shed ancestor is known before its subtree.
+    shed[i] = shed[parent[i]] || (flow[i] < 0 && buds[i] < n_min);
+  }
+  return shed;
+}
+
+namespace {
+
+constexpr int32_t bud_here = -1;  // main/lat: a live bud sits there
+constexpr int32_t no_bud = -2;    // main/lat: nothing (shed, or never had one)
+
+glm::vec3 any_perpendicular(const glm::vec3& h) {
+  const glm::vec3 a = std::abs(h.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+  return glm::normalize(glm::cross(h, a));
+}
+
+glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
+  const float l2 = glm::dot(v, v);
+  return l2 > 1e-12f && std::isfinite(l2) ? v / std::sqrt(l2) : fallback;
+}
+
+// Space-colonization markers in a hashed uniform grid (cell = perception distance).
+struct marker_state {
+  std::vector<glm::vec3> pos;
+  std::vector<uint8_t> alive;
+  std::vector<int32_t> best_bud;     // per marker, this step: closest perceiving bud (2·node + lat)
+  std::vector<float> best_d2;
+  float cell = 1;
+  std::vector<uint64_t> cell_key;    // sorted cell keys, with [cell_start[k], cell_start[k+1]) markers
+  std::vector<uint32_t> cell_start;
+  std::vector<uint32_t> order;       // marker indices grouped by cell
+
+  static uint64_t key(const glm::ivec3& c) {
+    return (uint64_t(uint32_t(c.x + (1 << 20)) & 0x1FFFFF) << 42) |
+           (uint64_t(uint32_t(c.y + (1 << 20)) & 0x1FFFFF) << 21) | uint64_t(uint32_t(c.z + (1 << 20)) & 0x1FFFFF);
+  }
+  glm::ivec3 cell_of(const glm::vec3& p) const {
+    const glm::vec3 f = glm::clamp(glm::floor(p / cell), glm::vec3(-1e6f), glm::vec3(1e6f));
+    return glm::ivec3(f);
+  }
+  void build() {
+    std::vector<std::pair<uint64_t, uint32_t>> kv(pos.size());
+    for (size_t i = 0; i < pos.size(); ++i) kv[i] = {key(cell_of(pos[i])), uint32_t(i)};
+    std::sort(kv.begin(), kv.end());
+    order.resize(kv.size());
+    cell_key.clear();
+    cell_start.clear();
+    for (size_t i = 0; i < kv.size(); ++i) {
+      if (i == 0 || kv[i].first != kv[i - 1].first) {
+        cell_key.push_back(kv[i].first);
+        cell_start.push_back(uint32_t(i));
+      }
+      order[i] = kv[i].second;
+    }
+    cell_start.push_back(uint32_t(kv.size()));
+    alive.assign(pos.size(), 1);
+    best_bud.assign(pos.size(), -1);
+    best_d2.assign(pos.size(), 0);
+  }
+  // Calls f(marker) for the live markers within distance d of p.
+  template <class F>
+  void visit_near(const glm::vec3& p, float d, F&& f) const {
+    const glm::ivec3 lo = cell_of(p - d), hi = cell_of(p + d);
+    const float d2 = d * d;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const uint64_t k = key({x, y, z});
+          const auto it = std::lower_bound(cell_key.begin(), cell_key.end(), k);
+          if (it == cell_key.end() || *it != k) continue;
+          const size_t c = size_t(it - cell_key.begin());
+          for (uint32_t j = cell_start[c]; j < cell_start[c + 1]; ++j) {
+            const uint32_t m = order[j];
+            if (!alive[m]) continue;
+            const glm::vec3 dv = pos[m] - p;
+            if (glm::dot(dv, dv) <= d2) f(m, dv);
+          }
+        }
+  }
+};
+
+struct so_state {
+  const self_organizing_params& p;
+  tree_skeleton& t;
+  rng& r;
+  shadow_grid grid;
+  marker_state markers;
+  // Per node (generator state, not part of the skeleton).
+  std::vector<glm::vec3> side;       // unit, perpendicular to the internode: where the lateral bud points
+  std::vector<int32_t> main, lat;    // child index, bud_here or no_bud
+  std::vector<float> q;              // 2 per node: bud light Q, then bud resource v (apical, lateral)
+  std::vector<float> flow;           // basipetal Q flow, then acropetal resource v
+  std::vector<float> tips;           // living tips supported (pipe model: (r/r₀)^n)
+  std::vector<int32_t> buds;         // living buds supported
+  std::vector<glm::vec3> opt;        // markers only, 2 per node: direction towards the bud's markers
+  std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
+  std::vector<glm::vec3> cone_offset; // the same in metres
+  int cone_radius = 0;
+  std::vector<const float*> near_chunks;
+  float cos_theta = 0, reach = 0;    // perception cone, reach in metres
+  float l = 0.1f;
+
+  so_state(const self_organizing_params& pp, tree_skeleton& tt, rng& rr) : p(pp), t(tt), r(rr) {}
+
+  int32_t add_node(const glm::vec3& pos, int32_t parent, uint16_t born, uint8_t order, const glm::vec3& s) {
+    const int32_t i = t.add_node(pos, parent, 0, born, order);
+    side.push_back(s);
+    main.push_back(bud_here);
+    lat.push_back(bud_here);
+    q.push_back(0);
+    q.push_back(0);
+    flow.push_back(0);
+    tips.push_back(1);
+    buds.push_back(0);
+    return i;
+  }
+
+  glm::vec3 heading(int32_t i) const {
+    const int32_t par = t.parent[i];
+    return par < 0 ? glm::vec3(0, 1, 0) : safe_normalize(t.position[i] - t.position[par], glm::vec3(0, 1, 0));
+  }
+  glm::vec3 lateral_direction(int32_t i) const {
+    const float b = glm::radians(p.branch_angle);
+    return safe_normalize(std::cos(b) * heading(i) + std::sin(b) * side[i], heading(i));
+  }
+
+  // Palubicki 2009 §4.2: the direction to the least-shadowed voxel in the perception cone. Ties go
+  // to the voxel closest to the default direction, then to the seeded RNG: seed 000's trees leaned
+  // because ties took the first voxel found.
+  glm::vec3 optimal_shadow_direction(const glm::vec3& pos, const glm::vec3& def) {
+    const glm::ivec3 v0 = voxel_of(grid, pos);
+    // The few chunks around the bud, looked up once rather than once per voxel.
+    const glm::ivec3 c0 = (v0 - cone_radius) >> shadow_grid::chunk_bits;
+    const glm::ivec3 c1 = (v0 + cone_radius) >> shadow_grid::chunk_bits;
+    const glm::ivec3 cn = c1 - c0 + 1;
+    near_chunks.resize(size_t(cn.x * cn.y * cn.z));
+    for (int z = 0; z < cn.z; ++z)
+      for (int y = 0; y < cn.y; ++y)
+        for (int x = 0; x < cn.x; ++x) near_chunks[(z * cn.y + y) * cn.x + x] = shadow_chunk(grid, c0 + glm::ivec3(x, y, z));
+    const glm::vec3 base = voxel_centre(grid, v0) - pos;
+    const float reach2 = reach * reach, cos2 = cos_theta * cos_theta;
+    float best_s = 0, best_dot = -2;
+    glm::vec3 best = def;
+    int ties = 0;
+    for (size_t k = 0; k < cone.size(); ++k) {
+      const glm::vec3 d = base + cone_offset[k];
+      const float c = glm::dot(d, def), len2 = glm::dot(d, d);
+      if (len2 > reach2 || len2 < 1e-12f) continue;
+      if (cos_theta >= 0 ? (c <= 0 || c * c < cos2 * len2) : c < cos_theta * std::sqrt(len2)) continue;
+      const glm::ivec3 v = v0 + cone[k];
+      const glm::ivec3 cc = (v >> shadow_grid::chunk_bits) - c0;
+      const float* chunk = near_chunks[(cc.z * cn.y + cc.y) * cn.x + cc.x];
+      const float s = chunk ? chunk[shadow_cell(v)] : 0.0f;
+      constexpr float eps = 1e-6f;
+      if (ties > 0 && s > best_s + eps) continue;
+      const float len = std::sqrt(len2);
+      const float cd = c / len;
+      if (ties == 0 || s < best_s - eps) {
+        best_s = s, best_dot = cd, best = d / len, ties = 1;
+      } else if (cd > best_dot + eps) {
+        best_dot = cd, best = d / len, ties = 1;
+      } else if (cd >= best_dot - eps) {
+        ++ties;  // reservoir sampling keeps each tied voxel with probability 1/ties
+        if (r.uniform_int(ties) == 0) best = d / len;
+      }
+    }
+    return best;
+  }
+
+  // Bud light l from the environment, then seed 001 eq. 1: Q = l^((T−T₀)^σ).
+  void compute_bud_light(int step) {
+    const size_t n = t.size();
+    const bool shadow = p.environment == so_environment::shadow;
+    if (!shadow) compute_marker_light();
+    for (size_t i = 0; i < n; ++i) {
+      if (t.died[i] != never_died || (main[i] != bud_here && lat[i] != bud_here)) continue;
+      const float age = float(step - t.born[i]);  // ≥ 1: buds are first seen the step after they form
+      const float e = p.sigma == 0 ? 1.0f : std::pow(age, p.sigma);
+      if (shadow) {
+        // Palubicki 2009 §4.2: Q = max(C − s + a, 0); both buds of a node share its voxel.
+        const float s = shadow_at(grid, voxel_of(grid, t.position[i]));
+        float light = std::max(p.full_exposure - s + p.shadow_a, 0.0f);
+        light = e == 1.0f ? light : std::pow(light, e);
+        q[2 * i] = main[i] == bud_here ? light : 0.0f;
+        q[2 * i + 1] = lat[i] == bud_here ? light : 0.0f;
+      } else {
+        q[2 * i] = q[2 * i] > 0 ? 1.0f : 0.0f;  // 0^e = 0 and 1^e = 1: σ changes nothing here
+        q[2 * i + 1] = q[2 * i + 1] > 0 ? 1.0f : 0.0f;
+      }
+    }
+  }
+
+  // Palubicki 2009 §4.1: each marker in a bud's perception cone goes to the closest such bud;
+  // a bud with markers has Q = 1 and its optimal direction is the sum of unit vectors to them.
+  void compute_marker_light() {
+    const size_t n = t.size();
+    opt.assign(2 * n, glm::vec3(0));
+    std::fill(q.begin(), q.end(), 0.0f);
+    std::vector<uint32_t> touched;
+    for (size_t i = 0; i < n; ++i) {
+      if (t.died[i] != never_died) continue;
+      for (int k = 0; k < 2; ++k) {
+        if ((k == 0 ? main[i] : lat[i]) != bud_here) continue;
+        const glm::vec3 def = k == 0 ? heading(int32_t(i)) : lateral_direction(int32_t(i));
+        const int32_t bud = int32_t(2 * i + k);
+        markers.visit_near(t.position[i], reach, [&](uint32_t m, const glm::vec3& dv) {
+          const float d2 = glm::dot(dv, dv);
+          if (glm::dot(dv, def) < cos_theta * std::sqrt(d2)) return;
+          if (markers.best_bud[m] < 0) touched.push_back(m);
+          else if (markers.best_d2[m] <= d2) return;
+          markers.best_bud[m] = bud;
+          markers.best_d2[m] = d2;
+        });
+      }
+    }
+    for (uint32_t m : touched) {
+      const int32_t bud = markers.best_bud[m];
+      const size_t i = size_t(bud) / 2;
+      opt[bud] += safe_normalize(markers.pos[m] - t.position[i], glm::vec3(0));
+      q[bud] = 1;
+      markers.best_bud[m] = -1;
+    }
+  }
+
+  void remove_markers_near(const glm::vec3& pos) {
+    markers.visit_near(pos, p.occupancy_radius * l, [&](uint32_t m, const glm::vec3&) { markers.alive[m] = 0; });
+  }
+
+  // Basipetal pass (children before parents): Q flow with seed 001 eq. 2 upkeep, living tips and
+  // buds. Dead nodes are never reached: their parents' links say no_bud.
+  void sweep_flow() {
+    const float be_over_n = p.be / p.pipe_exponent;
+    for (size_t i = t.size(); i-- > 0;) {
+      if (t.died[i] != never_died) { flow[i] = 0; buds[i] = 0; continue; }
+      const int32_t m = main[i], la = lat[i];
+      const float qm = m >= 0 ? flow[m] : m == bud_here ? q[2 * i] : 0.0f;
+      const float ql = la >= 0 ? flow[la] : la == bud_here ? q[2 * i + 1] : 0.0f;
+      const float tp = (m >= 0 ? tips[m] : 0.0f) + (la >= 0 ? tips[la] : 0.0f);
+      tips[i] = tp > 0 ? tp : 1.0f;
+      buds[i] = (m >= 0 ? buds[m] : m == bud_here) + (la >= 0 ? buds[la] : la == bud_here);
+      // Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): upkeep BM·(r/r₀)^BE, where the pipe model
+      // gives (r/r₀)^n = number of tips, so (r/r₀)^BE = tips^(BE/n).
+      const float upkeep = p.bm > 0 ? p.bm * std::pow(tips[i], be_over_n) : 0.0f;
+      flow[i] = qm + ql - upkeep;
+    }
+  }
+
+  // Sheds per seed 001; returns true when anything went.
+  bool shed(uint16_t step) {
+    if (p.shed_min_buds <= 0) return false;
+    const std::vector<uint8_t> s = select_shed(t.parent, flow, buds, p.shed_min_buds);
+    bool any = false;
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (!s[i] || t.died[i] != never_died) continue;
+      any = true;
+      t.died[i] = step;
+      const int32_t par = t.parent[i];
+      if (main[par] == int32_t(i)) main[par] = no_bud;
+      if (lat[par] == int32_t(i)) lat[par] = no_bud;
+      if (p.environment == so_environment::shadow)
+        add_shadow_pyramid(grid, voxel_of(grid, t.position[i]), p.shadow_a, p.shadow_b, p.q_max, -1);
+    }
+    return any;
+  }
+
+  // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v).
+  void allocate(int step, const std::vector<int32_t>& roots) {
+    for (int32_t root : roots) flow[root] = p.alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
+    if (p.allocation == so_allocation::borchert_honda) {
+      for (size_t i = 0; i < t.size(); ++i) {
+        if (t.died[i] != never_died) continue;
+        const int32_t m = main[i], la = lat[i];
+        const float qm = m >= 0 ? flow[m] : m == bud_here ? q[2 * i] : 0.0f;
+        const float ql = la >= 0 ? flow[la] : la == bud_here ? q[2 * i + 1] : 0.0f;
+        float vm, vl;
+        split_borchert_honda(flow[i], qm, ql, p.lambda, vm, vl);
+        if (m >= 0) flow[m] = vm; else q[2 * i] = m == bud_here ? vm : 0.0f;
+        if (la >= 0) flow[la] = vl; else q[2 * i + 1] = la == bud_here ? vl : 0.0f;
+      }
+      return;
+    }
+    // Priority model: each axis, from its base, ranks its lateral branches and buds and its
+    // terminal bud by Q. An axis starts at a root or a lateral child; parents precede children,
+    // so an axis' resource is known when its base comes up.
+    struct cand { float q; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(2i+k)−1
+    std::vector<cand> c;
+    std::vector<float> qs, vs;
+    const bool terminal_first = step <= p.terminal_priority_steps;
+    for (size_t b = 0; b < t.size(); ++b) {
+      if (t.died[b] != never_died) continue;
+      const int32_t par = t.parent[b];
+      if (par >= 0 && lat[par] != int32_t(b)) continue;
+      c.clear();
+      int32_t j = int32_t(b);
+      bool has_terminal = false;
+      for (;;) {
+        if (lat[j] >= 0) c.push_back({std::max(flow[lat[j]], 0.0f), lat[j]});
+        else if (lat[j] == bud_here) c.push_back({q[2 * j + 1], -(2 * j + 1) - 1});
+        if (main[j] >= 0) { j = main[j]; continue; }
+        if (main[j] == bud_here) {
+          c.push_back({q[2 * j], -(2 * j) - 1});
+          has_terminal = true;
+        }
+        break;
+      }
+      if (has_terminal && terminal_first) std::rotate(c.begin(), c.end() - 1, c.end());
+      std::stable_sort(c.begin() + (has_terminal && terminal_first ? 1 : 0), c.end(),
+                       [](const cand& x, const cand& y) { return x.q > y.q; });
+      qs.resize(c.size());
+      for (size_t k = 0; k < c.size(); ++k) qs[k] = c[k].q;
+      allocate_priority(flow[b], qs, p.w_max, p.w_min, p.kappa, vs);
+      for (size_t k = 0; k < c.size(); ++k) {
+        if (c[k].target >= 0) flow[c[k].target] = vs[k];
+        else q[size_t(-c[k].target - 1)] = vs[k];
+      }
+    }
+  }
+};
+
+std::vector<glm::vec3> place_trees(const self_organizing_params& p, rng& r, std::string& warning) {
+  std::vector<glm::vec3> at;
+  if (p.placement == so_placement::explicit_positions) {
+    if (!p.positions.empty()) return p.positions;
+    warning = "explicit placement without positions: using a grid";
+  }
+  const int n = std::max(p.tree_count, 1);
+  if (p.placement == so_placement::random && warning.empty()) {
+    const float side = p.spacing * std::sqrt(float(n));
+    for (int k = 0; k < n; ++k) at.push_back({r.uniform(-0.5f, 0.5f) * side, 0, r.uniform(-0.5f, 0.5f) * side});
+    return at;
+  }
+  const int cols = int(std::ceil(std::sqrt(float(n))));
+  const int rows = (n + cols - 1) / cols;
+  for (int k = 0; k < n; ++k)
+    at.push_back({(float(k % cols) - 0.5f * float(cols - 1)) * p.spacing, 0,
+                  (float(k / cols) - 0.5f * float(rows - 1)) * p.spacing});
+  return at;
+}
+
+}  // namespace
+
+tree_skeleton grow_self_organizing(const self_organizing_params& params, const grow_options& o, grow_report* report,
+                                   growth_debug* debug) {
+  grow_report local;
+  grow_report& rep = report ? *report : local;
+  self_organizing_params p = params;
+  const std::vector<std::string> clamped = clamp_all_params(p);
+  if (!clamped.empty()) rep.message = "clamped out-of-range parameter " + clamped.front();
+  const int steps = std::min(o.steps >= 0 ? o.steps : p.steps, int(never_died) - 1);
+
   tree_skeleton t;
-  t.add_node(glm::vec3(0), -1, 0.05f, 0, 0);
-  if (report) {
-    report->message = "this generator is not implemented yet";
-    report->error = true;
+  rng r(o.seed);
+  so_state st(p, t, r);
+  st.l = p.internode_length;
+  st.grid.voxel_size = p.voxel_size * p.internode_length;
+  st.cos_theta = std::cos(glm::radians(p.perception_angle));
+  st.reach = p.perception_distance * p.internode_length;
+  {
+    // Offsets whose voxel can hold a point within the reach of a bud somewhere in voxel 0.
+    const float rv = p.perception_distance / p.voxel_size + 0.87f;
+    const int R = int(std::ceil(rv));
+    for (int z = -R; z <= R; ++z)
+      for (int y = -R; y <= R; ++y)
+        for (int x = -R; x <= R; ++x)
+          if (float(x * x + y * y + z * z) <= rv * rv) {
+            st.cone.push_back({x, y, z});
+            st.cone_offset.push_back(glm::vec3(x, y, z) * st.grid.voxel_size);
+          }
+    st.cone_radius = R;
+  }
+
+  std::string warning;
+  const std::vector<glm::vec3> roots_at = place_trees(p, r, warning);
+  if (!warning.empty()) rep.message = warning;
+  std::vector<int32_t> roots;
+  for (const glm::vec3& at : roots_at) {
+    if (int64_t(t.size()) >= p.node_cap) break;
+    // A random start for the phyllotactic spiral: otherwise every tree turns its first branch the same way.
+    const float a = r.uniform(0.0f, 6.2831853f);
+    roots.push_back(st.add_node(at, -1, 0, 0, glm::vec3(std::cos(a), 0, std::sin(a))));
+    st.lat.back() = no_bud;  // the seedling has only its apical bud
+  }
+  t.tree_count = int(roots.size());
+  const bool shadow = p.environment == so_environment::shadow;
+  if (shadow) {
+    for (int32_t i : roots) add_shadow_pyramid(st.grid, voxel_of(st.grid, t.position[i]), p.shadow_a, p.shadow_b, p.q_max);
+  } else {
+    // Markers fill an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1).
+    const float bottom = std::min(p.envelope_bottom, p.envelope_top), top = std::max(p.envelope_bottom, p.envelope_top);
+    const glm::vec3 radii(p.envelope_radius, 0.5f * (top - bottom), p.envelope_radius);
+    for (const glm::vec3& at : roots_at) {
+      const glm::vec3 centre = at + glm::vec3(0, 0.5f * (top + bottom), 0);
+      for (int k = 0; k < p.marker_count; ++k) {
+        glm::vec3 u;
+        do u = glm::vec3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
+        while (glm::dot(u, u) > 1);
+        st.markers.pos.push_back(centre + u * radii);
+      }
+    }
+    st.markers.cell = std::max(st.reach, 1e-3f);
+    st.markers.build();
+    for (int32_t i : roots) st.remove_markers_near(t.position[i]);
+  }
+
+  const float div = glm::radians(p.divergence);
+  std::vector<int32_t> grown;  // nodes made this step
+  std::vector<float> last_flow;
+  int step = 0;
+  for (int T = 1; T <= steps; ++T) {
+    if (o.cancelled()) { rep.cancelled = true; break; }
+    st.compute_bud_light(T);
+    st.sweep_flow();
+    if (st.shed(uint16_t(T))) st.sweep_flow();
+    if (debug) last_flow = st.flow;
+    st.allocate(T, roots);
+
+    // Bud fate and shoots; the environment stays as it was at the step's start, so the result
+    // does not depend on the order in which buds are visited.
+    grown.clear();
+    const size_t n_before = t.size();
+    for (size_t i = 0; i < n_before && !rep.hit_node_cap; ++i) {
+      if ((i & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
+      if (t.died[i] != never_died) continue;
+      for (int k = 0; k < 2 && !rep.hit_node_cap; ++k) {
+        if ((k == 0 ? st.main[i] : st.lat[i]) != bud_here) continue;
+        const shoot_plan plan = plan_shoot(st.q[2 * i + k], p.internode_length);
+        if (plan.metamers == 0) continue;
+        int32_t prev = int32_t(i);
+        const glm::vec3 def = k == 0 ? st.heading(int32_t(i)) : st.lateral_direction(int32_t(i));
+        glm::vec3 ref = k == 0 ? st.side[i] : st.heading(int32_t(i));
+        const uint8_t ord = uint8_t(std::min(int(t.order[i]) + k, 255));
+        const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[2 * i + k], def);
+        // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
+        // directions; one direction per shoot, as both seeds do, so a shoot is straight.
+        const glm::vec3 optimal = shadow ? st.optimal_shadow_direction(t.position[i], def) : marker_dir;
+        const glm::vec3 dir = safe_normalize(p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism, def);
+        for (int m = 0; m < plan.metamers; ++m) {
+          if (int64_t(t.size()) >= p.node_cap) { rep.hit_node_cap = true; break; }
+          const glm::vec3 from = t.position[prev];
+          // The lateral bud's side: the previous side carried along the axis, turned by φ
+          // (spiral), or a random ±side in the XY plane (seed 000's planar ±45° rule).
+          glm::vec3 s;
+          if (p.phyllotaxis == so_phyllotaxis::planar) {
+            s = safe_normalize(glm::cross(glm::vec3(0, 0, 1), dir), glm::vec3(1, 0, 0)) * (r.uniform() < 0.5f ? -1.0f : 1.0f);
+          } else {
+            s = safe_normalize(ref - glm::dot(ref, dir) * dir, any_perpendicular(dir));
+            s = glm::angleAxis(div, dir) * s;
+          }
+          const int32_t node = st.add_node(from + dir * plan.length, prev, uint16_t(T), ord, s);
+          if (prev == int32_t(i)) (k == 0 ? st.main : st.lat)[i] = node;
+          else st.main[prev] = node;
+          grown.push_back(node);
+          prev = node;
+          ref = s;
+        }
+      }
+    }
+    // Grow the environment with the new nodes.
+    for (int32_t i : grown) {
+      if (shadow) add_shadow_pyramid(st.grid, voxel_of(st.grid, t.position[i]), p.shadow_a, p.shadow_b, p.q_max);
+      else st.remove_markers_near(t.position[i]);
+    }
+    step = T;
+    if (o.progress) o.progress(float(T) / float(std::max(steps, 1)));
+    if (rep.hit_node_cap || rep.cancelled) break;
+  }
+  t.steps = step;
+  apply_pipe_radii(t, p.pipe_exponent, p.tip_radius);
+
+  if (rep.hit_node_cap)
+    rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) in step " + std::to_string(step) +
+                  "; raise node_cap or lower the step count";
+  rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
+
+  if (debug) {
+    if (shadow) sample_shadow_grid(st.grid, 1000000, debug->points, debug->point_value);
+    else
+      for (size_t m = 0; m < st.markers.pos.size(); ++m)
+        if (st.markers.alive[m]) {
+          debug->points.push_back(st.markers.pos[m]);
+          debug->point_value.push_back(-1);
+        }
+    // Fates as of the last step: shed, grew in it (or used up its buds), or dormant.
+    debug->node_fate.assign(t.size(), 1);
+    for (size_t i = 0; i < t.size(); ++i) {
+      if (t.died[i] != never_died) debug->node_fate[i] = 2;
+      else if (st.main[i] != bud_here && st.lat[i] != bud_here) debug->node_fate[i] = 0;
+      if (t.parent[i] >= 0 && t.born[i] == t.steps && debug->node_fate[t.parent[i]] == 1) debug->node_fate[t.parent[i]] = 0;
+    }
+    debug->node_flow = last_flow;
+    debug->node_flow.resize(t.size(), 0.0f);
   }
   return t;
 }

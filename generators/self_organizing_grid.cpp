@@ -1,0 +1,147 @@
+// The sparse shadow grid: chunked voxels behind an open-addressing hash.
+#include "generators/self_organizing_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva {
+namespace {
+
+constexpr int32_t coord_limit = (1 << 20) - 1;  // chunk coordinates fit 21 bits each
+
+uint64_t pack(const glm::ivec3& c) {
+  return (uint64_t(uint32_t(c.x + (1 << 20))) << 42) | (uint64_t(uint32_t(c.y + (1 << 20))) << 21) |
+         uint64_t(uint32_t(c.z + (1 << 20)));
+}
+
+size_t slot_of(uint64_t key, size_t mask) {
+  key ^= key >> 29;
+  key *= 0xBF58476D1CE4E5B9ull;
+  key ^= key >> 32;
+  return size_t(key) & mask;
+}
+
+glm::ivec3 chunk_of_voxel(const glm::ivec3& v) {
+  return {v.x >> shadow_grid::chunk_bits, v.y >> shadow_grid::chunk_bits, v.z >> shadow_grid::chunk_bits};
+}
+
+int cell_index(const glm::ivec3& v) { return shadow_cell(v); }
+
+const float* find_chunk(const shadow_grid& g, const glm::ivec3& c) {
+  if (g.keys.empty()) return nullptr;
+  const uint64_t key = pack(c);
+  const size_t mask = g.keys.size() - 1;
+  for (size_t s = slot_of(key, mask);; s = (s + 1) & mask) {
+    if (g.keys[s] == key) return g.cells.data() + size_t(g.chunk_of[s]) * shadow_grid::chunk_cells;
+    if (g.keys[s] == shadow_grid::empty_key) return nullptr;
+  }
+}
+
+void insert_slot(shadow_grid& g, uint64_t key, int32_t chunk) {
+  const size_t mask = g.keys.size() - 1;
+  size_t s = slot_of(key, mask);
+  while (g.keys[s] != shadow_grid::empty_key) s = (s + 1) & mask;
+  g.keys[s] = key;
+  g.chunk_of[s] = chunk;
+}
+
+float* get_chunk(shadow_grid& g, const glm::ivec3& c) {
+  if (g.keys.empty()) {
+    g.keys.assign(64, shadow_grid::empty_key);
+    g.chunk_of.assign(64, -1);
+  }
+  const uint64_t key = pack(c);
+  size_t mask = g.keys.size() - 1;
+  for (size_t s = slot_of(key, mask);; s = (s + 1) & mask) {
+    if (g.keys[s] == key) return g.cells.data() + size_t(g.chunk_of[s]) * shadow_grid::chunk_cells;
+    if (g.keys[s] == shadow_grid::empty_key) break;
+  }
+  // Keep the load factor under 1/2 so probes stay short.
+  if (2 * (g.chunk_pos.size() + 1) > g.keys.size()) {
+    std::vector<uint64_t> old_keys = std::move(g.keys);
+    std::vector<int32_t> old_chunks = std::move(g.chunk_of);
+    g.keys.assign(old_keys.size() * 2, shadow_grid::empty_key);
+    g.chunk_of.assign(old_keys.size() * 2, -1);
+    for (size_t s = 0; s < old_keys.size(); ++s)
+      if (old_keys[s] != shadow_grid::empty_key) insert_slot(g, old_keys[s], old_chunks[s]);
+  }
+  const int32_t k = int32_t(g.chunk_pos.size());
+  insert_slot(g, key, k);
+  g.chunk_pos.push_back(c);
+  g.cells.resize(g.cells.size() + shadow_grid::chunk_cells, 0.0f);
+  return g.cells.data() + size_t(k) * shadow_grid::chunk_cells;
+}
+
+}  // namespace
+
+const float* shadow_chunk(const shadow_grid& g, const glm::ivec3& chunk) { return find_chunk(g, chunk); }
+
+size_t shadow_grid::memory_bytes() const {
+  return keys.capacity() * sizeof(uint64_t) + chunk_of.capacity() * sizeof(int32_t) +
+         cells.capacity() * sizeof(float) + chunk_pos.capacity() * sizeof(glm::ivec3);
+}
+
+glm::ivec3 voxel_of(const shadow_grid& g, const glm::vec3& p) {
+  constexpr float lim = float(coord_limit) * shadow_grid::chunk_side;
+  glm::ivec3 v;
+  for (int i = 0; i < 3; ++i) {
+    float f = std::floor(p[i] / g.voxel_size);
+    if (!(f > -lim)) f = -lim;  // NaN lands here too
+    if (f > lim - 1) f = lim - 1;
+    v[i] = int(f);
+  }
+  return v;
+}
+
+glm::vec3 voxel_centre(const shadow_grid& g, const glm::ivec3& v) {
+  return (glm::vec3(v) + 0.5f) * g.voxel_size;
+}
+
+float shadow_at(const shadow_grid& g, const glm::ivec3& v) {
+  const float* c = find_chunk(g, chunk_of_voxel(v));
+  return c ? c[cell_index(v)] : 0.0f;
+}
+
+void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
+  constexpr int side = shadow_grid::chunk_side;
+  float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
+  for (int q = 0; q <= q_max; ++q, ds /= b) {
+    const int y = v.y - q;
+    const int x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
+    // Visit the layer chunk by chunk: one hash lookup per chunk, not per voxel.
+    for (int cz = z0 >> shadow_grid::chunk_bits; cz <= z1 >> shadow_grid::chunk_bits; ++cz)
+      for (int cx = x0 >> shadow_grid::chunk_bits; cx <= x1 >> shadow_grid::chunk_bits; ++cx) {
+        float* chunk = get_chunk(g, {cx, y >> shadow_grid::chunk_bits, cz});
+        const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + side - 1);
+        const int xa = std::max(x0, cx * side), xb = std::min(x1, cx * side + side - 1);
+        for (int z = za; z <= zb; ++z) {
+          float* row = chunk + cell_index({0, y, z});
+          for (int x = xa; x <= xb; ++x) row[x & (side - 1)] += ds;
+        }
+      }
+  }
+}
+
+size_t count_shadowed_voxels(const shadow_grid& g) {
+  return size_t(std::count_if(g.cells.begin(), g.cells.end(), [](float s) { return s != 0.0f; }));
+}
+
+void sample_shadow_grid(const shadow_grid& g, size_t max_points, std::vector<glm::vec3>& points,
+                        std::vector<float>& values) {
+  constexpr int side = shadow_grid::chunk_side;
+  for (size_t k = 0; k < g.chunk_pos.size(); ++k) {
+    const float* chunk = g.cells.data() + k * shadow_grid::chunk_cells;
+    const glm::ivec3 base = g.chunk_pos[k] * side;
+    for (int y = 0; y < side; ++y)
+      for (int z = 0; z < side; ++z)
+        for (int x = 0; x < side; ++x) {
+          const float s = chunk[(y * side + z) * side + x];
+          if (s == 0.0f) continue;
+          if (points.size() >= max_points) return;
+          points.push_back(voxel_centre(g, base + glm::ivec3(x, y, z)));
+          values.push_back(s);
+        }
+  }
+}
+
+}  // namespace sylva
