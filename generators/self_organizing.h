@@ -18,7 +18,7 @@ enum class so_placement : int { grid = 0, random = 1, explicit_positions = 2 };
 inline constexpr const char* so_placement_names[] = {"grid", "random", "explicit", nullptr};
 
 struct self_organizing_params {
-  int steps = 20;
+  int steps = 23;                     // about 20,000 internodes with the defaults
   float internode_length = 0.1f;      // metres
   so_environment environment = so_environment::shadow;
   // Shadow propagation (Palubicki 2009 §4.2); seed 000's values.
