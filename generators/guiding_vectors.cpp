@@ -59,25 +59,24 @@ struct yao_query {
   int32_t best[8];
 };
 
-float box_dist2(const glm::vec3& v, const glm::vec3& lo, const glm::vec3& hi) {
-  const glm::vec3 d = glm::max(glm::max(lo - v, v - hi), glm::vec3(0));
-  return glm::dot(d, d);
-}
+// Octants (bit a set: coordinate a above the query) that a box can hold points of, per axis and side.
+constexpr uint8_t octants_low[3] = {0x55, 0x33, 0x0f}, octants_high[3] = {0xaa, 0xcc, 0xf0};
 
 // Visits only boxes that overlap an octant whose best candidate they could still beat.
 void query_kd(const std::vector<glm::vec3>& p, const std::vector<glm::vec3>& box, size_t id, int32_t b, int32_t e,
               yao_query& q) {
   const glm::vec3& lo = box[2 * id];
   const glm::vec3& hi = box[2 * id + 1];
-  const float d2 = box_dist2(q.v, lo, hi);
-  const bool low_ok[3] = {lo.x <= q.v.x, lo.y <= q.v.y, lo.z <= q.v.z};
-  const bool high_ok[3] = {hi.x > q.v.x, hi.y > q.v.y, hi.z > q.v.z};
-  bool needed = false;
-  for (int o = 0; o < 8 && !needed; ++o) {
-    const bool overlaps = ((o & 1) ? high_ok[0] : low_ok[0]) && ((o & 2) ? high_ok[1] : low_ok[1]) &&
-                          ((o & 4) ? high_ok[2] : low_ok[2]);
-    needed = overlaps && d2 <= q.best_d2[o];
+  float d2 = 0;
+  unsigned overlap = 0xff;
+  for (int a = 0; a < 3; ++a) {
+    const float below = lo[a] - q.v[a], above = q.v[a] - hi[a];
+    const float gap = below > 0 ? below : (above > 0 ? above : 0);
+    d2 += gap * gap;
+    overlap &= (lo[a] <= q.v[a] ? octants_low[a] : 0u) | (hi[a] > q.v[a] ? octants_high[a] : 0u);
   }
+  bool needed = false;
+  for (unsigned m = overlap; m && !needed; m &= m - 1) needed = d2 <= q.best_d2[std::countr_zero(m)];
   if (!needed) return;
   if (e - b <= kd_leaf) {
     for (int32_t i = b; i < e; ++i) {
@@ -488,6 +487,8 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
       candidates = hop_levels(g, node_vertex, h, 2 * h, level, level_touched, o, stop);
       corridor = &level;
       if (stop) { rep.cancelled = true; break; }
+      const float floor_y = g.point[root].y + p.clear_trunk;
+      std::erase_if(candidates, [&](int32_t v) { return g.point[v].y < floor_y; });
     }
     const float want_f = std::clamp(schedule_at(p.step_endpoints, k, 0), 0.0f, float(candidates.size()));
     const size_t want = size_t(std::lround(want_f));

@@ -24,22 +24,23 @@ struct guiding_vectors_params {
   int steps = 5;
   // Per-step schedules; entry k-1 drives step k, the last entry repeats for later steps.
   std::vector<float> step_t{-3, -3, 1, 1, 1};            // degrees
-  std::vector<float> step_endpoints{6, 24, 70, 160, 260};
-  std::vector<float> step_hops{1, 6, 5, 4, 3};           // step 1 samples the volume, so entry 0 is unused
+  std::vector<float> step_endpoints{3, 16, 40, 90, 160};
+  std::vector<float> step_hops{1, 5, 4, 3, 2};           // step 1 samples the volume, so entry 0 is unused
   float source_fraction = 1;
+  float clear_trunk = 1.2f;  // metres above the root kept free of border endpoints
   gv_t_mode t_mode = gv_t_mode::constant;
   float t_end = 0;           // degrees, hop ramp end
   int ramp_hops = 20;
   float radial_T = 1.0f;     // metres from the trunk axis
   // Graph.
   float spacing = 0.2f;      // r
-  int candidates = 20;       // k
+  int candidates = 12;       // k
   glm::vec3 domain_size{4.4f, 5.6f, 4.4f};
   // Endpoint volume of step 1.
   gv_volume volume = gv_volume::sphere;
   glm::vec3 volume_offset{0, 3.6f, 0};
   glm::vec3 volume_scale{1, 0.9f, 1};
-  float volume_outer = 1.8f;
+  float volume_outer = 1.5f;
   float volume_inner = 1.2f;
   // Output.
   float pipe_exponent = 2.5f;
@@ -55,6 +56,7 @@ void visit_params(P& p, V&& v) {
   v(p.step_endpoints, param_info{"step_endpoints", "Endpoints per step", "", 0, 100000, "Per step: how many endpoints (destinations) are sampled; the last entry repeats", param_on_release});
   v(p.step_hops, param_info{"step_hops", "Hop distance per step", "h", 1, 200, "Per step from step 2 on: endpoints are vertices exactly h hops from the tree (border set B_h); longer h gives longer branches. Entry 1 is unused (step 1 samples the volume)", param_on_release});
   v(p.source_fraction, param_info{"source_fraction", "Source fraction", "", 0, 1, "Share of each step's new path vertices that become sources of the next step"});
+  v(p.clear_trunk, param_info{"clear_trunk", "Clear trunk height", "", 0, 50, "From step 2 on, border vertices lower than this above the root are not endpoints, so the trunk base stays bare (not in the paper)"});
   v(p.t_mode, param_info{"t_mode", "Turn rule", "", 0, 2, "constant: t per hop; hop_ramp: t ramps from the step's t to t_end over ramp_hops hops from the source; radial: t inside distance T of the trunk axis, −t beyond (Xu & Mould's t1)", 0, "Guiding vectors", gv_t_mode_names});
   v(p.t_end, param_info{"t_end", "Ramp end angle", "t_end", -45, 45, "hop_ramp: the turn angle reached after ramp_hops hops", param_degrees});
   v(p.ramp_hops, param_info{"ramp_hops", "Ramp length", "", 1, 1000, "hop_ramp: hops from the source over which t goes from the step's t to t_end"});
