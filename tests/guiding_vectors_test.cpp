@@ -4,11 +4,14 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <variant>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "generators/guiding_vectors.h"
+#include "generators/tree_spec.h"
+#include "render/files.h"
 
 using namespace sylva;
 
@@ -293,4 +296,73 @@ TEST(GuidingVectors, ParamsAreDeclaredOnceAndInRange) {
   visit_params(p, [&](auto&, const param_info& info) { EXPECT_TRUE(keys.insert(info.key).second) << info.key; });
   EXPECT_TRUE(clamp_all_params(p).empty());
   EXPECT_EQ(p, guiding_vectors_params{});
+}
+
+TEST(GuidingVectors, PresetsLoadCleanlyAndGrow) {
+  for (const char* name : {"default", "seed002", "fig7_constant", "fig7_radial", "wide_annulus", "tall_narrow"}) {
+    const std::string path = std::string(SYLVA_SOURCE_DIR) + "/presets/guiding_vectors_" + name + ".json";
+    preset p;
+    const load_result r = load_preset_file(path, p);
+    ASSERT_TRUE(r.ok) << path << ": " << r.error;
+    EXPECT_TRUE(r.warnings.empty()) << path << ": " << r.warnings.front();
+    ASSERT_TRUE(std::holds_alternative<guiding_vectors_params>(p.spec.params)) << path;
+    grow_report rep;
+    const tree_skeleton t = grow(p.spec, {}, &rep);
+    EXPECT_FALSE(rep.error) << path << ": " << rep.message;
+    EXPECT_EQ(validate_skeleton(t), "") << path;
+    EXPECT_GT(t.size(), 50u) << path;
+  }
+  // The seed's schedule, spelled out, is the built-in default.
+  preset seed;
+  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/guiding_vectors_seed002.json", seed).ok);
+  EXPECT_EQ(std::get<guiding_vectors_params>(seed.spec.params).step_t, (std::vector<float>{-3, -3, 1, 1, 1}));
+}
+
+TEST(GuidingVectors, LaterEndpointsAreExactlyHHopsFromTheTree) {
+  // Rebuild the generator's graph (same domain, first point, spacing and seed) and check that each
+  // step-2 endpoint lies exactly h hops, by breadth-first search, from the tree of step 1.
+  guiding_vectors_params p = small_params();
+  p.steps = 2;
+  p.clear_trunk = 0;
+  growth_debug dbg;
+  grow_options o;
+  o.seed = 9;
+  const tree_skeleton t = grow_guiding_vectors(p, o, nullptr, &dbg);
+  const glm::vec3 s = p.domain_size;
+  std::vector<glm::vec3> pts;
+  ASSERT_TRUE(sample_poisson_disc({-s.x / 2, 0, -s.z / 2}, {s.x / 2, s.y, s.z / 2}, glm::vec3(0), p.spacing, p.candidates,
+                                  o.seed, {}, pts));
+  gv_graph g = make_gv_graph(pts, p.spacing);
+  std::vector<int> hops(g.point.size(), -1);
+  std::vector<int32_t> frontier;
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t.born[i] <= 1)
+      for (int32_t v = 0; v < int32_t(g.point.size()); ++v)
+        if (g.point[v] == t.position[i]) {
+          hops[v] = 0;
+          frontier.push_back(v);
+        }
+  const int h = int(p.step_hops[1]);
+  for (int d = 1; d <= h; ++d) {
+    std::vector<int32_t> next;
+    for (int32_t u : frontier) {
+      const int32_t* e = yao8_edges(g, u);
+      for (int o8 = 0; o8 < 8; ++o8)
+        if (e[o8] >= 0 && hops[e[o8]] < 0) {
+          hops[e[o8]] = d;
+          next.push_back(e[o8]);
+        }
+    }
+    frontier = std::move(next);
+  }
+  int checked = 0;
+  for (size_t k = 0; k < dbg.points.size(); ++k) {
+    if (dbg.point_value[k] != 2) continue;
+    for (int32_t v = 0; v < int32_t(g.point.size()); ++v)
+      if (g.point[v] == dbg.points[k]) {
+        EXPECT_EQ(hops[v], h);
+        ++checked;
+      }
+  }
+  EXPECT_EQ(checked, int(p.step_endpoints[1]));
 }
