@@ -19,6 +19,42 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 }
 }  // namespace
 
+std::string save_view_png(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+                          const std::string& path, double* frame_ms) {
+  if (width < 16 || height < 16 || width > 8192 || height > 8192)
+    return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 16..8192";
+  // An off-screen RGBA8 target: hidden windows have no reliable back buffer to read.
+  gl_texture color;
+  gl_framebuffer fbo;
+  glGenTextures(1, &color.id);
+  glBindTexture(GL_TEXTURE_2D, color.id);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glGenFramebuffers(1, &fbo.id);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+  std::string error;
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the image target";
+  if (error.empty()) {
+    auto t0 = std::chrono::steady_clock::now();
+    draw_frame(r, rp, cam, width, height, fbo);
+    std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    if (frame_ms) *frame_ms = ms_since(t0);
+    check_gl("read pixels");
+    // GL rows run bottom to top; PNG rows top to bottom.
+    std::vector<unsigned char> flipped(pixels.size());
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
+    error = save_png_rgba(path, width, height, flipped.data());
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  delete_gl(fbo);
+  delete_gl(color);
+  return error;
+}
+
 std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height) {
   return render_preset_png(p, step, path, width, height, nullptr);
 }
@@ -68,47 +104,18 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
     orbit_camera cam;
     frame_camera(cam, r.bounds_min, r.bounds_max);
 
-    // An off-screen RGBA8 target: hidden windows have no reliable back buffer to read.
-    gl_texture color, depth;
-    gl_framebuffer fbo;
-    glGenTextures(1, &color.id);
-    glBindTexture(GL_TEXTURE_2D, color.id);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glGenFramebuffers(1, &fbo.id);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the image target";
-
-    if (error.empty()) {
-      t0 = std::chrono::steady_clock::now();
-      draw_frame(r, p.render, cam, width, height, fbo);
-      std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
-      glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-      glPixelStorei(GL_PACK_ALIGNMENT, 1);
-      glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-      const double frame_ms = ms_since(t0);
-      check_gl("read pixels");
-      // GL rows run bottom to top; PNG rows top to bottom.
-      std::vector<unsigned char> flipped(pixels.size());
-      const size_t row = size_t(width) * 4;
-      for (int y = 0; y < height; ++y)
-        std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
-      const int errors = gl_error_count() - errors_before;
-      if (errors > 0) error = std::to_string(errors) + " GL error(s): " + gl_last_message();
-      else error = save_png_rgba(path, width, height, flipped.data());
-      if (stats) {
-        stats->gl_errors = errors;
-        stats->grow_ms = grow_ms;
-        stats->mesh_ms = mesh_ms;
-        stats->frame_ms = frame_ms;
-        stats->triangles = r.triangles_drawn;
-        stats->leaves = r.leaves_drawn;
-      }
+    double frame_ms = 0;
+    error = save_view_png(r, p.render, cam, width, height, path, &frame_ms);
+    const int errors = gl_error_count() - errors_before;
+    if (errors > 0 && error.empty()) error = std::to_string(errors) + " GL error(s): " + gl_last_message();
+    if (stats) {
+      stats->gl_errors = errors;
+      stats->grow_ms = grow_ms;
+      stats->mesh_ms = mesh_ms;
+      stats->frame_ms = frame_ms;
+      stats->triangles = r.triangles_drawn;
+      stats->leaves = r.leaves_drawn;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    delete_gl(fbo);
-    delete_gl(color);
-    delete_gl(depth);
   }
   destroy_renderer(r);
   glfwDestroyWindow(window);

@@ -7,6 +7,9 @@
 
 namespace sylva {
 
+struct renderer_state;
+struct orbit_camera;
+
 struct headless_stats {
   int gl_errors = 0;         // GL errors seen while rendering (debug callback + glGetError)
   double grow_ms = 0, mesh_ms = 0, frame_ms = 0;
@@ -18,5 +21,10 @@ struct headless_stats {
 std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height);
 std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height,
                               headless_stats* stats);
+
+// Renders the current view of an initialised renderer off-screen and writes a PNG ("" or error).
+// Needs a current GL context; the editor uses it for File > Export as .png.
+std::string save_view_png(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+                          const std::string& path, double* frame_ms = nullptr);
 
 }  // namespace sylva

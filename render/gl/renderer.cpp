@@ -161,7 +161,7 @@ out vec4 o_color;
 void main() {
   vec3 d = view_dir(v_uv);
   vec3 c = d.y >= 0.0 ? mix(u_sky_horizon, u_sky_zenith, pow(d.y, 0.45))
-                      : mix(u_sky_horizon, u_ground_color * 0.8, clamp(-d.y * 8.0, 0.0, 1.0));
+                      : u_sky_horizon * 0.9;   // below the horizon: the haze the ground fades into
   float cs = max(dot(d, u_sun_dir), 0.0);
   c += u_sun_light * (0.03 * pow(cs, 64.0) + 0.15 * pow(cs, 800.0));   // glow around the sun
   c += u_sun_light * 8.0 * sun_disc(d);
@@ -188,7 +188,7 @@ void main() {
   float sh = shadow_at(v_world, n);
   vec3 c = u_ground_color * (u_sun_light * max(u_sun_dir.y, 0.0) * sh + ambient_light(n));
   // Fade into the horizon haze so the plane's edge never shows.
-  float f = smoothstep(0.4, 1.0, length(v_world.xz - u_center.xz) / u_extent);
+  float f = smoothstep(0.3, 0.95, length(v_world.xz - u_center.xz) / u_extent);
   o_color = vec4(mix(c, u_sky_horizon * 0.9, f), 1.0);
 }
 )";
@@ -722,7 +722,7 @@ void upload_overlays(renderer_state& r, const growth_debug& d) {
 // ---------------------------------------------------------------- the frame
 
 void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
-                gl_framebuffer target, bool overlays) {
+                gl_framebuffer target, bool overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
   resize_targets(r, width, height);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
@@ -897,7 +897,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
 
   // 5. Composite and tonemap into the target.
   glBindFramebuffer(GL_FRAMEBUFFER, target.id);
-  glViewport(0, 0, width, height);
+  glViewport(origin.x, origin.y, width, height);
   glUseProgram(r.composite.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "generators/skeleton.h"
@@ -69,7 +70,8 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
 void upload_overlays(renderer_state& r, const growth_debug& d);
 
 // Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
+// `origin` places the image inside the target (the editor's viewport beside its panels).
 void draw_frame(renderer_state& r, const render_params& p, const orbit_camera& cam, int width, int height,
-                gl_framebuffer target = {}, bool overlays = false);
+                gl_framebuffer target = {}, bool overlays = false, glm::ivec2 origin = {0, 0});
 
 }  // namespace sylva

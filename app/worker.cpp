@@ -1,0 +1,98 @@
+// Growth worker: grows and meshes off the UI thread; publishes immutable results.
+#include "app/worker.h"
+
+#include <chrono>
+
+namespace sylva {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+void run_worker(worker_state& w) {
+  std::shared_ptr<const grow_result> last;   // the worker's own previous result, for skeleton reuse
+  for (;;) {
+    worker_request req;
+    {
+      std::unique_lock<std::mutex> lock(w.mutex);
+      w.wake.wait(lock, [&] { return w.quit || w.pending; });
+      if (w.quit) return;
+      req = std::move(*w.pending);
+      w.pending.reset();
+      w.busy = true;
+    }
+    auto result = std::make_shared<grow_result>();
+    result->generation = req.generation;
+    result->spec = req.spec;
+    result->mesh_settings = req.mesh_settings;
+    if (last && last->spec == req.spec && !last->report.cancelled) {
+      // Only mesh settings changed: the tree is the same, so skip growth.
+      result->skeleton = last->skeleton;
+      result->debug = last->debug;
+      result->report = last->report;
+      result->grow_ms = last->grow_ms;
+      result->regrown = false;
+    } else {
+      grow_options o;
+      o.cancel = &w.generation;
+      o.cancel_value = req.generation;
+      auto debug = std::make_shared<growth_debug>();
+      auto t0 = std::chrono::steady_clock::now();
+      auto skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+      result->grow_ms = ms_since(t0);
+      if (o.cancelled()) {   // a newer edit arrived: drop this one unseen
+        w.busy = false;
+        continue;
+      }
+      result->skeleton = std::move(skeleton);
+      result->debug = std::move(debug);
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    result->mesh = mesh_tree(*result->skeleton, req.mesh_settings, req.spec.seed);
+    result->mesh_ms = ms_since(t0);
+    last = result;
+    {
+      std::lock_guard<std::mutex> lock(w.mutex);
+      w.published = std::move(result);
+      w.busy = false;
+    }
+  }
+}
+
+}  // namespace
+
+void start_worker(worker_state& w) {
+  w.quit = false;
+  w.thread = std::thread(run_worker, std::ref(w));
+}
+
+void stop_worker(worker_state& w) {
+  {
+    std::lock_guard<std::mutex> lock(w.mutex);
+    w.quit = true;
+  }
+  ++w.generation;   // cancels a growth in progress
+  w.wake.notify_all();
+  if (w.thread.joinable()) w.thread.join();
+}
+
+uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params& mesh_settings) {
+  uint32_t g;
+  {
+    std::lock_guard<std::mutex> lock(w.mutex);
+    g = ++w.generation;
+    w.pending = worker_request{g, spec, mesh_settings};
+  }
+  w.wake.notify_one();
+  return g;
+}
+
+std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation) {
+  std::lock_guard<std::mutex> lock(w.mutex);
+  if (w.published && w.published->generation != seen_generation) return w.published;
+  return nullptr;
+}
+
+}  // namespace sylva

@@ -1,0 +1,54 @@
+// The one long-lived growth worker: latest request wins, stale work is cancelled (DESIGN §5).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "generators/tree_spec.h"
+#include "render/mesh.h"
+
+namespace sylva {
+
+struct grow_result {
+  uint32_t generation = 0;
+  tree_spec spec;
+  mesh_params mesh_settings;
+  std::shared_ptr<const tree_skeleton> skeleton;
+  std::shared_ptr<const growth_debug> debug;
+  tree_mesh mesh;
+  grow_report report;
+  double grow_ms = 0, mesh_ms = 0;
+  bool regrown = true;   // false when only the mesh was rebuilt from the previous skeleton
+};
+
+struct worker_request {
+  uint32_t generation = 0;
+  tree_spec spec;
+  mesh_params mesh_settings;
+};
+
+struct worker_state {
+  std::thread thread;
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::optional<worker_request> pending;          // only the newest request is kept
+  std::shared_ptr<const grow_result> published;   // newest finished result
+  std::atomic<uint32_t> generation{0};            // moves on with every edit; cancels older growth
+  std::atomic<bool> busy{false};
+  bool quit = false;
+};
+
+void start_worker(worker_state& w);
+// Stops the worker, cancelling what it is doing; waits for it (the UI's only wait).
+void stop_worker(worker_state& w);
+// ++generation and posts the spec; returns the new generation.
+uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params& mesh_settings);
+// The newest published result if it is newer than `seen_generation`, else nullptr. Never blocks on work.
+std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation);
+
+}  // namespace sylva
