@@ -13,14 +13,14 @@ namespace {
 
 constexpr float cell_fraction = 0.5f;
 
-// Attraction points in a dense uniform grid over their bounding box, cell size d_i, so a node's
-// neighbourhood is at most 3x3x3 cells. Points never move; a killed point is swapped behind the live
+// Attraction points in a dense uniform grid over their bounding box, cell size d_i/2; a node visits
+// the cells of its 2·d_i box that come within d_i of it. Points never move; a killed point is swapped behind the live
 // ones of its cell, so scans touch live points only. Each point caches its nearest node, and only
 // a new node can change that cache: an iteration costs O(new nodes · local points + influenced
 // points), and nodes that nothing influences cost nothing.
 // Measured grow time (Release, thread CPU time, min of 5, on the 2-core dev box under load ~8), bench
-// presets: 10k points 6.7 ms (3,309 nodes), 75k 41 ms (5,001 nodes), 1M 0.86 s (6,225 nodes); the
-// cube cell d_i/2 with cells beyond d_i skipped beat cells of d_i (75k: 68 ms) and d_i/3 (53 ms).
+// presets: 10k points 6.7 ms (3,309 nodes), 75k 41 ms (5,001 nodes), 1M 0.86 s (6,225 nodes). On
+// 75k points with d_i = 3, cells of d_i/2 took 51 ms against 68 ms for d_i and 52 ms for d_i/3.
 // nanoflann was not measured: a k-d tree over the nodes would need extending every iteration,
 // while this grid over the static points is built once.
 struct colonization_state {
