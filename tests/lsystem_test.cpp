@@ -4,12 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "generators/lsystem_engine.h"
+#include "generators/tree_spec.h"
+#include "render/files.h"
 
 using namespace sylva;
 
@@ -317,16 +315,14 @@ TEST(LSystem, TextPresetsGrowValidTrees) {
   for (const auto& entry : fs::directory_iterator(fs::path(SYLVA_SOURCE_DIR) / "presets")) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("lsystem_", 0) != 0) continue;
-    std::ifstream f(entry.path());
-    const nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
-    ASSERT_FALSE(j.is_discarded()) << name;
-    const auto& q = j["params"];
-    if (q.value("mode", "") != "text") continue;
-    lsystem_params p;
-    p.mode = lsystem_mode::text;
-    p.source = q.value("source", "");
-    p.derivations = std::min(q.value("derivations", 4), 6);  // keep the test quick
-    p.scale = q.value("scale", p.scale);
+    preset pr;
+    const load_result lr = load_preset_file(entry.path().string(), pr);
+    ASSERT_TRUE(lr.ok) << name << ": " << lr.error;
+    EXPECT_TRUE(lr.warnings.empty()) << name << ": " << lr.warnings.front();
+    lsystem_params p = std::get<lsystem_params>(pr.spec.params);
+    if (p.mode != lsystem_mode::text) continue;
+    EXPECT_TRUE(lsystem_check(p.source).ok()) << name;
+    p.derivations = std::min(p.derivations, 5);  // keep the test quick
     grow_report rep;
     tree_skeleton t = grow_lsystem(p, {}, &rep);
     EXPECT_FALSE(rep.error) << name << ": " << rep.message;
@@ -334,5 +330,19 @@ TEST(LSystem, TextPresetsGrowValidTrees) {
     EXPECT_GT(t.size(), 1u) << name;
     ++checked;
   }
-  EXPECT_GE(checked, 0);
+  EXPECT_GE(checked, 30);
+}
+
+TEST(LSystem, HondaTextPresetsGrowTheHondaPresetTrees) {
+  for (char k = 'a'; k <= 'i'; ++k) {
+    const std::string dir = std::string(SYLVA_SOURCE_DIR) + "/presets/";
+    preset text, honda;
+    ASSERT_TRUE(load_preset_file(dir + "lsystem_text_honda_" + k + ".json", text).ok);
+    ASSERT_TRUE(load_preset_file(dir + "lsystem_honda_" + k + ".json", honda).ok);
+    const tree_skeleton a = grow(text.spec, {}), b = grow(honda.spec, {});
+    ASSERT_EQ(a.size(), b.size()) << "tree " << k;
+    float ha = 0, hb = 0;
+    for (size_t i = 0; i < a.size(); ++i) ha = std::max(ha, a.position[i].y), hb = std::max(hb, b.position[i].y);
+    EXPECT_NEAR(ha, hb, 1e-4f * std::max(1.0f, hb)) << "tree " << k;
+  }
 }
