@@ -17,8 +17,12 @@ struct export_options {
   float seconds_per_step = 0.5f;
   int max_animation_steps = 64;         // caps on the growth animation's size
   size_t max_animation_triangles = 4000000;
-  const std::atomic<uint32_t>* cancel = nullptr;
+  const std::atomic<uint32_t>* cancel = nullptr;  // non-zero: stop, write nothing
   std::function<void(float)> progress;
+  mesh_params mesh;             // the params `m` was built with: re-meshes step views and animation steps
+  bool dry_run = false;         // compute export_result.bytes (the size) without writing anything
+  int texture_size = 256;       // bark texture edge in pixels (leaves get half, in a 2x2 atlas)
+  uint64_t texture_seed = 1;
 };
 
 struct export_info {
@@ -30,6 +34,8 @@ struct export_result {
   std::string error;        // "" on success
   size_t bytes = 0;         // size of the main file written
   std::vector<std::string> files;  // every file written
+  size_t triangles = 0;     // in the main mesh (all steps for a growth animation)
+  int animation_steps = 0;  // steps in the growth animation after the caps
 };
 
 // Picks the format from the extension of `path`: .glb .gltf .obj .json. Writes atomically.

@@ -8,7 +8,9 @@ packages=(
   libepoxy-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   fonts-dejavu-core xvfb xauth libgl1-mesa-dri imagemagick
 )
-if [ "${SYLVA_WITH_NPM:-0}" = 1 ]; then packages+=(nodejs npm); fi
+# node + npm for the glTF validator; some node builds bundle npm and conflict with Debian's npm.
+if ! command -v node >/dev/null 2>&1; then packages+=(nodejs); fi
+if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -23,3 +25,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+
+# The export tests run the Khronos glTF validator (npm gltf-validator, into tools/node_modules).
+bash "$(dirname "$0")/install-gltf-validator.sh"
