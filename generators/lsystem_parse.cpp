@@ -59,6 +59,7 @@ struct expr_compiler {
   size_t end = 0;
   const std::vector<std::string>* vars = nullptr;
   int depth = 0, max_depth = 0;
+  int nesting = 0;  // recursion depth of the parser itself, bounded so no input overflows the stack
 
   [[noreturn]] void fail(size_t at, std::string msg) { throw parse_failure{at, std::move(msg)}; }
   void skip() {
@@ -83,7 +84,7 @@ struct expr_compiler {
   // Compiles one expression and returns its index in prog.exprs.
   int compile() {
     const uint32_t begin = uint32_t(prog.code.size());
-    depth = max_depth = 0;
+    depth = max_depth = nesting = 0;
     skip();
     const size_t at = pos;
     parse_or();
@@ -137,6 +138,11 @@ struct expr_compiler {
     }
   }
   void parse_unary() {
+    if (++nesting > 200) fail(pos, "expression too deeply nested");
+    parse_unary_inner();
+    --nesting;
+  }
+  void parse_unary_inner() {
     if (eat("-")) { parse_unary(); emit(op_neg, 0); }
     else if (eat("+")) parse_unary();
     else if (!peek("!=") && eat("!")) { parse_unary(); emit(op_not, 0); }
@@ -156,6 +162,7 @@ struct expr_compiler {
       const double v = std::strtod(b, &e);
       if (e == b) fail(pos, "bad number");
       pos += size_t(e - b);
+      if (pos > end) fail(size_t(b - text.c_str()), "bad number");
       emit(op_push, 1, 0, float(v));
       return;
     }

@@ -185,6 +185,35 @@ TEST(LSystem, ModuleCapStopsWithMessage) {
   EXPECT_EQ(validate_skeleton(t), "");
 }
 
+TEST(LSystem, HostileInputIsAnErrorNotACrash) {
+  EXPECT_FALSE(lsystem_check("#axiom F(" + std::string(100000, '(') + "1" + std::string(100000, ')') + ")\n").ok());
+  EXPECT_FALSE(lsystem_check("#axiom F(" + std::string(100000, '-') + "1)\n").ok());
+  EXPECT_FALSE(lsystem_check("#axiom F(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+(1+1)))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))\n").ok());
+  // Unbalanced brackets in the string: the turtle ignores a stray ']' and an unclosed '['.
+  tree_skeleton t = grow_lsystem(text_params("#axiom F]]F[[F\n", 0), {});
+  EXPECT_EQ(t.size(), 4u);
+  EXPECT_EQ(validate_skeleton(t), "");
+}
+
+TEST(LSystem, NodeCapAndCancel) {
+  lsystem_params p = text_params("#axiom F\nF -> F[+F]F[-F]F\n", 6);  // 5^6 = 15625 F
+  p.node_cap = 1000;
+  grow_report rep;
+  tree_skeleton t = grow_lsystem(p, {}, &rep);
+  EXPECT_TRUE(rep.hit_node_cap);
+  EXPECT_EQ(t.size(), 1000u);
+  EXPECT_NE(rep.message.find("node cap"), std::string::npos);
+  EXPECT_EQ(validate_skeleton(t), "");
+  std::atomic<uint32_t> cancel{1};
+  grow_options o;
+  o.cancel = &cancel;  // already moved on: returns the axiom's tree
+  grow_report rep2;
+  tree_skeleton c = grow_lsystem(text_params("#axiom F\nF -> FF\n", 20), o, &rep2);
+  EXPECT_TRUE(rep2.cancelled);
+  EXPECT_EQ(c.steps, 0);
+  EXPECT_EQ(validate_skeleton(c), "");
+}
+
 TEST(LSystem, DivisionByZeroNamesProduction) {
   grow_report rep;
   grow_lsystem(text_params("#axiom A(0)\nA(x) -> A(1/x)\n", 2), {}, &rep);
