@@ -13,6 +13,23 @@
 #include "generators/lsystem.h"
 #include "generators/skeleton.h"
 
+// The language (text mode), one statement per line:
+//   // comment                      whole-line comments only ('/' and '//' are roll modules)
+//   #define NAME expr // [min,max] help   a constant; becomes a slider; usable anywhere, also above
+//   #axiom modules                   the start string, e.g. !(1)F(200)/(45)A
+//   #angle expr   #step expr   #width expr      default δ (degrees), F/f length, !-width
+//   #tropism x, y, z, e              tropism vector T and susceptibility e (ABOP §2.4)
+//   #ignore + - /                    symbols skipped when matching context
+//   #draw a b                        further symbols that draw like F
+//   left < pred > right : cond -> (prob) successor
+// A module is one ASCII character with an optional (expr, ...) list; predecessors and contexts
+// name their parameters instead. `: *` means no condition. Lines with equal headers and a
+// (prob) form one stochastic production; weights need not sum to 1. The first production that
+// matches rewrites a module; an unmatched module is copied. The derivation count is the schema's
+// `derivations` field (a slider, and the growth-step count), not part of the text.
+// Expressions: + - * / ^ (right-assoc., tighter than unary minus), < <= > >= == != && || !,
+// sqrt sin cos tan (degrees) exp log abs floor min max, rand() in [0,1) and rand(a,b), seeded.
+// Turtle: F(l) f(l) + - & ^ \ / (optional angle) | [ ] !(w) $ L(size) ' as in ABOP ch. 1.
 namespace sylva {
 
 // A parse or evaluation error; line and column are 1-based, line 0 means "no error".
