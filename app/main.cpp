@@ -1,7 +1,15 @@
-// Entry point: the editor, or a headless CLI command.
+// Entry point: `sylva params|export|bench ...` runs headless, anything else opens the editor.
 #include <cstdio>
+#include <string>
 
-int main(int, char**) {
-  std::puts("sylva");
-  return 0;
+#include "app/cli.h"
+#include "app/editor.h"
+
+int main(int argc, char** argv) {
+  if (argc >= 2 && (sylva::is_cli_command(argv[1]) || argv[1][0] == '-')) return sylva::run_cli(argc, argv);
+  if (argc > 2) {
+    std::fprintf(stderr, "sylva: expected at most one preset, got %d arguments (see sylva --help)\n", argc - 1);
+    return 2;
+  }
+  return sylva::run_editor(argc == 2 ? argv[1] : "");
 }

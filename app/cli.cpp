@@ -1,0 +1,517 @@
+// The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
+#include "app/cli.h"
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/headless.h"
+#include "render/export.h"
+#include "render/files.h"
+
+namespace sylva {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+using clock_type = std::chrono::steady_clock;
+
+double ms_since(clock_type::time_point t0) {
+  return std::chrono::duration<double, std::milli>(clock_type::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Failure: one line on stderr, exit 1 (DESIGN §7).
+int fail(const std::string& command, const std::string& reason) {
+  std::fprintf(stderr, "sylva %s: %s\n", command.c_str(), reason.c_str());
+  return 1;
+}
+int usage_error(const std::string& command, const std::string& reason) {
+  std::fprintf(stderr, "sylva %s: %s (see sylva %s --help)\n", command.c_str(), reason.c_str(), command.c_str());
+  return 2;
+}
+void warn(const std::string& what, const std::string& message) {
+  std::fprintf(stderr, "warning: %s: %s\n", what.c_str(), message.c_str());
+}
+
+// ---------------------------------------------------------------------------------------------
+// sylva params
+
+template <class T>
+const char* type_name(const T&) {
+  if constexpr (std::is_same_v<T, float>) return "float";
+  else if constexpr (std::is_same_v<T, int>) return "int";
+  else if constexpr (std::is_same_v<T, bool>) return "bool";
+  else if constexpr (std::is_enum_v<T>) return "enum";
+  else if constexpr (std::is_same_v<T, glm::vec3>) return "vec3";
+  else if constexpr (std::is_same_v<T, std::string>) return "string";
+  else if constexpr (std::is_same_v<T, std::vector<float>>) return "float list";
+  else return "vec3 list";
+}
+
+json flag_names(unsigned flags) {
+  static const std::pair<unsigned, const char*> names[] = {
+      {param_log, "log"},           {param_degrees, "degrees"}, {param_on_release, "on_release"},
+      {param_advanced, "advanced"}, {param_multiline, "multiline"}, {param_path, "path"},
+      {param_direction, "direction"}};
+  json a = json::array();
+  for (const auto& [bit, name] : names)
+    if (flags & bit) a.push_back(name);
+  return a;
+}
+
+// One record per parameter. Defaults come from the preset writer, so they are spelled exactly
+// as in preset files (enums by name, vec3 as arrays) without a second formatter here.
+template <class P>
+void list_params(const P& p, const json& defaults, const char* section, const char* generator, json& out) {
+  visit_params(p, [&](const auto& value, const param_info& info) {
+    json r;
+    r["section"] = section;
+    r["generator"] = generator ? json(generator) : json(nullptr);
+    r["key"] = info.key;
+    r["label"] = info.label;
+    r["symbol"] = info.symbol;
+    r["type"] = type_name(value);
+    r["min"] = info.min;
+    r["max"] = info.max;
+    r["default"] = defaults.contains(info.key) ? defaults[info.key] : json(nullptr);
+    r["help"] = info.help;
+    r["flags"] = flag_names(info.flags);
+    if (info.options) {
+      r["options"] = json::array();
+      for (int i = 0; info.options[i]; ++i) r["options"].push_back(info.options[i]);
+    }
+    out.push_back(std::move(r));
+  });
+}
+
+int run_params(bool as_json) {
+  json all = json::array();
+  for (int g = 0; g < generator_count; ++g) {
+    preset p;
+    p.spec.params = default_params(g);
+    const json saved = json::parse(save_preset_json(p));
+    std::visit([&](const auto& gp) { list_params(gp, saved["params"], "params", generator_names[g], all); },
+               p.spec.params);
+    if (g == 0) {
+      list_params(p.mesh, saved["mesh"], "mesh", nullptr, all);
+      list_params(p.render, saved["render"], "render", nullptr, all);
+    }
+  }
+  if (as_json) {
+    std::printf("%s\n", all.dump(2).c_str());
+    return 0;
+  }
+  std::string heading;
+  for (const json& r : all) {
+    const std::string h = r["generator"].is_null() ? r["section"].get<std::string>()
+                                                   : "params of generator " + r["generator"].get<std::string>();
+    if (h != heading) {
+      std::printf("%s%s\n", heading.empty() ? "" : "\n", h.c_str());
+      heading = h;
+    }
+    const std::string sym = r["symbol"].get<std::string>();
+    std::printf("  %-22s %-6s %-6s [%g, %g]  default %s\n      %s\n", r["key"].get<std::string>().c_str(),
+                sym.empty() ? "-" : sym.c_str(), r["type"].get<std::string>().c_str(), r["min"].get<double>(),
+                r["max"].get<double>(), r["default"].dump().c_str(), r["help"].get<std::string>().c_str());
+  }
+  std::printf("\n--set takes any key above as key=value (vec3 as x,y,z); prefix params., mesh. or render. "
+              "when a key is ambiguous.\n");
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sylva export
+
+struct export_args {
+  std::string preset_path, output, seeds;
+  uint64_t seed = 1;
+  int step = -1, width = 1280, height = 720;
+  std::vector<std::string> sets;
+  bool instancing = false, animation = false;
+  float seconds_per_step = 0.5f;
+  CLI::Option* seed_opt = nullptr;
+};
+
+struct variant {
+  uint64_t seed;
+  std::vector<std::string> sets;  // one value per --set, sweeps expanded
+};
+
+bool parse_seed_range(const std::string& s, uint64_t& a, uint64_t& b) {
+  const size_t dash = s.find('-');
+  if (dash == std::string::npos || dash == 0 || dash + 1 >= s.size()) return false;
+  try {
+    size_t used = 0;
+    a = std::stoull(s.substr(0, dash), &used);
+    if (used != dash) return false;
+    b = std::stoull(s.substr(dash + 1), &used);
+    if (used != s.size() - dash - 1) return false;
+  } catch (const std::exception&) {
+    return false;
+  }
+  return a <= b && b - a < 100000;
+}
+
+int run_export(const export_args& a) {
+  const char* cmd = "export";
+  std::string ext = fs::path(a.output).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  static const char* const formats[] = {".glb", ".gltf", ".obj", ".json", ".png"};
+  if (std::find(std::begin(formats), std::end(formats), ext) == std::end(formats))
+    return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .json or .png");
+  if (a.step < -1) return usage_error(cmd, "--step must be -1 (final tree) or a step number");
+  if (a.seed_opt->count() && !a.seeds.empty()) return usage_error(cmd, "--seed and --seeds exclude each other");
+
+  preset base;
+  load_result loaded = load_preset_file(a.preset_path, base);
+  if (!loaded.ok) return fail(cmd, loaded.error);
+  for (const std::string& w : loaded.warnings) warn(a.preset_path, w);
+
+  // Variants: the product of the seed range and every --set's values.
+  std::vector<uint64_t> seeds;
+  if (!a.seeds.empty()) {
+    uint64_t s0, s1;
+    if (!parse_seed_range(a.seeds, s0, s1))
+      return usage_error(cmd, "--seeds expects A-B with A <= B, got \"" + a.seeds + "\"");
+    for (uint64_t s = s0; s <= s1; ++s) seeds.push_back(s);
+  } else {
+    seeds.push_back(a.seed_opt->count() ? a.seed : base.spec.seed);
+  }
+  std::vector<variant> variants;
+  for (uint64_t s : seeds) variants.push_back({s, {}});
+  bool swept = false;
+  for (const std::string& set : a.sets) {
+    std::vector<std::string> values;
+    if (std::string e = expand_param_sweep(base, set, values); !e.empty()) return usage_error(cmd, e);
+    swept |= values.size() > 1;
+    std::vector<variant> next;
+    for (const variant& v : variants)
+      for (const std::string& value : values) {
+        next.push_back(v);
+        next.back().sets.push_back(value);
+      }
+    variants = std::move(next);
+    if (variants.size() > 100000) return usage_error(cmd, "more than 100000 variants");
+  }
+  const bool batch = variants.size() > 1;
+
+  const fs::path out(a.output);
+  if (out.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(out.parent_path(), ec);
+    if (ec) return fail(cmd, "cannot create the folder " + out.parent_path().string() + ": " + ec.message());
+  }
+  for (size_t i = 0; i < variants.size(); ++i) {
+    const variant& v = variants[i];
+    preset p = base;
+    p.spec.seed = v.seed;
+    for (const std::string& set : v.sets)
+      if (std::string e = set_preset_param(p, set); !e.empty()) return usage_error(cmd, e);
+    // Batch names: tree-<seed> when only the seed varies, else tree-<1-based variant index>.
+    std::string path = a.output;
+    if (batch) {
+      const std::string suffix = swept ? std::to_string(i + 1) : std::to_string(v.seed);
+      path = (out.parent_path() / (out.stem().string() + "-" + suffix + out.extension().string())).string();
+    }
+    std::string what = "seed " + std::to_string(v.seed);
+    for (const std::string& set : v.sets) what += ", " + set;
+
+    if (ext == ".png") {
+      headless_stats stats;
+      const auto t0 = clock_type::now();
+      if (std::string e = render_preset_png(p, a.step, path, a.width, a.height, &stats); !e.empty())
+        return fail(cmd, path + ": " + e);
+      std::printf("%s: %zu triangles, %zu leaves, %dx%d; grow %.1f ms, mesh %.1f ms, total %.1f ms (%s)\n",
+                  path.c_str(), stats.triangles, stats.leaves, a.width, a.height, stats.grow_ms, stats.mesh_ms,
+                  ms_since(t0), what.c_str());
+      continue;
+    }
+    auto t0 = clock_type::now();
+    grow_report report;
+    const tree_skeleton t = grow(p.spec, grow_options{}, &report);
+    const double grow_ms = ms_since(t0);
+    if (report.error) return fail(cmd, path + ": growth failed: " + report.message);
+    if (!report.message.empty()) warn(path, report.message);
+    if (a.step > t.steps) warn(path, "--step " + std::to_string(a.step) + " is past the last step (" +
+                                         std::to_string(t.steps) + "); exporting the final tree");
+    t0 = clock_type::now();
+    const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+    const double mesh_ms = ms_since(t0);
+
+    export_options o;
+    o.step = a.step > t.steps ? -1 : a.step;
+    o.gltf_instancing = a.instancing;
+    o.growth_animation = a.animation;
+    o.seconds_per_step = a.seconds_per_step;
+    o.mesh = p.mesh;
+    o.texture_seed = p.spec.seed;
+    t0 = clock_type::now();
+    const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
+    const double export_ms = ms_since(t0);
+    if (!r.error.empty()) return fail(cmd, r.error);
+    std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
+                path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
+                double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sylva bench
+
+struct bench_result {  // plain bytes: sent from the measuring child through a pipe
+  uint64_t nodes = 0, leaves = 0, triangles = 0, glb_bytes = 0;
+  double grow_ms = 0, mesh_ms = 0, export_ms = 0, peak_rss_mb = 0;
+  int steps = 0;
+  bool hit_node_cap = false, error = false;
+  char message[240] = {};
+};
+
+double process_peak_rss_mb() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return double(ru.ru_maxrss) / 1024.0;  // Linux reports kilobytes
+}
+
+bench_result measure(const preset& p, int repeat, bool with_export) {
+  bench_result r;
+  std::vector<double> grow_ms, mesh_ms, export_ms;
+  tree_skeleton t;
+  tree_mesh m;
+  grow_report report;
+  for (int i = 0; i < repeat; ++i) {
+    report = {};
+    auto t0 = clock_type::now();
+    t = grow(p.spec, grow_options{}, &report);
+    grow_ms.push_back(ms_since(t0));
+    t0 = clock_type::now();
+    m = mesh_tree(t, p.mesh, p.spec.seed);
+    mesh_ms.push_back(ms_since(t0));
+  }
+  if (with_export) {
+    const fs::path tmp = fs::temp_directory_path() / ("sylva-bench-" + std::to_string(::getpid()) + ".glb");
+    export_options o;
+    o.mesh = p.mesh;
+    o.texture_seed = p.spec.seed;
+    for (int i = 0; i < repeat; ++i) {
+      const auto t0 = clock_type::now();
+      export_result e = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, tmp.string(), o);
+      export_ms.push_back(ms_since(t0));
+      if (!e.error.empty()) {
+        std::snprintf(r.message, sizeof r.message, "GLB export failed: %s", e.error.c_str());
+        r.error = true;
+        break;
+      }
+      r.glb_bytes = e.bytes;
+    }
+    std::error_code ec;
+    fs::remove(tmp, ec);
+  }
+  r.nodes = t.size();
+  r.leaves = m.leaves.size();
+  r.triangles = m.triangles() + 2 * m.leaves.size();  // bark plus one quad per leaf, as exported
+  r.steps = t.steps;
+  r.grow_ms = median(grow_ms);
+  r.mesh_ms = median(mesh_ms);
+  r.export_ms = median(export_ms);
+  r.hit_node_cap = report.hit_node_cap;
+  if (!r.error && !report.message.empty()) {
+    std::snprintf(r.message, sizeof r.message, "%s", report.message.c_str());
+    r.error = report.error;
+  }
+  return r;
+}
+
+// Runs the workload in a forked child so that each preset's peak RSS is its own (wait4 returns
+// the child's ru_maxrss); falls back to this process and its running peak if fork fails.
+bench_result measure_isolated(const preset& p, int repeat, bool with_export, bool& isolated) {
+  int fds[2];
+  isolated = false;
+  if (::pipe(fds) == 0) {
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::close(fds[0]);
+      const bench_result r = measure(p, repeat, with_export);
+      const ssize_t n = ::write(fds[1], &r, sizeof r);
+      ::_exit(n == ssize_t(sizeof r) ? 0 : 1);
+    }
+    ::close(fds[1]);
+    if (pid > 0) {
+      bench_result r;
+      size_t got = 0;
+      while (got < sizeof r) {
+        const ssize_t n = ::read(fds[0], reinterpret_cast<char*>(&r) + got, sizeof r - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        got += size_t(n);
+      }
+      ::close(fds[0]);
+      int status = 0;
+      rusage ru{};
+      while (::wait4(pid, &status, 0, &ru) < 0 && errno == EINTR) {}
+      isolated = true;
+      if (got != sizeof r || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        bench_result bad;
+        bad.error = true;
+        std::snprintf(bad.message, sizeof bad.message, "the measuring process died (%s)",
+                      WIFSIGNALED(status) ? strsignal(WTERMSIG(status)) : "no result");
+        return bad;
+      }
+      r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
+      return r;
+    }
+    ::close(fds[0]);
+  }
+  bench_result r = measure(p, repeat, with_export);
+  r.peak_rss_mb = process_peak_rss_mb();
+  return r;
+}
+
+int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool with_export) {
+  const char* cmd = "bench";
+  if (paths.empty()) {
+    const fs::path dir = fs::path(SYLVA_SOURCE_DIR) / "bench";
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".json") paths.push_back(e.path().string());
+    if (ec || paths.empty()) return fail(cmd, "no presets given and none found in " + dir.string());
+    std::sort(paths.begin(), paths.end());
+  }
+  if (!as_json)
+    std::printf("%-36s %-18s %9s %9s %10s %9s %9s %8s%s\n", "preset", "generator", "nodes", "leaves", "triangles",
+                "grow_ms", "mesh_ms", "peak_MB", with_export ? "  glb_ms     glb_MB" : "");
+  int failures = 0;
+  for (const std::string& path : paths) {
+    preset p;
+    load_result loaded = load_preset_file(path, p);
+    if (!loaded.ok) {
+      std::fprintf(stderr, "sylva bench: %s\n", loaded.error.c_str());
+      ++failures;
+      continue;
+    }
+    for (const std::string& w : loaded.warnings) warn(path, w);
+    bool isolated = false;
+    const bench_result r = measure_isolated(p, repeat, with_export, isolated);
+    if (r.message[0]) {
+      if (r.error) {
+        std::fprintf(stderr, "sylva bench: %s: %s\n", path.c_str(), r.message);
+        ++failures;
+        continue;
+      }
+      warn(path, r.message);
+    }
+    const std::string name = fs::path(path).stem().string();
+    if (as_json) {
+      json j;
+      j["preset"] = name;
+      j["generator"] = generator_name(p.spec);
+      j["nodes"] = r.nodes;
+      j["leaves"] = r.leaves;
+      j["triangles"] = r.triangles;
+      j["grow_ms"] = r.grow_ms;
+      j["mesh_ms"] = r.mesh_ms;
+      j["peak_rss_mb"] = r.peak_rss_mb;
+      j["peak_rss_scope"] = isolated ? "preset" : "process";
+      j["steps"] = r.steps;
+      j["repeat"] = repeat;
+      if (r.hit_node_cap) j["hit_node_cap"] = true;
+      if (with_export) {
+        j["export_ms"] = r.export_ms;
+        j["glb_bytes"] = r.glb_bytes;
+      }
+      std::printf("%s\n", j.dump().c_str());
+    } else {
+      std::printf("%-36s %-18s %9llu %9llu %10llu %9.2f %9.2f %8.1f", name.c_str(), generator_name(p.spec),
+                  (unsigned long long)r.nodes, (unsigned long long)r.leaves, (unsigned long long)r.triangles,
+                  r.grow_ms, r.mesh_ms, r.peak_rss_mb);
+      if (with_export) std::printf(" %8.1f %10.2f", r.export_ms, double(r.glb_bytes) / (1024.0 * 1024.0));
+      std::printf("%s\n", isolated ? "" : "  (peak of the whole process)");
+    }
+    std::fflush(stdout);
+  }
+  if (!as_json)
+    std::printf("medians over %d runs; peak_MB is each preset's own peak RSS (measured in a child process)\n",
+                repeat);
+  return failures ? 1 : 0;
+}
+
+}  // namespace
+
+bool is_cli_command(const char* arg) {
+  return !std::strcmp(arg, "params") || !std::strcmp(arg, "export") || !std::strcmp(arg, "bench");
+}
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"Sylva: a tree designer. Without a command, `sylva [PRESET.json]` opens the editor.", "sylva"};
+  app.require_subcommand(1);
+
+  bool params_json = false;
+  CLI::App* params = app.add_subcommand("params", "List every parameter: generator, key, symbol, range, default, help");
+  params->add_flag("--json", params_json, "Print one JSON array");
+
+  export_args ex;
+  CLI::App* exp = app.add_subcommand("export", "Grow a preset and write it; OUT's extension picks the format");
+  exp->add_option("preset", ex.preset_path, "Preset JSON file")->required();
+  exp->add_option("-o,--output", ex.output, "Output file: .glb .gltf .obj .json (skeleton) .png (render)")->required();
+  ex.seed_opt = exp->add_option("--seed", ex.seed, "Seed (default: the preset's)");
+  exp->add_option("--step", ex.step, "Export the tree as it stood at this growth step (-1: final)");
+  exp->add_option("--set", ex.sets, "key=value, or key=from:to:count to sweep a number (repeatable)");
+  exp->add_option("--seeds", ex.seeds, "A-B: one file per seed, OUT-A ... OUT-B");
+  exp->add_option("--width", ex.width, ".png width")->check(CLI::Range(16, 8192));
+  exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));
+  exp->add_flag("--instancing", ex.instancing, "glTF: leaves as EXT_mesh_gpu_instancing instead of baked quads");
+  exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
+  exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
+
+  std::vector<std::string> bench_paths;
+  int repeat = 5;
+  bool bench_json = false, bench_export = false;
+  CLI::App* bench = app.add_subcommand("bench", "Time grow and mesh per preset (default: every bench/*.json)");
+  bench->add_option("presets", bench_paths, "Preset JSON files");
+  bench->add_option("--repeat", repeat, "Runs per preset; medians are reported")->check(CLI::Range(1, 1000));
+  bench->add_flag("--json", bench_json, "One JSON object per line");
+  bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string where = "sylva";
+    for (CLI::App* sub : {params, exp, bench})
+      if (sub->parsed()) where += " " + sub->get_name();
+    std::fprintf(stderr, "%s: %s (see %s --help)\n", where.c_str(), e.what(), where.c_str());
+    return 2;
+  }
+  try {
+    if (params->parsed()) return run_params(params_json);
+    if (exp->parsed()) return run_export(ex);
+    if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export);
+  } catch (const std::exception& e) {  // last resort: a library threw; still one line and exit 1
+    return fail("", e.what());
+  }
+  return 2;
+}
+
+}  // namespace sylva
