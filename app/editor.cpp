@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -322,6 +323,25 @@ void draw_panel(editor_state& e, float top, float bottom) {
   if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
   std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
   draw_params(e.doc.mesh, "Mesh", e);
+  // Time-of-day presets: a starting point for the lighting sliders below.
+  render_params& rp = e.doc.render;
+  ImGui::Separator();
+  ImGui::TextUnformatted("Time of day");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Noon")) {
+    rp.sun_elevation = 70, rp.sun_azimuth = 25, rp.sun_color = {1.0f, 0.97f, 0.92f}, rp.sun_intensity = 2.4f;
+    rp.sky_zenith = {0.22f, 0.42f, 0.85f}, rp.sky_horizon = {0.72f, 0.83f, 0.95f};
+  }
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Golden hour")) {
+    rp.sun_elevation = 10, rp.sun_azimuth = e.camera.yaw + 60, rp.sun_color = {1.0f, 0.72f, 0.42f}, rp.sun_intensity = 2.0f;
+    rp.sky_zenith = {0.28f, 0.38f, 0.68f}, rp.sky_horizon = {0.95f, 0.76f, 0.55f};
+  }
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Backlit rays")) {   // the sun straight behind the tree as seen now
+    rp.sun_azimuth = std::remainder(e.camera.yaw + 180.0f, 360.0f), rp.sun_elevation = 12;
+    rp.sun_color = {1.0f, 0.88f, 0.7f}, rp.sun_intensity = 2.2f, rp.god_rays = true;
+  }
   draw_params(e.doc.render, "Render", e);
   ImGui::PopItemWidth();
   ImGui::End();
@@ -606,7 +626,7 @@ int run_editor(const editor_options& o) {
     auto now = std::chrono::steady_clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;
-    e->frame_ms = dt * 1000.0;
+    e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();

@@ -105,6 +105,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
     frame_camera(cam, r.bounds_min, r.bounds_max);
 
     double frame_ms = 0;
+    r.measure_passes = stats && stats->measure_passes;
     error = save_view_png(r, p.render, cam, width, height, path, &frame_ms);
     const int errors = gl_error_count() - errors_before;
     if (errors > 0 && error.empty()) error = std::to_string(errors) + " GL error(s): " + gl_last_message();
@@ -115,6 +116,11 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
       stats->frame_ms = frame_ms;
       stats->triangles = r.triangles_drawn;
       stats->leaves = r.leaves_drawn;
+      stats->shadow_ms = r.timings.shadow;
+      stats->lit_ms = r.timings.lit;
+      stats->occlusion_ms = r.timings.occlusion;
+      stats->blur_ms = r.timings.blur;
+      stats->composite_ms = r.timings.composite;
     }
   }
   destroy_renderer(r);

@@ -11,6 +11,8 @@ struct renderer_state;
 struct orbit_camera;
 
 struct headless_stats {
+  bool measure_passes = false;   // input: time each pass (glFinish between passes; benchmarks only)
+  double shadow_ms = 0, lit_ms = 0, occlusion_ms = 0, blur_ms = 0, composite_ms = 0;
   int gl_errors = 0;         // GL errors seen while rendering (debug callback + glGetError)
   double grow_ms = 0, mesh_ms = 0, frame_ms = 0;
   size_t triangles = 0, leaves = 0;

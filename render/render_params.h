@@ -41,6 +41,7 @@ struct render_params {
   float ray_weight = 1.5f;
   float ray_decay = 0.99f;
   float ray_exposure = 0.05f;
+  int msaa = 4;
   bool operator==(const render_params&) const = default;
 };
 
@@ -58,6 +59,7 @@ void visit_params(P& p, V&& v) {
   v(p.leaf_color, param_info{"leaf_color", "Leaf colour", "", 0, 1, "Leaf tint (linear RGB)"});
   v(p.ground, param_info{"ground", "Ground", "", 0, 1, "Draw the ground plane"});
   v(p.ground_color, param_info{"ground_color", "Ground colour", "", 0, 1, "Ground albedo (linear RGB)"});
+  v(p.msaa, param_info{"msaa", "MSAA samples", "", 0, 8, "Multisample anti-aliasing of the lit pass (0 or 1: off)", param_on_release});
   v(p.leaf_translucency, param_info{"leaf_translucency", "Leaf translucency", "", 0, 1, "Share of sunlight that glows through a leaf lit from behind"});
   v(p.alpha_cutoff, param_info{"alpha_cutoff", "Leaf alpha cutoff", "", 0.05f, 0.95f, "Leaf texels below this opacity are cut away"});
   v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Random per-leaf variation of the tint"});

@@ -223,3 +223,30 @@ TEST(EditorSmoke, ScreenshotShowsTheTree) {
   EXPECT_GT(tree, n / 50) << "tree pixels " << tree << " of " << n;
   EXPECT_LT(tree, n) << "the whole region is one colour";
 }
+
+TEST(HeadlessRender, ScrubbingShowsTheYoungerTree) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  preset p = honda_a();
+  p.render.shadows = false;
+  p.render.god_rays = false;
+  // Pixels that differ from the empty scene (no tree: step rendering of a tree with no leaves
+  // is not empty, so compare against a render at the final step instead): the tree at step 3 has
+  // 2^3 = 8 internodes and no more, so it covers far fewer pixels than the full tree of step 10.
+  const int w = 240, h = 180;
+  std::string young = temp_path("step3.png"), full = temp_path("step10.png");
+  ASSERT_EQ(render_preset_png(p, 3, young, w, h), "");
+  ASSERT_EQ(render_preset_png(p, -1, full, w, h), "");
+  image a = load(young), b = load(full);
+  auto tree_pixels = [](const image& im) {
+    int n = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) {
+        const unsigned char* q = im.at(x, y);
+        n += (q[0] > q[2] + 12 && q[0] > q[1]) || (q[1] > q[0] + 25 && q[1] > q[2] + 25);   // bark or leaf
+      }
+    return n;
+  };
+  const int na = tree_pixels(a), nb = tree_pixels(b);
+  EXPECT_GT(na, 20) << "the young tree is visible";
+  EXPECT_LT(na * 3, nb) << "young " << na << " full " << nb;
+}

@@ -64,6 +64,7 @@ void delete_gl(gl_buffer& b) { if (b.id) glDeleteBuffers(1, &b.id); b.id = 0; }
 void delete_gl(gl_texture& t) { if (t.id) glDeleteTextures(1, &t.id); t.id = 0; }
 void delete_gl(gl_vertex_array& v) { if (v.id) glDeleteVertexArrays(1, &v.id); v.id = 0; }
 void delete_gl(gl_framebuffer& f) { if (f.id) glDeleteFramebuffers(1, &f.id); f.id = 0; }
+void delete_gl(gl_renderbuffer& b) { if (b.id) glDeleteRenderbuffers(1, &b.id); b.id = 0; }
 void delete_gl(gl_program& p) { if (p.id) glDeleteProgram(p.id); p.id = 0; }
 
 gl_program compile_program(const char* name, const char* vertex_src, const char* fragment_src) {

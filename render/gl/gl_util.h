@@ -16,6 +16,7 @@ struct gl_buffer { GLuint id = 0; };
 struct gl_texture { GLuint id = 0; };
 struct gl_vertex_array { GLuint id = 0; };
 struct gl_framebuffer { GLuint id = 0; };
+struct gl_renderbuffer { GLuint id = 0; };
 struct gl_program {
   GLuint id = 0;
   bool failed = false;   // compile or link failed: callers fall back and never draw with it
@@ -25,6 +26,7 @@ void delete_gl(gl_buffer& b);
 void delete_gl(gl_texture& t);
 void delete_gl(gl_vertex_array& v);
 void delete_gl(gl_framebuffer& f);
+void delete_gl(gl_renderbuffer& b);
 void delete_gl(gl_program& p);
 
 // Compiles and links; on failure logs "<name>: <driver log>" to stderr and to gl_last_message(),

@@ -376,10 +376,33 @@ gl_texture make_depth_texture(int w, int h, bool compare) {
   return t;
 }
 
-void resize_targets(renderer_state& r, int w, int h) {
-  if (r.width == w && r.height == h) return;
+void resize_targets(renderer_state& r, int w, int h, int samples) {
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  samples = std::clamp(samples, 0, int(max_samples));
+  if (samples == 1) samples = 0;
+  if (r.width == w && r.height == h && r.samples == samples) return;
   r.width = w;
   r.height = h;
+  r.samples = samples;
+  delete_gl(r.msaa_fbo);
+  delete_gl(r.msaa_color);
+  delete_gl(r.msaa_depth);
+  if (samples > 1) {
+    glGenRenderbuffers(1, &r.msaa_color.id);
+    glBindRenderbuffer(GL_RENDERBUFFER, r.msaa_color.id);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA16F, w, h);
+    glGenRenderbuffers(1, &r.msaa_depth.id);
+    glBindRenderbuffer(GL_RENDERBUFFER, r.msaa_depth.id);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, w, h);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    glGenFramebuffers(1, &r.msaa_fbo.id);
+    glBindFramebuffer(GL_FRAMEBUFFER, r.msaa_fbo.id);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r.msaa_color.id);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r.msaa_depth.id);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) check_gl("incomplete MSAA framebuffer");
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
   for (gl_framebuffer* f : {&r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo}) delete_gl(*f);
   for (gl_texture* t : {&r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex}) delete_gl(*t);
   r.hdr_color = make_color_target(w, h, GL_RGBA16F);
@@ -638,8 +661,10 @@ void destroy_renderer(renderer_state& r) {
   for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.leaf_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth,
                         &r.occlusion_tex, &r.rays_tex})
     delete_gl(*t);
-  for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo}) delete_gl(*f);
-  r.width = r.height = r.shadow_size = 0;
+  for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.msaa_fbo}) delete_gl(*f);
+  delete_gl(r.msaa_color);
+  delete_gl(r.msaa_depth);
+  r.width = r.height = r.shadow_size = r.samples = 0;
   r.ok = false;
 }
 
@@ -724,7 +749,7 @@ void upload_overlays(renderer_state& r, const growth_debug& d) {
 void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                 gl_framebuffer target, bool overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
-  resize_targets(r, width, height);
+  resize_targets(r, width, height, rp.msaa);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
   double t0 = now_ms();
   auto mark = [&](double& slot) {
@@ -779,8 +804,8 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   }
   mark(r.timings.shadow);
 
-  // 2. Lit pass into the linear HDR target.
-  glBindFramebuffer(GL_FRAMEBUFFER, r.hdr_fbo.id);
+  // 2. Lit pass into the linear HDR target (multisampled, then resolved, when MSAA is on).
+  glBindFramebuffer(GL_FRAMEBUFFER, r.samples > 1 ? r.msaa_fbo.id : r.hdr_fbo.id);
   glViewport(0, 0, width, height);
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -851,6 +876,12 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     if (r.overlay_line_vertices) glDrawArrays(GL_LINES, 0, r.overlay_line_vertices);
     if (r.overlay_point_vertices) glDrawArrays(GL_POINTS, r.overlay_line_vertices, r.overlay_point_vertices);
     glDepthFunc(GL_LESS);
+  }
+  if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.hdr_fbo.id);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   mark(r.timings.lit);
 
