@@ -375,3 +375,30 @@ TEST(LSystem, HondaTextPresetsGrowTheHondaPresetTrees) {
     EXPECT_NEAR(ha, hb, 1e-4f * std::max(1.0f, hb)) << "tree " << k;
   }
 }
+
+TEST(LSystem, DollarRollsLeftVectorHorizontal) {
+  // &(45) tilts H; /(30) then rolls about the tilted H, lifting L off the horizontal. $ brings it
+  // back: L = V×H/|V×H| has no vertical component (ABOP §1.5). A leaf's local X axis is -L.
+  auto leaf_x = [](const std::string& axiom) {
+    tree_skeleton t = grow_lsystem(text_params("#axiom " + axiom + "\n", 0), {});
+    return t.leaves.at(0).orientation * glm::vec3(1, 0, 0);
+  };
+  EXPECT_GT(std::fabs(leaf_x("&(45)/(30)L").y), 0.1f);
+  const glm::vec3 x = leaf_x("&(45)/(30)$L");
+  EXPECT_NEAR(x.y, 0, 1e-6f);
+  EXPECT_NEAR(glm::length(x), 1, 1e-5f);
+}
+
+TEST(LSystem, RandIsSeeded) {
+  const std::string src = "#axiom AAAA\nA -> B(rand(), rand(2,3))\n";
+  const lsystem_string a = derive_text(src, 1, 5);
+  ASSERT_EQ(a.params.size(), 8u);
+  for (size_t i = 0; i < 8; i += 2) {
+    EXPECT_GE(a.params[i], 0.0f);
+    EXPECT_LT(a.params[i], 1.0f);
+    EXPECT_GE(a.params[i + 1], 2.0f);
+    EXPECT_LT(a.params[i + 1], 3.0f);
+  }
+  EXPECT_EQ(a.params, derive_text(src, 1, 5).params);
+  EXPECT_NE(a.params, derive_text(src, 1, 6).params);
+}
