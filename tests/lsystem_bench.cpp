@@ -34,11 +34,11 @@ static void BM_DeriveParametric(benchmark::State& state) { derive_bench(state, p
 BENCHMARK(BM_DeriveParametric)->Unit(benchmark::kMillisecond);
 
 // Derivation plus turtle interpretation, as `sylva bench` measures grow_ms.
-static void BM_GrowD0L(benchmark::State& state) {
+static void grow_bench(benchmark::State& state, const char* source, int n) {
   lsystem_params p;
   p.mode = lsystem_mode::text;
-  p.source = d0l_source;
-  p.derivations = 8;
+  p.source = source;
+  p.derivations = n;
   size_t nodes = 0;
   for (auto _ : state) {
     tree_skeleton t = grow_lsystem(p, {});
@@ -47,4 +47,7 @@ static void BM_GrowD0L(benchmark::State& state) {
   }
   state.counters["nodes"] = double(nodes);
 }
+static void BM_GrowD0L(benchmark::State& state) { grow_bench(state, d0l_source, 8); }
 BENCHMARK(BM_GrowD0L)->Unit(benchmark::kMillisecond);
+static void BM_GrowParametric(benchmark::State& state) { grow_bench(state, parametric_source, 17); }
+BENCHMARK(BM_GrowParametric)->Unit(benchmark::kMillisecond);
