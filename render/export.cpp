@@ -51,10 +51,13 @@ void bake_leaf(geometry& g, const leaf_instance& l) {
   for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
 }
 
-// The mesh to export for step `s` and the skeleton its node ids refer to.
+// The mesh to export for step `s` and the skeleton its node ids refer to: the caller's own when
+// the final tree is asked for and nothing was shed, else a re-meshed copy of the step.
 struct step_view {
-  tree_skeleton skeleton;
-  tree_mesh mesh;
+  tree_skeleton own_skeleton;
+  tree_mesh own_mesh;
+  const tree_skeleton* skeleton = nullptr;
+  const tree_mesh* mesh = nullptr;
 };
 
 bool has_shed(const tree_skeleton& t, int s) {
@@ -71,6 +74,14 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
   for (size_t i = 0; i < t.size(); ++i) tree_of[i] = t.parent[i] < 0 ? trees++ : tree_of[t.parent[i]];
   std::vector<tree_part> parts(size_t(std::max(trees, 1)));
   const size_t nv = m.position.size();
+  if (parts.size() == 1) {  // the common case: reserve exactly, so big trees are not copied while growing
+    geometry& g = parts[0].bark;
+    g.position.reserve(nv), g.normal.reserve(nv), g.uv.reserve(nv), g.tangent.reserve(nv), g.index.reserve(m.index.size());
+    size_t alive = 0;
+    for (const leaf_instance& l : m.leaves) alive += l.born <= step && step < l.died;
+    geometry& f = parts[0].leaves;
+    f.position.reserve(4 * alive), f.normal.reserve(4 * alive), f.uv.reserve(4 * alive), f.index.reserve(6 * alive);
+  }
   std::vector<uint32_t> local(nv, UINT32_MAX);
   const int seg = std::max(m.radial_segments, 1), stride = seg + 1;
   for (size_t k = 0; k < m.index.size(); ++k) {
@@ -101,16 +112,16 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
   return parts;
 }
 
-step_view view_at(const tree_skeleton& t, const tree_mesh& m, const mesh_params& p, int step) {
-  step_view v;
+void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mesh_params& p, int step) {
   if (step >= t.steps && !has_shed(t, t.steps)) {
-    v.skeleton = t;
-    v.mesh = m;
+    v.skeleton = &t;
+    v.mesh = &m;
   } else {
-    v.skeleton = skeleton_at_step(t, step);
-    v.mesh = mesh_tree_at_step(t, m, p, step);
+    v.own_skeleton = skeleton_at_step(t, step);
+    v.own_mesh = mesh_tree_at_step(t, m, p, step);
+    v.skeleton = &v.own_skeleton;
+    v.mesh = &v.own_mesh;
   }
-  return v;
 }
 
 bool cancelled(const export_options& o) { return o.cancel && o.cancel->load(std::memory_order_relaxed) != 0; }
@@ -236,7 +247,7 @@ gltf_textures make_gltf_textures(const export_options& o) {
 // Returns the node ids to put under the parent; counts triangles.
 std::vector<int> add_tree_nodes(gltf_doc& d, const step_view& v, int step, bool instanced, const std::string& prefix,
                                 size_t& triangles) {
-  std::vector<tree_part> parts = split_parts(v.skeleton, v.mesh, step, !instanced);
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced);
   std::vector<int> out;
   int leaf_quad_mesh = -1;
   for (size_t k = 0; k < parts.size(); ++k) {
@@ -261,7 +272,7 @@ std::vector<int> add_tree_nodes(gltf_doc& d, const step_view& v, int step, bool 
     std::vector<glm::vec3> tr, sc;
     std::vector<glm::vec4> rot;
     geometry quad;
-    for (const leaf_instance& l : v.mesh.leaves) {
+    for (const leaf_instance& l : v.mesh->leaves) {
       if (!(l.born <= step && step < l.died)) continue;
       if (quad.empty()) bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0});
       const glm::vec4 q = l.orientation / std::max(glm::length(l.orientation), 1e-12f);
@@ -282,11 +293,9 @@ std::vector<int> add_tree_nodes(gltf_doc& d, const step_view& v, int step, bool 
   return out;
 }
 
-std::string glb_container(const std::string& json_text, const std::string& bin) {
+std::string glb_container(std::string js, std::string& b) {
   auto u32 = [](std::string& s, uint32_t v) { for (int k = 0; k < 4; ++k) s.push_back(char((v >> (8 * k)) & 0xff)); };
-  std::string js = json_text;
   while (js.size() % 4) js.push_back(' ');  // GLB: JSON chunk padded with spaces
-  std::string b = bin;
   while (b.size() % 4) b.push_back('\0');
   std::string out;
   out.reserve(28 + js.size() + b.size());
@@ -312,6 +321,9 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
   d.j["asset"] = {{"version", "2.0"}, {"generator", "Sylva"},
                   {"extras", {{"generator", info.generator}, {"seed", info.seed}}}};
   const gltf_textures tex = make_gltf_textures(o);
+  // The final tree's buffer size, so that big exports are not copied while the buffer grows.
+  d.bin.reserve(m.position.size() * 48 + m.index.size() * 4 + m.leaves.size() * 152 + tex.bark_png.size() +
+                tex.normal_png.size() + tex.leaves_png.size() + 64);
   add_materials(d, tex, binary, stem_name);
   if (o.progress) o.progress(0.1f);
 
@@ -319,7 +331,8 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
   std::vector<int> roots;
   if (!o.growth_animation) {
     const int s = o.step < 0 ? final_step : std::min(o.step, final_step);
-    const step_view v = view_at(t, m, o.mesh, s);
+    step_view v;
+    view_at(v, t, m, o.mesh, s);
     roots = add_tree_nodes(d, v, s, o.gltf_instancing, "", r.triangles);
   } else {
     // Growth over time: one node per step, shown in turn by STEP scale keyframes.
@@ -341,7 +354,8 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     for (int j = 0; j < count; ++j) {
       if (cancelled(o)) { r.error = "export cancelled"; return r; }
       const int s = sample(j, count);
-      const step_view v = view_at(t, m, o.mesh, s);
+      step_view v;
+      view_at(v, t, m, o.mesh, s);
       json node = {{"name", "step_" + std::to_string(s)}};
       const std::vector<int> kids = add_tree_nodes(d, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles);
       if (!kids.empty()) node["children"] = kids;
@@ -371,7 +385,7 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     files.emplace_back(path, glb_container(d.j.dump(), d.bin));
   } else {
     d.j["buffers"] = json::array({{{"byteLength", d.bin.size()}, {"uri", stem_name + ".bin"}}});
-    files.emplace_back(stem + ".bin", d.bin);
+    files.emplace_back(stem + ".bin", std::move(d.bin));
     files.emplace_back(stem + "_bark.png", tex.bark_png);
     files.emplace_back(stem + "_bark_normal.png", tex.normal_png);
     files.emplace_back(stem + "_leaves.png", tex.leaves_png);
@@ -396,8 +410,9 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   export_result r;
   const std::string stem = stem_path(path), stem_name = file_name(stem);
   const int s = o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
-  const step_view v = view_at(t, m, o.mesh, s);
-  std::vector<tree_part> parts = split_parts(v.skeleton, v.mesh, s, true);
+  step_view v;
+  view_at(v, t, m, o.mesh, s);
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true);
   std::string text = "# Sylva tree: generator " + info.generator + ", seed " + std::to_string(info.seed) +
                      ", step " + std::to_string(s) + "\nmtllib " + stem_name + ".mtl\n";
   size_t verts = 0;

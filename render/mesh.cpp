@@ -192,20 +192,26 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   if (p.leaves_enabled) {
     std::vector<leaf> placed;
     const std::vector<leaf>& src = t.leaves.empty() ? (placed = place_tip_leaves(t, p.leaves, seed)) : t.leaves;
-    std::vector<leaf_instance> inst;
-    inst.reserve(src.size());
+    // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
+    auto usable = [&](const leaf& l) { return l.node >= 0 && size_t(l.node) < n && finite3(l.position); };
+    auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
+    for (const leaf& l : src)
+      if (usable(l)) ++m.leaf_end[step_of(l)];
+    std::vector<uint32_t> cursor(m.leaf_end.size(), 0);
+    for (size_t s = 1; s < m.leaf_end.size(); ++s) {
+      m.leaf_end[s] += m.leaf_end[s - 1];
+      cursor[s] = m.leaf_end[s - 1];
+    }
+    m.leaves.resize(m.leaf_end.back());
     rng r(seed ^ 0x7e47c0deull);
     const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
     for (const leaf& l : src) {
       const uint8_t tex = uint8_t(r.uniform_int(4));  // drawn for every leaf so choices stay stable
-      if (l.node < 0 || size_t(l.node) >= n || !finite3(l.position)) continue;
+      if (!usable(l)) continue;
       const glm::quat q = l.orientation;
-      inst.push_back({l.position, glm::vec4(q.x, q.y, q.z, q.w), l.size * scale, l.born, l.died, uint32_t(l.node), tex});
+      m.leaves[cursor[step_of(l)]++] = {l.position, glm::vec4(q.x, q.y, q.z, q.w), l.size * scale, l.born, l.died,
+                                        uint32_t(l.node), tex};
     }
-    const std::vector<uint32_t> lp =
-        sort_by_born(inst.size(), m.steps, [&](size_t k) { return int(inst[k].born); }, m.leaf_end);
-    m.leaves.reserve(inst.size());
-    for (uint32_t k : lp) m.leaves.push_back(inst[k]);
   }
 
   if (!m.position.empty() || !m.leaves.empty()) {

@@ -51,11 +51,7 @@ std::vector<float> bark_height(int n, uint64_t seed) {
 
 uint8_t to_byte(float v) { return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); }
 
-}  // namespace
-
-image make_bark_color(int size, uint64_t seed) {
-  const int n = std::clamp(size, 4, 4096);
-  const std::vector<float> h = bark_height(n, seed);
+image bark_color_from(const std::vector<float>& h, int n, uint64_t seed) {
   image img{n, n, 3, std::vector<uint8_t>(size_t(n) * n * 3)};
   for (size_t k = 0; k < h.size(); ++k) {
     const float t = h[k], grain = 0.9f + 0.2f * hash01(seed * 31 + k);
@@ -67,9 +63,7 @@ image make_bark_color(int size, uint64_t seed) {
   return img;
 }
 
-image make_bark_normal(int size, uint64_t seed) {
-  const int n = std::clamp(size, 4, 4096);
-  const std::vector<float> h = bark_height(n, seed);
+image bark_normal_from(const std::vector<float>& h, int n) {
   image img{n, n, 3, std::vector<uint8_t>(size_t(n) * n * 3)};
   const float strength = 4.0f;  // height units per texture width -> slope
   for (int y = 0; y < n; ++y)
@@ -86,6 +80,18 @@ image make_bark_normal(int size, uint64_t seed) {
       p[2] = to_byte(nz * 0.5f + 0.5f);
     }
   return img;
+}
+
+}  // namespace
+
+image make_bark_color(int size, uint64_t seed) {
+  const int n = std::clamp(size, 4, 4096);
+  return bark_color_from(bark_height(n, seed), n, seed);
+}
+
+image make_bark_normal(int size, uint64_t seed) {
+  const int n = std::clamp(size, 4, 4096);
+  return bark_normal_from(bark_height(n, seed), n);
 }
 
 image make_leaf_texture(int size, int variant, uint64_t seed) {
@@ -124,8 +130,10 @@ image make_leaf_texture(int size, int variant, uint64_t seed) {
 
 texture_set make_textures(int bark_size, int leaf_size, uint64_t seed) {
   texture_set t;
-  t.bark_color = make_bark_color(bark_size, seed);
-  t.bark_normal = make_bark_normal(bark_size, seed);
+  const int n = std::clamp(bark_size, 4, 4096);
+  const std::vector<float> h = bark_height(n, seed);  // one height field for both maps
+  t.bark_color = bark_color_from(h, n, seed);
+  t.bark_normal = bark_normal_from(h, n);
   for (int k = 0; k < 4; ++k) t.leaf[k] = make_leaf_texture(leaf_size, k, seed + uint64_t(k));
   return t;
 }
