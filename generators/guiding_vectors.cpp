@@ -79,16 +79,23 @@ void query_kd(const std::vector<glm::vec3>& p, const std::vector<glm::vec3>& box
   for (unsigned m = overlap; m && !needed; m &= m - 1) needed = d2 <= q.best_d2[std::countr_zero(m)];
   if (!needed) return;
   if (e - b <= kd_leaf) {
+    float best_d2[8];
+    int32_t best[8];
+    std::copy_n(q.best_d2, 8, best_d2);
+    std::copy_n(q.best, 8, best);
+    const glm::vec3 v = q.v;
     for (int32_t i = b; i < e; ++i) {
-      if (i == q.self) continue;
-      const glm::vec3 d = p[i] - q.v;
-      const float dd = glm::dot(d, d);
-      const int o = octant_of(q.v, p[i]);
-      if (dd < q.best_d2[o] || (dd == q.best_d2[o] && i < q.best[o])) {
-        q.best_d2[o] = dd;
-        q.best[o] = i;
-      }
+      const glm::vec3 d = p[i] - v;
+      const float dd = i == q.self ? inf : glm::dot(d, d);
+      const int o = (d.x > 0) | ((d.y > 0) << 1) | ((d.z > 0) << 2);  // octant_of(v, p[i])
+      // Branch-free: successive points fall in random octants, so a branch would mispredict.
+      // Equal distances keep the first point met (the order is fixed, so this is deterministic).
+      const bool better = dd < best_d2[o];
+      best_d2[o] = better ? dd : best_d2[o];
+      best[o] = better ? i : best[o];
     }
+    std::copy_n(best_d2, 8, q.best_d2);
+    std::copy_n(best, 8, q.best);
     return;
   }
   const int ax = split_axis(lo, hi);

@@ -1,6 +1,7 @@
 // Guiding-vector trees (Xu & Mould 2015): Poisson points, Yao-8 edges, costs, turns, search, tree.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <set>
 #include <string>
@@ -365,4 +366,26 @@ TEST(GuidingVectors, LaterEndpointsAreExactlyHHopsFromTheTree) {
       }
   }
   EXPECT_EQ(checked, int(p.step_endpoints[1]));
+}
+
+TEST(GuidingVectors, CancelReturnsWhatIsGrownAndBadInputDoesNotCrash) {
+  std::atomic<uint32_t> generation{1};
+  grow_options o;
+  o.cancel = &generation;  // cancel_value is 0, so this counts as cancelled from the start
+  grow_report rep;
+  tree_skeleton t = grow_guiding_vectors(small_params(), o, &rep);
+  EXPECT_TRUE(rep.cancelled);
+  EXPECT_EQ(validate_skeleton(t), "");
+  EXPECT_GE(t.size(), 1u);
+
+  guiding_vectors_params p = small_params();
+  p.spacing = NAN;
+  p.domain_size = {-1, 2, 3};
+  p.step_endpoints = {};
+  p.step_t = {NAN};
+  rep = {};
+  t = grow_guiding_vectors(p, {}, &rep);
+  EXPECT_TRUE(rep.error);
+  EXPECT_FALSE(rep.message.empty());
+  EXPECT_EQ(validate_skeleton(t), "");
 }
