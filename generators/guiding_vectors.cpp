@@ -220,11 +220,12 @@ bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::ve
   }
   const int64_t sy = n[0] + 4, sz = sy * (n[1] + 4);
   std::vector<int32_t> grid(cells, -1);
-  auto cell_of = [&](const glm::vec3& p) {
+  const float inv_c = 1 / c;
+  auto cell_of = [&](const glm::vec3& p) {  // p lies in [lo, hi], so truncation is floor
     int64_t idx = 0;
     const int64_t stride[3] = {1, sy, sz};
     for (int a = 0; a < 3; ++a)
-      idx += (std::clamp<int64_t>(int64_t(std::floor((p[a] - lo[a]) / c)), 0, n[a] - 1) + 2) * stride[a];
+      idx += (std::min(int64_t(std::max((p[a] - lo[a]) * inv_c, 0.0f)), n[a] - 1) + 2) * stride[a];
     return size_t(idx);
   };
   // Neighbour cells that can hold a point closer than r = c√3, nearest first so conflicts end the
@@ -247,7 +248,6 @@ bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::ve
   out.push_back(start);
   rng random(seed ^ 0x9015504dull);
   const float r2 = r * r;
-  constexpr float two_pi = 6.2831853f;
   // Xu & Mould 2015 §A, POPULATE-GRID: a FIFO queue; k candidates at r..2r around each point.
   for (size_t head = 0; head < out.size(); ++head) {
     if ((head & 1023) == 0 && o.cancelled()) {
@@ -256,9 +256,14 @@ bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::ve
     }
     const glm::vec3 v = out[head];
     for (int j = 0; j < k; ++j) {
-      const float z = random.uniform(-1, 1), phi = random.uniform(0, two_pi), rad = r * (1 + random.uniform());
-      const float s = std::sqrt(std::max(0.0f, 1 - z * z));
-      const glm::vec3 cand = v + rad * glm::vec3(s * std::cos(phi), z, s * std::sin(phi));
+      // A uniform direction by rejection from the cube (cheaper than sin/cos), at r..2r.
+      glm::vec3 dir;
+      float len2;
+      do {
+        dir = glm::vec3(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1));
+        len2 = glm::dot(dir, dir);
+      } while (len2 > 1 || len2 < 1e-4f);
+      const glm::vec3 cand = v + dir * (r * (1 + random.uniform()) / std::sqrt(len2));
       if (cand.x < lo.x || cand.y < lo.y || cand.z < lo.z || cand.x > hi.x || cand.y > hi.y || cand.z > hi.z)
         continue;
       const size_t own = cell_of(cand);
