@@ -35,3 +35,27 @@ static void BM_MeshHondaF(benchmark::State& state) {
   state.counters["nodes"] = double(t.size());
 }
 BENCHMARK(BM_MeshHondaF)->Unit(benchmark::kMillisecond);
+
+#include <filesystem>
+
+#include "render/export.h"
+
+// Issue 8's goal: GLB export of a ~1,000,000-triangle tree under 1 s (tree a, 15 derivations,
+// 16 radial segments: 32767 internodes * 32 triangles + leaves), written to a temporary folder.
+static void BM_ExportGlbMillionTriangles(benchmark::State& state) {
+  lsystem_params lp;
+  lp.derivations = 15;
+  const tree_skeleton t = grow_honda(lp, {});
+  mesh_params p;
+  p.radial_segments = 16;
+  const tree_mesh m = mesh_tree(t, p);
+  export_options o;
+  o.mesh = p;
+  const std::string path = (std::filesystem::temp_directory_path() / "sylva_bench_export.glb").string();
+  export_result r;
+  for (auto _ : state) r = export_tree(t, m, {"lsystem", 1}, path, o);
+  std::filesystem::remove(path);
+  state.counters["triangles"] = double(r.triangles);
+  state.counters["file_MB"] = double(r.bytes) / 1e6;
+}
+BENCHMARK(BM_ExportGlbMillionTriangles)->Unit(benchmark::kMillisecond)->Iterations(3);
