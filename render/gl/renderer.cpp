@@ -1,6 +1,8 @@
 // The frame renderer: programs, procedural textures, tree upload, and the passes of DESIGN §8.
 #include "render/gl/renderer.h"
 
+#include "render/textures.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -68,12 +70,27 @@ void main() {
 
 const char* bark_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive;
-uniform sampler2D u_bark; uniform vec3 u_bark_color;
+uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform vec3 u_bark_color;
 out vec4 o_color;
+// Tangent frame from screen-space derivatives (Schüler 2006), so the mesh needs no tangents.
+mat3 cotangent_frame(vec3 n, vec3 p, vec2 uv) {
+  vec3 dp1 = dFdx(p), dp2 = dFdy(p);
+  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+  vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
+  vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
+  vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
+  float inv = inversesqrt(max(max(dot(t, t), dot(b, b)), 1e-30));
+  return mat3(t * inv, b * inv, n);
+}
 void main() {
   if (v_alive < 0.999) discard;  // a triangle touching a dead or unborn node
-  vec3 n = normalize(v_normal);
-  vec3 albedo = u_bark_color * texture(u_bark, v_uv).rgb * 2.0;
+  vec3 n0 = normalize(v_normal);
+  vec3 m = texture(u_bark_normal, v_uv).xyz * 2.0 - 1.0;
+  m.y = -m.y;   // the map's +Y points up the image, against increasing v
+  vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
+  if (dot(n, n0) < 0.2) n = n0;
+  // The tint sets the colour; the texture's luminance (around 0.1 in linear terms) the detail.
+  vec3 albedo = u_bark_color * dot(texture(u_bark, v_uv).rgb, vec3(0.2126, 0.7152, 0.0722)) * 5.0;
   float sh = shadow_at(v_world, n);
   vec3 c = albedo * (u_sun_light * max(dot(n, u_sun_dir), 0.0) * sh + ambient_light(n));
   o_color = vec4(c, 1.0);
@@ -89,18 +106,18 @@ const char* leaf_vs = R"(#version 330 core
 layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture;
-uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation;
+uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers;
 out vec3 v_world; out vec3 v_normal; out vec2 v_uv; flat out float v_layer; flat out vec3 v_tint;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
 void main() {
   bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
   // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h).
-  vec3 local = vec3(a_corner.x * 0.6, a_corner.y, 0.0) * i_size;
+  vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * i_size;
   v_world = i_position + rotate(i_rotation, local);
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
-  v_uv = vec2(a_corner.x + 0.5, a_corner.y);
-  v_layer = float(i_texture);
+  v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
+  v_layer = float(int(i_texture) % u_layers);
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
@@ -117,7 +134,7 @@ void main() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;   // two-sided: light the side we see
   float ndl = dot(n, u_sun_dir);
-  vec3 albedo = u_leaf_color * t.rgb * v_tint * 2.0;
+  vec3 albedo = u_leaf_color * mix(vec3(dot(t.rgb, vec3(0.2126, 0.7152, 0.0722)) * 4.0), t.rgb * 2.5, 0.3) * v_tint;
   float sh = shadow_at(v_world, ndl >= 0.0 ? n : -n);
   // Transmission: sunlight arriving on the far side glows through the blade, tinted by it.
   vec3 transmitted = u_translucency * max(-ndl, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
@@ -265,72 +282,6 @@ void main() { o_color = vec4(u_color, 1.0); }
 std::string lit_source(const char* body) { return std::string("#version 330 core\n") + lighting_glsl + body; }
 std::string sky_source(const char* body) { return std::string("#version 330 core\n") + sky_glsl + body; }
 
-// ---------------------------------------------------------------- procedural textures
-
-float hash2(int x, int y, int seed) {
-  uint32_t h = uint32_t(x) * 374761393u + uint32_t(y) * 668265263u + uint32_t(seed) * 2246822519u;
-  h = (h ^ (h >> 13)) * 1274126177u;
-  return float((h ^ (h >> 16)) & 0xffffffu) / 16777216.0f;
-}
-
-// Value noise, tileable with period `period` cells.
-float tile_noise(float x, float y, int period, int seed) {
-  int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-  float fx = x - float(x0), fy = y - float(y0);
-  fx = fx * fx * (3 - 2 * fx);
-  fy = fy * fy * (3 - 2 * fy);
-  auto h = [&](int i, int j) { return hash2(((i % period) + period) % period, ((j % period) + period) % period, seed); };
-  float a = h(x0, y0), b = h(x0 + 1, y0), c = h(x0, y0 + 1), d = h(x0 + 1, y0 + 1);
-  return (a + (b - a) * fx) + ((c + (d - c) * fx) - (a + (b - a) * fx)) * fy;
-}
-
-// Bark: ridges running along the branch (v), broken by noise; grey-brown, multiplied by the tint.
-std::vector<unsigned char> make_bark_texture(int n) {
-  std::vector<unsigned char> px(size_t(n) * n * 4);
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      float u = float(x) / n, v = float(y) / n;
-      float warp = tile_noise(u * 8, v * 4, 8, 3) * 0.6f;
-      float ridge = 0.5f + 0.5f * std::sin((u * 12 + warp) * 6.2831853f);
-      float crack = std::pow(1 - ridge, 6.0f);
-      float grain = tile_noise(u * 32, v * 8, 32, 7) * 0.5f + tile_noise(u * 64, v * 32, 64, 11) * 0.5f;
-      float l = 0.5f + 0.25f * grain - 0.35f * crack;
-      unsigned char* p = &px[(size_t(y) * n + x) * 4];
-      p[0] = (unsigned char)std::clamp(l * 255.0f, 0.0f, 255.0f);
-      p[1] = (unsigned char)std::clamp(l * 0.95f * 255.0f, 0.0f, 255.0f);
-      p[2] = (unsigned char)std::clamp(l * 0.9f * 255.0f, 0.0f, 255.0f);
-      p[3] = 255;
-    }
-  return px;
-}
-
-// Four leaf blades (Runions 2007 uses textured leaves): different widths and tips, a midrib and veins.
-std::vector<unsigned char> make_leaf_textures(int n, int layers) {
-  std::vector<unsigned char> px(size_t(n) * n * 4 * layers);
-  const float widths[4] = {0.42f, 0.30f, 0.48f, 0.36f};
-  const float tips[4] = {1.6f, 2.2f, 1.2f, 1.8f};
-  for (int l = 0; l < layers; ++l)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        float u = (x + 0.5f) / n - 0.5f, v = (y + 0.5f) / n;   // v: 0 petiole .. 1 tip
-        float t = (v - 0.08f) / 0.9f;                          // blade parameter
-        float half = t > 0 && t < 1 ? widths[l % 4] * std::pow(std::sin(3.14159265f * std::pow(t, 0.8f)), 1.0f / tips[l % 4]) * 0.95f : 0;
-        bool petiole = v < 0.12f && std::abs(u) < 0.02f;
-        float inside = half - std::abs(u);
-        float a = petiole ? 1.0f : std::clamp(inside * n * 0.5f + 0.5f, 0.0f, 1.0f);
-        float vein = std::abs(u) < 0.012f ? 1.0f : 0.0f;
-        float side = std::abs(std::fmod(t * 7 - std::abs(u) * 6 + 10, 1.0f) - 0.5f) < 0.05f ? 0.5f : 0.0f;
-        float shade = 0.85f + 0.15f * tile_noise(u * 16 + 8, v * 16, 16, 20 + l) - 0.15f * std::max(vein, side);
-        shade *= 0.9f + 0.2f * (1 - std::abs(u) / std::max(half, 0.01f));
-        unsigned char* p = &px[((size_t(l) * n + y) * n + x) * 4];
-        p[0] = (unsigned char)std::clamp(shade * 0.45f * 255.0f, 0.0f, 255.0f);
-        p[1] = (unsigned char)std::clamp(shade * 0.5f * 255.0f, 0.0f, 255.0f);
-        p[2] = (unsigned char)std::clamp(shade * 0.38f * 255.0f, 0.0f, 255.0f);
-        p[3] = (unsigned char)(a * 255.0f);
-      }
-  return px;
-}
-
 // ---------------------------------------------------------------- helpers
 
 gl_texture make_color_target(int w, int h, GLenum internal_format) {
@@ -477,6 +428,8 @@ void bind_tree_textures(const renderer_state& r) {
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
   glActiveTexture(GL_TEXTURE3);
   glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
+  glActiveTexture(GL_TEXTURE4);
+  glBindTexture(GL_TEXTURE_2D, r.bark_normal_tex.id);
   glActiveTexture(GL_TEXTURE0);
 }
 
@@ -623,27 +576,39 @@ bool init_renderer(renderer_state& r) {
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, r.node_radius.id);
 
-  // Procedural textures: the app needs no asset files.
-  const int bark_n = 256, leaf_n = 128, leaf_layers = 4;
-  std::vector<unsigned char> bark = make_bark_texture(bark_n);
-  glGenTextures(1, &r.bark_tex.id);
-  glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, bark_n, bark_n, 0, GL_RGBA, GL_UNSIGNED_BYTE, bark.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  std::vector<unsigned char> leaves = make_leaf_textures(leaf_n, leaf_layers);
+  // Procedural textures (render/textures.h): the app needs no asset files.
+  const texture_set tex = make_textures(256, 128, 1);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  auto upload_2d = [](gl_texture& t, const image& img, GLenum internal_format) {
+    glGenTextures(1, &t.id);
+    glBindTexture(GL_TEXTURE_2D, t.id);
+    glTexImage2D(GL_TEXTURE_2D, 0, internal_format, img.width, img.height, 0, img.channels == 3 ? GL_RGB : GL_RGBA,
+                 GL_UNSIGNED_BYTE, img.pixels.data());
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  };
+  upload_2d(r.bark_tex, tex.bark_color, GL_SRGB8);
+  upload_2d(r.bark_normal_tex, tex.bark_normal, GL_RGB8);
+  // All leaf variants share one array texture, so every leaf is drawn in one instanced call.
+  const int leaf_n = tex.leaf[0].width;
+  std::vector<uint8_t> layers;
+  for (const image& l : tex.leaf)
+    if (l.width == leaf_n && l.height == leaf_n && l.channels == 4) layers.insert(layers.end(), l.pixels.begin(), l.pixels.end());
+  const int layer_count = int(layers.size() / (size_t(leaf_n) * leaf_n * 4));
   glGenTextures(1, &r.leaf_tex.id);
   glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, leaf_n, leaf_n, leaf_layers, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-               leaves.data());
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, leaf_n, leaf_n, std::max(layer_count, 1), 0, GL_RGBA,
+               GL_UNSIGNED_BYTE, layer_count ? layers.data() : nullptr);
   glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  r.leaf_layers = std::max(layer_count, 1);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 
   resize_shadow(r, 2048);
   check_gl("init renderer");
@@ -658,7 +623,7 @@ void destroy_renderer(renderer_state& r) {
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
                        &r.leaf_instances, &r.node_radius, &r.overlay_vertices})
     delete_gl(*b);
-  for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.leaf_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth,
+  for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.leaf_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth,
                         &r.occlusion_tex, &r.rays_tex})
     delete_gl(*t);
   for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.msaa_fbo}) delete_gl(*f);
@@ -798,6 +763,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.leaf_depth, "u_viewproj", light);
     set_uniform(r.leaf_depth, "u_step", r.step);
     set_uniform(r.leaf_depth, "u_leaf", 3);
+    set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
     draw_leaves(r);
     glDisable(GL_POLYGON_OFFSET_FILL);
@@ -846,6 +812,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.bark, "u_viewproj", viewproj);
       set_uniform(r.bark, "u_radius", 2);
       set_uniform(r.bark, "u_bark", 0);
+      set_uniform(r.bark, "u_bark_normal", 4);
       set_uniform(r.bark, "u_bark_color", rp.bark_color);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
@@ -855,6 +822,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.leaf, "u_step", r.step);
       set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
       set_uniform(r.leaf, "u_leaf", 3);
+      set_uniform(r.leaf, "u_layers", r.leaf_layers);
       set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);

@@ -41,10 +41,10 @@ struct renderer_state {
   gl_vertex_array bark_vao, leaf_vao, empty_vao, overlay_vao;
   gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius,
       overlay_vertices;
-  gl_texture node_radius_tex, bark_tex, leaf_tex, shadow_tex, hdr_color, hdr_depth, occlusion_tex, rays_tex;
+  gl_texture node_radius_tex, bark_tex, bark_normal_tex, leaf_tex, shadow_tex, hdr_color, hdr_depth, occlusion_tex, rays_tex;
   gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, msaa_fbo;
   gl_renderbuffer msaa_color, msaa_depth;   // multisampled lit pass, resolved into hdr_color/hdr_depth
-  int shadow_size = 0, width = 0, height = 0, samples = 0;
+  int shadow_size = 0, width = 0, height = 0, samples = 0, leaf_layers = 1;
   // The uploaded tree.
   std::vector<uint32_t> index_end, leaf_end;
   std::vector<float> final_radius;
