@@ -293,7 +293,8 @@ tree_skeleton skeleton_at_step(const tree_skeleton& t, int step) {
 }
 
 tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const mesh_params& p, int step) {
-  if (step < 0 || step >= t.steps || !structurally_sound(t)) return full;
+  if (!structurally_sound(t)) return full;
+  step = std::clamp(step < 0 ? t.steps : step, 0, std::max(t.steps, 0));
   tree_skeleton s = skeleton_at_step(t, step);
   s.leaves.clear();
   mesh_params bark_only = p;

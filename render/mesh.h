@@ -73,7 +73,7 @@ tree_skeleton skeleton_at_step(const tree_skeleton& t, int step);
 
 // The mesh of the tree at `step` for export: bark re-meshed from skeleton_at_step (radii of that
 // step, dead branches gone) and the leaves of `full` alive at `step`, so the foliage matches the
-// editor's view of that step. A step outside 0..t.steps-1 returns a copy of `full`.
+// editor's view of that step. step < 0 means the final step; later steps are clamped to it.
 tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const mesh_params& p, int step);
 
 }  // namespace sylva

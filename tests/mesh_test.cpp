@@ -144,6 +144,15 @@ TEST(Mesh, SkeletonAtStepDropsShedBranches) {
   EXPECT_EQ(s3.steps, 3);
   EXPECT_EQ(validate_skeleton(s3), "");
   EXPECT_EQ(validate_skeleton(s2), "");
+  // The final view for export leaves the shed lateral out: 2 internodes of 8 quads remain.
+  mesh_params p;
+  const tree_mesh full = mesh_tree(t, p);
+  EXPECT_EQ(full.index.size(), size_t(4 * 8 * 6));
+  const tree_mesh last = mesh_tree_at_step(t, full, p, -1);
+  EXPECT_EQ(last.index.size(), size_t(2 * 8 * 6));
+  ASSERT_EQ(last.leaves.size(), size_t(1));
+  EXPECT_EQ(last.leaves[0].node, 2u);
+  EXPECT_EQ(validate_mesh(last), "");
 }
 
 TEST(Mesh, LeavesScaledSortedAndSeeded) {
