@@ -233,14 +233,24 @@ void add_materials(gltf_doc& d, const gltf_textures& tex, bool embed, const std:
         {"doubleSided", true}}});
 }
 
-gltf_textures make_gltf_textures(const export_options& o) {
+// Procedural textures, or the user's PNGs where given; "" or an error naming the file.
+std::string make_gltf_textures(const export_options& o, gltf_textures& g) {
   const int n = std::clamp(o.texture_size, 16, 2048);
-  const texture_set t = make_textures(n, n / 2, o.texture_seed);
-  gltf_textures g;
-  encode_png(t.bark_color, g.bark_png);
-  encode_png(t.bark_normal, g.normal_png);
-  encode_png(make_leaf_atlas(t.leaf), g.leaves_png);
-  return g;
+  texture_set t = make_textures(n, n / 2, o.texture_seed);
+  for (auto [path, img] : {std::pair{&o.bark_texture, &t.bark_color}, std::pair{&o.bark_normal_texture, &t.bark_normal}})
+    if (!path->empty())
+      if (std::string err = load_png(*path, *img); !err.empty()) return "texture " + err;
+  image atlas;
+  if (!o.leaf_texture.empty()) {
+    image leaf;
+    if (std::string err = load_png(o.leaf_texture, leaf); !err.empty()) return "texture " + err;
+    atlas = make_leaf_atlas({leaf, leaf, leaf, leaf});
+  } else {
+    atlas = make_leaf_atlas(t.leaf);
+  }
+  for (auto [img, png] : {std::pair{&t.bark_color, &g.bark_png}, std::pair{&t.bark_normal, &g.normal_png}, std::pair{&atlas, &g.leaves_png}})
+    if (std::string err = encode_png(*img, *png); !err.empty()) return err;
+  return "";
 }
 
 // Nodes for one view of the tree: one node per tree, with a bark and a leaves child.
@@ -320,7 +330,8 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
   gltf_doc d;
   d.j["asset"] = {{"version", "2.0"}, {"generator", "Sylva"},
                   {"extras", {{"generator", info.generator}, {"seed", info.seed}}}};
-  const gltf_textures tex = make_gltf_textures(o);
+  gltf_textures tex;
+  if (r.error = make_gltf_textures(o, tex); !r.error.empty()) return r;
   // The final tree's buffer size, so that big exports are not copied while the buffer grows.
   d.bin.reserve(m.position.size() * 48 + m.index.size() * 4 + m.leaves.size() * 152 + tex.bark_png.size() +
                 tex.normal_png.size() + tex.leaves_png.size() + 64);
@@ -459,7 +470,8 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   const std::string mtl = "# Sylva materials\nnewmtl bark\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd " + stem_name +
                           "_bark.png\nnorm " + stem_name + "_bark_normal.png\n\nnewmtl leaves\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd " +
                           stem_name + "_leaves.png\nmap_d -imfchan m " + stem_name + "_leaves.png\n";
-  const gltf_textures tex = make_gltf_textures(o);
+  gltf_textures tex;
+  if (r.error = make_gltf_textures(o, tex); !r.error.empty()) return r;
   std::vector<std::pair<std::string, std::string>> files = {{stem + ".mtl", mtl},
                                                             {stem + "_bark.png", tex.bark_png},
                                                             {stem + "_bark_normal.png", tex.normal_png},

@@ -23,6 +23,9 @@ struct export_options {
   bool dry_run = false;         // compute export_result.bytes (the size) without writing anything
   int texture_size = 256;       // bark texture edge in pixels (leaves get half, in a 2x2 atlas)
   uint64_t texture_seed = 1;
+  // The user's PNGs instead of the procedural textures ("" = procedural). A user leaf texture
+  // fills all four cells of the leaf atlas.
+  std::string bark_texture, bark_normal_texture, leaf_texture;
 };
 
 struct export_info {

@@ -351,3 +351,22 @@ TEST(Textures, PngRoundTripAndErrors) {
   EXPECT_NE(encode_png(image{}, bytes), "");
   EXPECT_NE(save_png(leaf, (dir.dir / "no" / "leaf.png").string()), "");
 }
+
+TEST(Export, UserTexturesAreEmbedded) {
+  scratch dir;
+  honda_tree h(3);
+  image bark{8, 4, 4, std::vector<uint8_t>(8 * 4 * 4, 200)};
+  ASSERT_EQ(save_png(bark, dir / "mybark.png"), "");
+  h.o.bark_texture = dir / "mybark.png";
+  ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "user.glb", h.o).error, "");
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, dir / "user.glb")) << err;
+  EXPECT_EQ(model.images[0].width, 8);
+  EXPECT_EQ(model.images[0].height, 4);
+  h.o.leaf_texture = dir / "nope.png";
+  const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "user2.glb", h.o);
+  EXPECT_NE(r.error.find("nope.png"), std::string::npos) << r.error;
+  EXPECT_FALSE(fs::exists(dir / "user2.glb"));
+}
