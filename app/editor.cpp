@@ -67,6 +67,7 @@ struct editor_state {
   double frame_ms = 0;
   bool screenshot_requested = false;
   std::string screenshot_path;
+  std::string texture_message;    // the renderer's last texture error, once shown
 };
 
 void set_status(editor_state& e, const std::string& m, bool error = false) {
@@ -687,6 +688,10 @@ int run_editor(const editor_options& o) {
     glClearColor(0.1f, 0.1f, 0.11f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
     if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
+    if (e->renderer.texture_message != e->texture_message) {
+      e->texture_message = e->renderer.texture_message;
+      if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);
+    }
     glViewport(0, 0, fb_w, fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 

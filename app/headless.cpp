@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <thread>
 #include <cstdlib>
 #include <vector>
 
@@ -14,6 +16,12 @@
 namespace sylva {
 
 namespace {
+std::string glfw_error(const std::string& what) {
+  const char* desc = nullptr;
+  glfwGetError(&desc);
+  return desc ? what + ": " + desc : what;
+}
+
 double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
@@ -78,19 +86,29 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
   tree_mesh mesh = mesh_tree(tree, p.mesh, p.spec.seed);
   const double mesh_ms = ms_since(t0);
 
-  if (!glfwInit()) return "cannot initialise GLFW (is the X server at DISPLAY reachable?)";
-  glfwDefaultWindowHints();
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(64, 64, "sylva render", nullptr, nullptr);
-  if (!window) {
-    glfwTerminate();
-    return "cannot create an OpenGL 3.3 core context";
+  // One retry: a display shared with other clients now and then refuses a connection.
+  GLFWwindow* window = nullptr;
+  std::string why;
+  for (int attempt = 0; attempt < 2 && !window; ++attempt) {
+    if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (!glfwInit()) {
+      why = glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
+      continue;
+    }
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+    window = glfwCreateWindow(64, 64, "sylva render", nullptr, nullptr);
+    if (!window) {
+      why = glfw_error("cannot create an OpenGL 3.3 core context");
+      glfwTerminate();
+    }
   }
+  if (!window) return why;
   glfwMakeContextCurrent(window);
   install_gl_debug_output();
   const int errors_before = gl_error_count();
@@ -107,6 +125,8 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
     double frame_ms = 0;
     r.measure_passes = stats && stats->measure_passes;
     error = save_view_png(r, p.render, cam, width, height, path, &frame_ms);
+    if (!r.texture_message.empty())   // the procedural texture stood in; say so, but render
+      std::fprintf(stderr, "sylva: warning: texture: %s\n", r.texture_message.c_str());
     const int errors = gl_error_count() - errors_before;
     if (errors > 0 && error.empty()) error = std::to_string(errors) + " GL error(s): " + gl_last_message();
     if (stats) {

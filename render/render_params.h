@@ -1,6 +1,8 @@
 // Lighting and post-process settings; plain data saved in presets under "render" (DESIGN §8).
 #pragma once
 
+#include <string>
+
 #include <glm/vec3.hpp>
 
 #include "generators/params.h"
@@ -42,6 +44,10 @@ struct render_params {
   float ray_decay = 0.99f;
   float ray_exposure = 0.05f;
   int msaa = 4;
+  // The user's own textures (PNG); "" uses the procedural ones.
+  std::string bark_texture;
+  std::string leaf_texture;
+  std::string leaf_opacity;
   bool operator==(const render_params&) const = default;
 };
 
@@ -63,6 +69,9 @@ void visit_params(P& p, V&& v) {
   v(p.leaf_translucency, param_info{"leaf_translucency", "Leaf translucency", "", 0, 1, "Share of sunlight that glows through a leaf lit from behind"});
   v(p.alpha_cutoff, param_info{"alpha_cutoff", "Leaf alpha cutoff", "", 0.05f, 0.95f, "Leaf texels below this opacity are cut away"});
   v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Random per-leaf variation of the tint"});
+  v(p.bark_texture, param_info{"bark_texture", "Bark texture", "", 0, 0, "Your own bark colour PNG (tiles: x around the branch, y along it); empty: procedural", param_path, "Textures"});
+  v(p.leaf_texture, param_info{"leaf_texture", "Leaf texture", "", 0, 0, "Your own leaf colour PNG (petiole at the bottom edge; alpha is the outline unless an opacity map is given); empty: four procedural leaves", param_path});
+  v(p.leaf_opacity, param_info{"leaf_opacity", "Leaf opacity", "", 0, 0, "Optional greyscale PNG, same size as the leaf texture: white is leaf, black is cut away", param_path});
   v(p.shadows, param_info{"shadows", "Shadows", "", 0, 1, "Sun shadow map (orthographic, fitted to the tree)", 0, "Shadows"});
   v(p.shadow_resolution, param_info{"shadow_resolution", "Resolution", "", 1024, 8192, "Shadow map size in texels", param_log | param_on_release});
   v(p.shadow_bias, param_info{"shadow_bias", "Depth bias", "", 0, 0.01f, "Constant depth bias against shadow acne (depth units)", param_advanced});

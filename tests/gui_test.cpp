@@ -23,7 +23,7 @@ bool have_display() {
   return d && *d;
 }
 
-struct image {
+struct picture {
   int width = 0, height = 0;
   std::string rgba;
   float luma(int x, int y) const {
@@ -35,8 +35,8 @@ struct image {
   }
 };
 
-image load(const std::string& path) {
-  image im;
+picture load(const std::string& path) {
+  picture im;
   std::string err = load_png_rgba(path, im.width, im.height, im.rgba);
   EXPECT_EQ(err, "");
   return im;
@@ -76,7 +76,7 @@ glm::vec2 sun_pixel(const preset& p, int w, int h) {
 }
 
 // Mean luma over the pixels whose distance to `c` lies in [r0, r1).
-float ring_mean(const image& im, glm::vec2 c, float r0, float r1) {
+float ring_mean(const picture& im, glm::vec2 c, float r0, float r1) {
   double sum = 0;
   int n = 0;
   for (int y = 0; y < im.height; ++y)
@@ -104,7 +104,7 @@ TEST(HeadlessRender, NoDisplayIsAClearError) {
 TEST(HeadlessRender, SamePresetGivesIdenticalImages) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   preset p = honda_a();
-  image a = load(render(p, "same1.png")), b = load(render(p, "same2.png"));
+  picture a = load(render(p, "same1.png")), b = load(render(p, "same2.png"));
   ASSERT_EQ(a.width, 320);
   ASSERT_EQ(a.height, 240);
   EXPECT_TRUE(a.rgba == b.rgba);
@@ -116,9 +116,9 @@ TEST(HeadlessRender, ShadowDarkensTheGroundUnderTheTree) {
   p.render.sun_elevation = 65;   // a high sun puts the shadow right under the crown
   p.render.god_rays = false;
   p.render.shadows = false;
-  image off = load(render(p, "shadow_off.png"));
+  picture off = load(render(p, "shadow_off.png"));
   p.render.shadows = true;
-  image on = load(render(p, "shadow_on.png"));
+  picture on = load(render(p, "shadow_on.png"));
   // The ground fills the lower part of the frame (the camera looks slightly down at the crown).
   double sum_on = 0, sum_off = 0;
   int darker = 0, n = 0;
@@ -149,9 +149,9 @@ TEST(HeadlessRender, GodRaysBrightenARingAroundTheSun) {
   ASSERT_GT(sun.y, 0);
   ASSERT_LT(sun.y, h);
   p.render.god_rays = false;
-  image off = load(render(p, "rays_off.png", w, h));
+  picture off = load(render(p, "rays_off.png", w, h));
   p.render.god_rays = true;
-  image on = load(render(p, "rays_on.png", w, h));
+  picture on = load(render(p, "rays_on.png", w, h));
   const float inner_on = ring_mean(on, sun, 10, 30), inner_off = ring_mean(off, sun, 10, 30);
   const float outer_on = ring_mean(on, sun, 60, 90), outer_off = ring_mean(off, sun, 60, 90);
   EXPECT_GT(inner_on, inner_off + 3.0f) << inner_on << " vs " << inner_off;
@@ -207,7 +207,7 @@ TEST(EditorSmoke, ScreenshotShowsTheTree) {
                           std::string(SYLVA_BINARY) + "' " + (preset_path.empty() ? "" : "'" + preset_path + "'") +
                           " > /dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  image im = load(shot);
+  picture im = load(shot);
   ASSERT_EQ(im.width, 1280);
   ASSERT_EQ(im.height, 800);
   // The crown sits above the horizon, right of the parameter panel: count pixels there that are
@@ -237,8 +237,8 @@ TEST(HeadlessRender, ScrubbingShowsTheYoungerTree) {
   std::string young = temp_path("step3.png"), full = temp_path("step10.png");
   ASSERT_EQ(render_preset_png(p, 3, young, w, h), "");
   ASSERT_EQ(render_preset_png(p, -1, full, w, h), "");
-  image a = load(young), b = load(full);
-  auto tree_pixels = [](const image& im) {
+  picture a = load(young), b = load(full);
+  auto tree_pixels = [](const picture& im) {
     int n = 0;
     for (int y = 0; y < im.height; ++y)
       for (int x = 0; x < im.width; ++x) {
@@ -250,4 +250,29 @@ TEST(HeadlessRender, ScrubbingShowsTheYoungerTree) {
   const int na = tree_pixels(a), nb = tree_pixels(b);
   EXPECT_GT(na, 20) << "the young tree is visible";
   EXPECT_LT(na * 3, nb) << "young " << na << " full " << nb;
+}
+
+TEST(HeadlessRender, UserBarkTextureIsUsedAndABadPathIsHarmless) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string red = temp_path("red_bark.png");
+  std::string pixels;
+  for (int i = 0; i < 8 * 8; ++i) pixels += std::string("\xff\x10\x10\xff", 4);
+  ASSERT_EQ(save_png_rgba(red, 8, 8, reinterpret_cast<const unsigned char*>(pixels.data())), "");
+  preset p = honda_a();
+  p.mesh.leaves_enabled = false;
+  p.render.shadows = p.render.god_rays = false;
+  p.render.bark_color = glm::vec3(0.45f);   // neutral tint: the texture's colour shows
+  auto reddish = [](const picture& im) {
+    int n = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) n += im.at(x, y)[0] > im.at(x, y)[1] + 60;
+    return n;
+  };
+  const int before = reddish(load(render(p, "bark_default.png")));
+  p.render.bark_texture = red;
+  const int after = reddish(load(render(p, "bark_red.png")));
+  EXPECT_GT(after, before + 200) << before << " -> " << after;
+  // A missing file keeps the procedural texture: same image as no user texture at all.
+  p.render.bark_texture = temp_path("does_not_exist.png");
+  EXPECT_EQ(reddish(load(render(p, "bark_missing.png"))), before);
 }

@@ -70,7 +70,7 @@ void main() {
 
 const char* bark_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive;
-uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform vec3 u_bark_color;
+uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform vec3 u_bark_color; uniform int u_user_texture;
 out vec4 o_color;
 // Tangent frame from screen-space derivatives (Schüler 2006), so the mesh needs no tangents.
 mat3 cotangent_frame(vec3 n, vec3 p, vec2 uv) {
@@ -90,7 +90,9 @@ void main() {
   vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
   if (dot(n, n0) < 0.2) n = n0;
   // The tint sets the colour; the texture's luminance (around 0.1 in linear terms) the detail.
-  vec3 albedo = u_bark_color * dot(texture(u_bark, v_uv).rgb, vec3(0.2126, 0.7152, 0.0722)) * 5.0;
+  vec3 tex = texture(u_bark, v_uv).rgb;
+  vec3 albedo = u_user_texture != 0 ? tex * u_bark_color * 2.2   // the user's colours, tinted
+                                    : u_bark_color * dot(tex, vec3(0.2126, 0.7152, 0.0722)) * 5.0;
   float sh = shadow_at(v_world, n);
   vec3 c = albedo * (u_sun_light * max(dot(n, u_sun_dir), 0.0) * sh + ambient_light(n));
   o_color = vec4(c, 1.0);
@@ -127,6 +129,7 @@ void main() {
 const char* leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec2 v_uv; flat in float v_layer; flat in vec3 v_tint;
 uniform sampler2DArray u_leaf; uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
+uniform int u_user_texture;
 out vec4 o_color;
 void main() {
   vec4 t = texture(u_leaf, vec3(v_uv, v_layer));
@@ -134,7 +137,8 @@ void main() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;   // two-sided: light the side we see
   float ndl = dot(n, u_sun_dir);
-  vec3 albedo = u_leaf_color * mix(vec3(dot(t.rgb, vec3(0.2126, 0.7152, 0.0722)) * 4.0), t.rgb * 2.5, 0.3) * v_tint;
+  vec3 albedo = (u_user_texture != 0 ? t.rgb * u_leaf_color * 3.0
+                                     : u_leaf_color * mix(vec3(dot(t.rgb, vec3(0.2126, 0.7152, 0.0722)) * 4.0), t.rgb * 2.5, 0.3)) * v_tint;
   float sh = shadow_at(v_world, ndl >= 0.0 ? n : -n);
   // Transmission: sunlight arriving on the far side glows through the blade, tinted by it.
   vec3 transmitted = u_translucency * max(-ndl, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
@@ -325,6 +329,90 @@ gl_texture make_depth_texture(int w, int h, bool compare) {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
   }
   return t;
+}
+
+void upload_2d(gl_texture& t, const image& img, GLenum internal_format) {
+  if (!t.id) glGenTextures(1, &t.id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glBindTexture(GL_TEXTURE_2D, t.id);
+  glTexImage2D(GL_TEXTURE_2D, 0, internal_format, img.width, img.height, 0, img.channels == 3 ? GL_RGB : GL_RGBA,
+               GL_UNSIGNED_BYTE, img.pixels.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+}
+
+void upload_bark_textures(renderer_state& r, const image& color, const image& normal) {
+  upload_2d(r.bark_tex, color, GL_SRGB8_ALPHA8);
+  upload_2d(r.bark_normal_tex, normal, GL_RGB8);
+}
+
+// All leaf variants share one array texture, so every leaf is drawn in one instanced call.
+void upload_leaf_textures(renderer_state& r, const std::vector<image>& leaves) {
+  if (leaves.empty()) return;
+  const int w = leaves[0].width, h = leaves[0].height;
+  std::vector<uint8_t> layers;
+  for (const image& l : leaves)
+    if (l.width == w && l.height == h && l.channels == 4) layers.insert(layers.end(), l.pixels.begin(), l.pixels.end());
+  const int count = int(layers.size() / (size_t(w) * h * 4));
+  if (!count) return;
+  if (!r.leaf_tex.id) glGenTextures(1, &r.leaf_tex.id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, w, h, count, 0, GL_RGBA, GL_UNSIGNED_BYTE, layers.data());
+  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  r.leaf_layers = count;
+}
+
+// Loads the user's PNGs when their paths change; a failure keeps the procedural textures.
+void update_user_textures(renderer_state& r, const render_params& rp) {
+  if (rp.bark_texture == r.bark_texture_path && rp.leaf_texture == r.leaf_texture_path &&
+      rp.leaf_opacity == r.leaf_opacity_path)
+    return;
+  r.bark_texture_path = rp.bark_texture;
+  r.leaf_texture_path = rp.leaf_texture;
+  r.leaf_opacity_path = rp.leaf_opacity;
+  r.texture_message.clear();
+  const texture_set tex = make_textures(256, 128, 1);
+  r.user_bark = r.user_leaf = false;
+  image bark;
+  if (!rp.bark_texture.empty()) {
+    if (std::string err = load_png(rp.bark_texture, bark); !err.empty()) r.texture_message = err;
+    else r.user_bark = true;
+  }
+  if (r.user_bark) {
+    const image flat{1, 1, 3, {128, 128, 255}};   // a foreign colour map gets no procedural relief
+    upload_bark_textures(r, bark, flat);
+  } else {
+    upload_bark_textures(r, tex.bark_color, tex.bark_normal);
+  }
+  image leaf;
+  if (!rp.leaf_texture.empty()) {
+    if (std::string err = load_png(rp.leaf_texture, leaf); !err.empty()) {
+      r.texture_message = err;
+    } else {
+      r.user_leaf = true;
+      image opacity;
+      if (!rp.leaf_opacity.empty()) {
+        if (std::string err2 = load_png(rp.leaf_opacity, opacity); !err2.empty()) r.texture_message = err2;
+        else if (opacity.width != leaf.width || opacity.height != leaf.height)
+          r.texture_message = "leaf opacity map must be the size of the leaf texture";
+        else
+          for (size_t i = 0; i < size_t(leaf.width) * leaf.height; ++i) leaf.pixels[i * 4 + 3] = opacity.pixels[i * 4];
+      }
+    }
+  }
+  if (r.user_leaf) upload_leaf_textures(r, {leaf});
+  else upload_leaf_textures(r, {tex.leaf.begin(), tex.leaf.end()});
+  check_gl("user textures");
 }
 
 void resize_targets(renderer_state& r, int w, int h, int samples) {
@@ -578,37 +666,8 @@ bool init_renderer(renderer_state& r) {
 
   // Procedural textures (render/textures.h): the app needs no asset files.
   const texture_set tex = make_textures(256, 128, 1);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  auto upload_2d = [](gl_texture& t, const image& img, GLenum internal_format) {
-    glGenTextures(1, &t.id);
-    glBindTexture(GL_TEXTURE_2D, t.id);
-    glTexImage2D(GL_TEXTURE_2D, 0, internal_format, img.width, img.height, 0, img.channels == 3 ? GL_RGB : GL_RGBA,
-                 GL_UNSIGNED_BYTE, img.pixels.data());
-    glGenerateMipmap(GL_TEXTURE_2D);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  };
-  upload_2d(r.bark_tex, tex.bark_color, GL_SRGB8);
-  upload_2d(r.bark_normal_tex, tex.bark_normal, GL_RGB8);
-  // All leaf variants share one array texture, so every leaf is drawn in one instanced call.
-  const int leaf_n = tex.leaf[0].width;
-  std::vector<uint8_t> layers;
-  for (const image& l : tex.leaf)
-    if (l.width == leaf_n && l.height == leaf_n && l.channels == 4) layers.insert(layers.end(), l.pixels.begin(), l.pixels.end());
-  const int layer_count = int(layers.size() / (size_t(leaf_n) * leaf_n * 4));
-  glGenTextures(1, &r.leaf_tex.id);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, leaf_n, leaf_n, std::max(layer_count, 1), 0, GL_RGBA,
-               GL_UNSIGNED_BYTE, layer_count ? layers.data() : nullptr);
-  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  r.leaf_layers = std::max(layer_count, 1);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  upload_bark_textures(r, tex.bark_color, tex.bark_normal);
+  upload_leaf_textures(r, {tex.leaf.begin(), tex.leaf.end()});
 
   resize_shadow(r, 2048);
   check_gl("init renderer");
@@ -715,6 +774,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
                 gl_framebuffer target, bool overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
   resize_targets(r, width, height, rp.msaa);
+  update_user_textures(r, rp);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
   double t0 = now_ms();
   auto mark = [&](double& slot) {
@@ -813,6 +873,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.bark, "u_radius", 2);
       set_uniform(r.bark, "u_bark", 0);
       set_uniform(r.bark, "u_bark_normal", 4);
+      set_uniform(r.bark, "u_user_texture", r.user_bark ? 1 : 0);
       set_uniform(r.bark, "u_bark_color", rp.bark_color);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
@@ -823,6 +884,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
       set_uniform(r.leaf, "u_leaf", 3);
       set_uniform(r.leaf, "u_layers", r.leaf_layers);
+      set_uniform(r.leaf, "u_user_texture", r.user_leaf ? 1 : 0);
       set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);

@@ -45,6 +45,9 @@ struct renderer_state {
   gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, msaa_fbo;
   gl_renderbuffer msaa_color, msaa_depth;   // multisampled lit pass, resolved into hdr_color/hdr_depth
   int shadow_size = 0, width = 0, height = 0, samples = 0, leaf_layers = 1;
+  // Textures: the user's PNG paths as last loaded, and why a load failed ("" when none).
+  std::string bark_texture_path, leaf_texture_path, leaf_opacity_path, texture_message;
+  bool user_bark = false, user_leaf = false;
   // The uploaded tree.
   std::vector<uint32_t> index_end, leaf_end;
   std::vector<float> final_radius;
