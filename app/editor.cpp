@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -31,7 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr float panel_width = 380;
+constexpr float panel_width = 420;
 constexpr float timeline_height = 38;
 constexpr float status_height = 26;
 
@@ -97,9 +98,12 @@ struct param_drawer {
   bool header_drawn = false;
   size_t index = 0;
 
-  std::string label(const param_info& info) const {
-    std::string s = info.symbol && *info.symbol ? std::string(info.symbol) + "  " + info.label : info.label;
-    return s + "##" + info.key;
+  // "symbol  label##key" in a fixed buffer: building the panel allocates nothing per frame.
+  char buffer[256];
+  const char* label(const param_info& info) {
+    if (info.symbol && *info.symbol) std::snprintf(buffer, sizeof buffer, "%s  %s##%s", info.symbol, info.label, info.key);
+    else std::snprintf(buffer, sizeof buffer, "%s##%s", info.label, info.key);
+    return buffer;
   }
 
   template <class T>
@@ -111,32 +115,34 @@ struct param_drawer {
     }
     if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
     ImGui::PushID(info.key);
-    const std::string l = label(info);
+    const char* l = label(info);
     bool edited = false;
     const int slider_flags = (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0;
     if constexpr (std::is_same_v<T, float>) {
       const char* fmt = (info.flags & param_degrees) ? "%.1f°" : (info.flags & param_log) ? "%.4g" : "%.3f";
-      edited = ImGui::SliderFloat(l.c_str(), &value, info.min, info.max, fmt, slider_flags);
+      edited = ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
     } else if constexpr (std::is_same_v<T, int>) {
-      edited = ImGui::SliderInt(l.c_str(), &value, int(info.min), int(info.max), "%d", slider_flags);
+      edited = ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
     } else if constexpr (std::is_same_v<T, bool>) {
-      edited = ImGui::Checkbox(l.c_str(), &value);
+      edited = ImGui::Checkbox(l, &value);
     } else if constexpr (std::is_enum_v<T>) {
       int v = int(value);
       const int n = option_count(info);
-      if (ImGui::Combo(l.c_str(), &v, info.options, n)) { value = T(v); edited = true; }
+      if (ImGui::Combo(l, &v, info.options, n)) { value = T(v); edited = true; }
     } else if constexpr (std::is_same_v<T, glm::vec3>) {
-      if (info.flags & param_direction) edited = ImGui::DragFloat3(l.c_str(), &value.x, 0.01f, info.min, info.max);
-      else edited = ImGui::ColorEdit3(l.c_str(), &value.x, ImGuiColorEditFlags_Float);
+      // A colour is a vec3 on [0,1] that is not a direction; sizes and offsets get plain drags.
+      const bool colour = !(info.flags & param_direction) && info.min == 0 && info.max == 1;
+      if (colour) edited = ImGui::ColorEdit3(l, &value.x, ImGuiColorEditFlags_Float);
+      else edited = ImGui::DragFloat3(l, &value.x, std::max((info.max - info.min) * 0.001f, 0.001f), info.min, info.max);
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (info.flags & param_multiline) {
         ImGui::TextUnformatted(info.label);
-        edited = ImGui::InputTextMultiline(("##" + std::string(info.key)).c_str(), &value, ImVec2(-1, 180));
+        edited = ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
       } else {
-        edited = ImGui::InputText(l.c_str(), &value);
+        edited = ImGui::InputText(l, &value);
       }
     } else if constexpr (std::is_same_v<T, std::vector<float>>) {
-      ImGui::TextUnformatted(l.substr(0, l.find("##")).c_str());
+      ImGui::TextUnformatted(l, std::strstr(l, "##"));
       for (size_t i = 0; i < value.size(); ++i) {
         ImGui::PushID(int(i));
         if (i) ImGui::SameLine();
@@ -149,7 +155,7 @@ struct param_drawer {
       ImGui::SameLine();
       if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
     } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
-      ImGui::TextUnformatted(l.substr(0, l.find("##")).c_str());
+      ImGui::TextUnformatted(l, std::strstr(l, "##"));
       for (size_t i = 0; i < value.size(); ++i) {
         ImGui::PushID(int(i));
         edited |= ImGui::DragFloat3("##v", &value[i].x, 0.01f, info.min, info.max);
@@ -311,7 +317,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   ImGui::Begin("Parameters", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
-  ImGui::PushItemWidth(-170);
+  ImGui::PushItemWidth(-205);
   tree_spec& spec = e.doc.spec;
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
@@ -384,8 +390,7 @@ void draw_status(editor_state& e, float y, float w) {
               r && r->skeleton ? r->skeleton->size() : size_t(0), e.renderer.leaves_drawn, e.renderer.triangles_drawn,
               r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms, e.worker.busy ? "   growing..." : "");
   ImGui::SameLine();
-  std::string m = e.message;
-  if (m.empty() && r && !r->report.message.empty()) m = r->report.message;
+  const std::string& m = !e.message.empty() || !r ? e.message : r->report.message;
   const bool err = e.message_is_error || (e.message.empty() && r && r->report.error);
   ImGui::TextColored(err ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", m.c_str());
   ImGui::End();
@@ -505,10 +510,11 @@ void handle_mouse(editor_state& e, int viewport_height) {
 
 void load_fonts() {
   ImGuiIO& io = ImGui::GetIO();
-  // Latin, Latin Extended-A (Měch), Greek (λ σ τ κ φ α), punctuation, super/subscripts (s₀ r₁),
+  // Latin, Latin Extended-A (Měch), Greek (λ σ τ κ φ α), phonetic subscripts (dᵢ), punctuation,
+  // super/subscripts (s₀ r₁),
   // arrows and maths (≥ −): the symbols the parameter labels use.
-  static const ImWchar ranges[] = {0x0020, 0x017F, 0x0370, 0x03FF, 0x2000, 0x206F, 0x2070, 0x209F,
-                                   0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+  static const ImWchar ranges[] = {0x0020, 0x017F, 0x0370, 0x03FF, 0x1D00, 0x1DBF, 0x2000, 0x206F,
+                                   0x2070, 0x209F, 0x2190, 0x21FF, 0x2200, 0x22FF, 0};
   const char* candidates[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
                               "/usr/share/fonts/TTF/DejaVuSans.ttf", nullptr};
   for (int i = 0; candidates[i]; ++i)
@@ -556,6 +562,7 @@ int run_editor(const std::string& preset_path) {
   o.preset_path = preset_path;
   if (const char* s = std::getenv("SYLVA_SCREENSHOT")) o.screenshot_path = s;
   if (const char* s = std::getenv("SYLVA_FRAMES")) o.frames = std::max(1, std::atoi(s));
+  if (const char* s = std::getenv("SYLVA_OVERLAYS")) o.overlays = std::atoi(s) != 0;
   if (const char* s = std::getenv("SYLVA_WINDOW")) {
     int w = 0, h = 0;
     if (std::sscanf(s, "%dx%d", &w, &h) == 2 && w >= 320 && h >= 240) {
@@ -582,6 +589,7 @@ int run_editor(const editor_options& o) {
     }
   }
   e->undo_base = e->doc;
+  e->show_overlays = o.overlays;
 
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");

@@ -10,11 +10,13 @@ struct editor_options {
   std::string screenshot_path;   // non-empty: render `frames` frames after the tree is shown, save, quit
   int frames = 3;
   int width = 1600, height = 1000;
+  bool overlays = false;         // start with the growth-debug overlays shown
 };
 
 // Opens the editor window on a preset file, or on default_preset() (render/files.h) when the path
 // is empty. Returns the process exit code. The environment can ask for an automatic screenshot
-// (used by the GUI smoke test): SYLVA_SCREENSHOT=PATH, SYLVA_FRAMES=N, SYLVA_WINDOW=WxH.
+// (used by the GUI smoke test): SYLVA_SCREENSHOT=PATH, SYLVA_FRAMES=N, SYLVA_WINDOW=WxH,
+// SYLVA_OVERLAYS=1.
 int run_editor(const std::string& preset_path);
 int run_editor(const editor_options& options);
 
