@@ -341,7 +341,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("Golden hour")) {
-    rp.sun_elevation = 10, rp.sun_azimuth = e.camera.yaw + 60, rp.sun_color = {1.0f, 0.72f, 0.42f}, rp.sun_intensity = 2.0f;
+    rp.sun_elevation = 10, rp.sun_azimuth = std::remainder(e.camera.yaw + 60.0f, 360.0f), rp.sun_color = {1.0f, 0.72f, 0.42f}, rp.sun_intensity = 2.0f;
     rp.sky_zenith = {0.28f, 0.38f, 0.68f}, rp.sky_horizon = {0.95f, 0.76f, 0.55f};
   }
   ImGui::SameLine();
