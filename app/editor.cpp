@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -597,8 +598,15 @@ int run_editor(const editor_options& o) {
     std::fprintf(stderr, "sylva: the editor needs a display (DISPLAY is not set); try `sylva export` instead\n");
     return 1;
   }
-  if (!glfwInit()) {
-    std::fprintf(stderr, "sylva: cannot initialise GLFW\n");
+  bool up = glfwInit();
+  if (!up) {   // a display shared with other clients now and then refuses one connection: retry once
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    up = glfwInit();
+  }
+  if (!up) {
+    const char* why = nullptr;
+    glfwGetError(&why);
+    std::fprintf(stderr, "sylva: cannot initialise GLFW: %s\n", why ? why : "unknown reason");
     return 1;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
