@@ -13,13 +13,14 @@ build: deps
 	@cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	./$(BUILD)/sylva $(PRESET)
+	./$(BUILD)/app/sylva $(PRESET)
 
 test: build
 	@bash scripts/run-tests.sh $(BUILD)
 
 bench: build
-	./$(BUILD)/sylva bench presets/*.json
+	./$(BUILD)/app/sylva bench --repeat 5
+	@if [ -x $(BUILD)/tests/sylva_microbench ]; then ./$(BUILD)/tests/sylva_microbench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; fi
 
 sanitize:
 	$(MAKE) test BUILD=build-asan CMAKE_FLAGS="-DSYLVA_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
