@@ -2,6 +2,7 @@
 #include "app/worker.h"
 
 #include <chrono>
+#include <new>
 
 namespace sylva {
 
@@ -9,6 +10,34 @@ namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// A growth too large for memory: the tree on screen stays (the previous result, re-published under
+// the new generation) and the status bar says why. The worker's own `last` stays the good result.
+void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& last, const worker_request& req,
+                     const char* why) {
+  std::shared_ptr<const grow_result> keep;
+  try {
+    auto r = std::make_shared<grow_result>();
+    if (last) {
+      r->skeleton = last->skeleton;
+      r->debug = last->debug;
+      r->mesh = last->mesh;
+      r->spec = last->spec;
+      r->mesh_settings = last->mesh_settings;
+    } else {
+      r->skeleton = std::make_shared<tree_skeleton>();
+    }
+    r->generation = req.generation;
+    r->report.error = true;
+    r->report.message = why;
+    keep = std::move(r);
+  } catch (const std::bad_alloc&) {
+    // Not even the copy fits: publish nothing; the UI keeps what it shows.
+  }
+  std::lock_guard<std::mutex> lock(w.mutex);
+  if (keep) w.published = std::move(keep);
+  w.busy = false;
 }
 
 void run_worker(worker_state& w) {
@@ -40,7 +69,13 @@ void run_worker(worker_state& w) {
       o.cancel_value = req.generation;
       auto debug = std::make_shared<growth_debug>();
       auto t0 = std::chrono::steady_clock::now();
-      auto skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+      std::shared_ptr<tree_skeleton> skeleton;
+      try {
+        skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+      } catch (const std::bad_alloc&) {
+        publish_failure(w, last, req, "out of memory while growing: lower the node cap or the step count");
+        continue;
+      }
       result->grow_ms = ms_since(t0);
       if (o.cancelled()) {   // a newer edit arrived: drop this one unseen
         w.busy = false;
@@ -50,7 +85,12 @@ void run_worker(worker_state& w) {
       result->debug = std::move(debug);
     }
     auto t0 = std::chrono::steady_clock::now();
-    result->mesh = mesh_tree(*result->skeleton, req.mesh_settings, req.spec.seed);
+    try {
+      result->mesh = mesh_tree(*result->skeleton, req.mesh_settings, req.spec.seed);
+    } catch (const std::bad_alloc&) {
+      publish_failure(w, last, req, "out of memory while meshing: lower the radial segments or the node cap");
+      continue;
+    }
     result->mesh_ms = ms_since(t0);
     last = result;
     {
