@@ -7,18 +7,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/headless.h"
 #include "render/export.h"
 #include "render/files.h"
+#include "render/gl/renderer.h"
 
 namespace sylva {
 namespace {
@@ -454,6 +459,184 @@ int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool wit
   return failures ? 1 : 0;
 }
 
+// ---------------------------------------------------------------------------------------------
+// sylva bench --render: frame cost per pass with the editor's renderer
+
+struct render_bench_result {
+  size_t nodes = 0, leaves = 0, triangles = 0;
+  double shadow_ms = 0, lit_ms = 0, occlusion_ms = 0, blur_ms = 0, composite_ms = 0, frame_ms = 0;
+  frame_counts counts;   // of the last measured frame
+};
+
+// Steady-state frames, not the PNG path's single first frame: one warm-up frame allocates the
+// targets and lets the driver compile its shader variants, then `repeat` frames are timed, each
+// pass closed by glFinish (renderer_state::measure_passes). With `all_effects` the sun is put behind
+// the tree as the editor's "Backlit rays" button does, with shadows and god rays on, so that every
+// pass runs and a regression in any of them shows; otherwise the preset's own light is used.
+std::string measure_render(const preset& p, int repeat, int width, int height, bool all_effects,
+                           render_bench_result& out) {
+  grow_report report;
+  const tree_skeleton t = grow(p.spec, grow_options{}, &report);
+  if (report.error) return "growth failed: " + report.message;
+  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+  out.nodes = t.size();
+
+  GLFWwindow* window = nullptr;
+  std::string why;
+  for (int attempt = 0; attempt < 2 && !window; ++attempt) {   // a shared display may refuse once
+    if (attempt) ::usleep(200 * 1000);
+    if (!glfwInit()) {
+      const char* desc = nullptr;
+      glfwGetError(&desc);
+      why = std::string("cannot initialise GLFW: ") + (desc ? desc : "no reason given");
+      continue;
+    }
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    window = glfwCreateWindow(64, 64, "sylva bench", nullptr, nullptr);
+    if (!window) {
+      const char* desc = nullptr;
+      glfwGetError(&desc);
+      why = std::string("cannot create an OpenGL 3.3 core context: ") + (desc ? desc : "no reason given");
+      glfwTerminate();
+    }
+  }
+  if (!window) return why;
+  glfwMakeContextCurrent(window);
+
+  std::string error;
+  renderer_state r;
+  gl_texture color;
+  gl_framebuffer target;
+  if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
+  if (error.empty()) {
+    upload_tree(r, m);
+    set_tree_step(r, t, p.mesh.min_radius, t.steps);
+    orbit_camera cam;
+    frame_camera(cam, r.bounds_min, r.bounds_max);
+    render_params rp = p.render;
+    if (all_effects) {
+      rp.sun_azimuth = std::remainder(cam.yaw + 180.0f, 360.0f);
+      rp.sun_elevation = 12;
+      rp.shadows = rp.god_rays = true;
+    }
+    // The image goes to an off-screen RGBA8 target of the asked size, as for `export x.png`.
+    glGenTextures(1, &color.id);
+    glBindTexture(GL_TEXTURE_2D, color.id);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glGenFramebuffers(1, &target.id);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.id);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the image target";
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const int errors_before = gl_error_count();
+    std::vector<double> shadow, lit, occlusion, blur, composite, frame;
+    r.measure_passes = true;
+    for (int i = 0; i <= repeat && error.empty(); ++i) {
+      const auto t0 = clock_type::now();
+      draw_frame(r, rp, cam, width, height, target);
+      glFinish();
+      if (i == 0) continue;   // warm-up
+      frame.push_back(ms_since(t0));
+      shadow.push_back(r.timings.shadow);
+      lit.push_back(r.timings.lit);
+      occlusion.push_back(r.timings.occlusion);
+      blur.push_back(r.timings.blur);
+      composite.push_back(r.timings.composite);
+    }
+    check_gl("bench frames");
+    if (error.empty() && gl_error_count() > errors_before)
+      error = std::to_string(gl_error_count() - errors_before) + " GL error(s): " + gl_last_message();
+    out.leaves = r.leaves_drawn;
+    out.triangles = r.triangles_drawn + 2 * r.leaves_drawn;   // bark plus one quad per leaf
+    out.shadow_ms = median(shadow);
+    out.lit_ms = median(lit);
+    out.occlusion_ms = median(occlusion);
+    out.blur_ms = median(blur);
+    out.composite_ms = median(composite);
+    out.frame_ms = median(frame);
+    out.counts = r.counts;
+  }
+  delete_gl(target);
+  delete_gl(color);
+  destroy_renderer(r);
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return error;
+}
+
+int run_bench_render(std::vector<std::string> paths, int repeat, bool as_json, int width, int height,
+                     bool preset_light) {
+  const char* cmd = "bench --render";
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!display || !*display) && (!wayland || !*wayland))
+    return fail(cmd, "rendering needs a display: DISPLAY is not set (run under xvfb-run -a)");
+  if (paths.empty()) {   // the default presets: Honda's tree a and one preset per other generator
+    for (const char* name : {"lsystem_honda_a", "self_organizing_default", "space_colonization_seed_cube",
+                             "guiding_vectors_default"})
+      paths.push_back((fs::path(SYLVA_SOURCE_DIR) / "presets" / (std::string(name) + ".json")).string());
+  }
+  if (!as_json)
+    std::printf("%-30s %10s %8s %9s %9s %9s %9s %9s %9s %6s %7s\n", "preset", "triangles", "leaves", "shadow_ms",
+                "lit_ms", "occl_ms", "blur_ms", "comp_ms", "frame_ms", "draws", "uploads");
+  int failures = 0;
+  for (const std::string& path : paths) {
+    preset p;
+    load_result loaded = load_preset_file(path, p);
+    if (!loaded.ok) {
+      std::fprintf(stderr, "sylva %s: %s\n", cmd, loaded.error.c_str());
+      ++failures;
+      continue;
+    }
+    for (const std::string& w : loaded.warnings) warn(path, w);
+    render_bench_result r;
+    if (std::string e = measure_render(p, repeat, width, height, !preset_light, r); !e.empty()) {
+      std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.c_str());
+      ++failures;
+      continue;
+    }
+    const std::string name = fs::path(path).stem().string();
+    if (as_json) {
+      json j;
+      j["preset"] = name;
+      j["generator"] = generator_name(p.spec);
+      j["width"] = width;
+      j["height"] = height;
+      j["light"] = preset_light ? "preset" : "backlit";
+      j["nodes"] = r.nodes;
+      j["leaves"] = r.leaves;
+      j["triangles"] = r.triangles;
+      j["shadow_ms"] = r.shadow_ms;
+      j["lit_ms"] = r.lit_ms;
+      j["occlusion_ms"] = r.occlusion_ms;
+      j["blur_ms"] = r.blur_ms;
+      j["composite_ms"] = r.composite_ms;
+      j["frame_ms"] = r.frame_ms;
+      j["draw_calls"] = r.counts.draw_calls;
+      j["leaf_draw_calls"] = r.counts.leaf_draw_calls;
+      j["uploads"] = r.counts.uploads;
+      j["repeat"] = repeat;
+      std::printf("%s\n", j.dump().c_str());
+    } else {
+      std::printf("%-30s %10zu %8zu %9.2f %9.2f %9.2f %9.2f %9.2f %9.2f %6d %7d\n", name.c_str(), r.triangles, r.leaves,
+                  r.shadow_ms, r.lit_ms, r.occlusion_ms, r.blur_ms, r.composite_ms, r.frame_ms, r.counts.draw_calls,
+                  r.counts.uploads);
+    }
+    std::fflush(stdout);
+  }
+  if (!as_json)
+    std::printf("%dx%d, medians over %d frames after one warm-up; each pass ends in glFinish; %s\n", width, height,
+                repeat,
+                preset_light ? "the presets' own light (occlusion and blur are 0 when the sun is out of view)"
+                             : "sun behind the tree, shadows and god rays on (--preset-light: the presets' own)");
+  return failures ? 1 : 0;
+}
+
 }  // namespace
 
 bool is_cli_command(const char* arg) {
@@ -484,12 +667,20 @@ int run_cli(int argc, char** argv) {
 
   std::vector<std::string> bench_paths;
   int repeat = 5;
-  bool bench_json = false, bench_export = false;
+  bool bench_json = false, bench_export = false, bench_render = false;
+  int bench_width = 1280, bench_height = 720;
+  bool bench_preset_light = false;
   CLI::App* bench = app.add_subcommand("bench", "Time grow and mesh per preset (default: every bench/*.json)");
   bench->add_option("presets", bench_paths, "Preset JSON files");
   bench->add_option("--repeat", repeat, "Runs per preset; medians are reported")->check(CLI::Range(1, 1000));
   bench->add_flag("--json", bench_json, "One JSON object per line");
   bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
+  bench->add_flag("--render", bench_render,
+                  "Time rendering instead: frame ms per pass (needs DISPLAY; default: one preset per generator)");
+  bench->add_option("--width", bench_width, "--render: image width")->check(CLI::Range(16, 8192));
+  bench->add_option("--height", bench_height, "--render: image height")->check(CLI::Range(16, 8192));
+  bench->add_flag("--preset-light", bench_preset_light,
+                  "--render: keep each preset's sun (default: backlit with shadows and god rays, every pass runs)");
 
   try {
     app.parse(argc, argv);
@@ -507,6 +698,10 @@ int run_cli(int argc, char** argv) {
   try {
     if (params->parsed()) return run_params(params_json);
     if (exp->parsed()) return run_export(ex);
+    if (bench->parsed() && bench_render) {
+      if (bench_export) return usage_error("bench", "--render and --export time different things; give one");
+      return run_bench_render(bench_paths, repeat, bench_json, bench_width, bench_height, bench_preset_light);
+    }
     if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export);
   } catch (const std::exception& e) {  // last resort: a library threw; still one line and exit 1
     return fail("", e.what());
