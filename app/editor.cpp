@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -21,6 +22,7 @@
 #include <imgui_impl_opengl3.h>
 #include <imgui_stdlib.h>
 
+#include "app/editor_generators.h"
 #include "app/headless.h"
 #include "app/worker.h"
 #include "render/export.h"
@@ -70,6 +72,7 @@ struct editor_state {
   bool screenshot_requested = false;
   std::string screenshot_path;
   std::string texture_message;    // the renderer's last texture error, once shown
+  generator_panel_state generator_panels;   // app/editor_generators.h
 };
 
 void set_status(editor_state& e, const std::string& m, bool error = false) {
@@ -97,6 +100,10 @@ struct param_drawer {
   bool hold = false;       // an apply-on-release item is active
   bool open = true;
   bool header_drawn = false;
+  const char* pending_header = nullptr;   // drawn before the group's first shown parameter
+  bool relevant = true;                   // param_relevant() for the parameter being visited
+  std::vector<step_column>* steps = nullptr;   // the struct's per-step schedules, drawn as one table
+  bool steps_drawn = false;
   size_t index = 0;
 
   // "symbol  label##key" in a fixed buffer: building the panel allocates nothing per frame.
@@ -111,10 +118,23 @@ struct param_drawer {
   void operator()(T& value, const param_info& info) {
     const T& def = *static_cast<const T*>(defaults[index++]);
     if (info.group || !header_drawn) {
-      open = ImGui::CollapsingHeader(info.group ? info.group : section, ImGuiTreeNodeFlags_DefaultOpen);
+      pending_header = info.group ? info.group : section;
       header_drawn = true;
     }
+    // Hidden in the current mode; multi-line texts get their own panel (draw_generator_panel).
+    if (!relevant || (info.flags & param_multiline)) return;
+    if (pending_header) {
+      open = ImGui::CollapsingHeader(pending_header, ImGuiTreeNodeFlags_DefaultOpen);
+      pending_header = nullptr;
+    }
     if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
+    if constexpr (std::is_same_v<T, std::vector<float>>) {
+      if (steps && !steps->empty()) {   // all schedules in one table, where the first one is declared
+        if (!steps_drawn) changed |= draw_step_table(*steps, hold);
+        steps_drawn = true;
+        return;
+      }
+    }
     ImGui::PushID(info.key);
     const char* l = label(info);
     bool edited = false;
@@ -183,7 +203,12 @@ bool draw_params(P& p, const char* section, editor_state& e) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, e.show_advanced};
-  visit_params(p, d);
+  std::vector<step_column> steps = collect_step_columns(p);
+  d.steps = &steps;
+  visit_params(p, [&](auto& value, const param_info& info) {
+    d.relevant = param_relevant(std::as_const(p), &value, info);
+    d(value, info);
+  });
   e.hold_post |= d.hold;
   return d.changed;
 }
@@ -299,6 +324,7 @@ void draw_menu(editor_state& e, GLFWwindow* window) {
   }
   if (ImGui::BeginMenu("View")) {
     ImGui::MenuItem("Growth overlays", nullptr, &e.show_overlays);
+    draw_overlay_menu(e.renderer.overlay.view, e.renderer.overlay);
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
@@ -330,6 +356,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   ImGui::SameLine();
   if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
   std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
+  draw_generator_panel(e.generator_panels, spec, e.shown.get());
   draw_params(e.doc.mesh, "Mesh", e);
   // Time-of-day presets: a starting point for the lighting sliders below.
   render_params& rp = e.doc.render;
@@ -541,11 +568,12 @@ void take_new_tree(editor_state& e) {
   std::shared_ptr<const grow_result> r = take_result(e.worker, e.seen_generation);
   if (!r) return;
   e.seen_generation = r->generation;
+  if (e.shown && keeps_last_tree(*r)) return set_status(e, r->report.message, true);
   const int old_steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : -1;
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
-  upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{});
+  upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(e.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);

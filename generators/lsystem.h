@@ -57,6 +57,17 @@ void visit_params(P& p, V&& v) {
   v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
 }
 
+// Honda's sliders only in honda mode, the text-mode settings only in text mode (editor only).
+inline bool param_relevant(const lsystem_params& p, const void* field, const param_info&) {
+  const bool honda_only = field == &p.s0 || field == &p.w0 || field == &p.min_length || field == &p.alpha1 ||
+                          field == &p.alpha2 || field == &p.phi1 || field == &p.phi2 || field == &p.r1 ||
+                          field == &p.r2 || field == &p.q || field == &p.e;
+  const bool text_only = field == &p.source || field == &p.leaf_size || field == &p.module_cap;
+  if (honda_only) return p.mode == lsystem_mode::honda;
+  if (text_only) return p.mode == lsystem_mode::text;
+  return true;
+}
+
 // Honda's tree (derivation k = growth step k). Deterministic; no randomness.
 tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_report* report = nullptr);
 

@@ -48,6 +48,16 @@ inline int option_count(const param_info& info) {
   return n;
 }
 
+// Whether the editor shows a parameter for the current values of its struct (e.g. the L-system's
+// Honda sliders are hidden in text mode). Consulted by the editor only: presets, the CLI and
+// `sylva params` still see every key. A struct with mode-dependent fields declares a non-template
+// overload next to its visit_params; `field` is the address of the visited member, so no key is
+// typed twice.
+template <class P>
+bool param_relevant(const P&, const void* /*field*/, const param_info&) {
+  return true;
+}
+
 // Clamps a value into its declared range; returns false when it had to change it (NaN included).
 template <class T>
 bool clamp_param(T& value, const param_info& info) {

@@ -348,7 +348,6 @@ void upload_2d(gl_texture& t, const image& img, GLenum internal_format) {
 void upload_bark_textures(renderer_state& r, const image& color, const image& normal) {
   upload_2d(r.bark_tex, color, GL_SRGB8_ALPHA8);
   upload_2d(r.bark_normal_tex, normal, GL_RGB8);
-  r.uploads_total += 2;
 }
 
 // All leaf variants share one array texture, so every leaf is drawn in one instanced call.
@@ -364,7 +363,6 @@ void upload_leaf_textures(renderer_state& r, const std::vector<image>& leaves) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
   glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, w, h, count, 0, GL_RGBA, GL_UNSIGNED_BYTE, layers.data());
-  ++r.uploads_total;
   glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -454,7 +452,6 @@ void resize_targets(renderer_state& r, int w, int h, int samples) {
   r.occlusion_fbo = make_framebuffer(r.occlusion_tex, {});
   r.rays_tex = make_color_target(hw, hh, GL_RGBA16F);
   r.rays_fbo = make_framebuffer(r.rays_tex, {});
-  r.uploads_total += samples > 1 ? 6 : 4;
   check_gl("resize targets");
 }
 
@@ -465,7 +462,6 @@ void resize_shadow(renderer_state& r, int size) {
   delete_gl(r.shadow_tex);
   r.shadow_tex = make_depth_texture(size, size, true);
   r.shadow_fbo = make_framebuffer({}, r.shadow_tex);
-  ++r.uploads_total;
   check_gl("resize shadow map");
 }
 
@@ -525,10 +521,9 @@ void bind_tree_textures(const renderer_state& r) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-void draw_bark(renderer_state& r) {
+void draw_bark(const renderer_state& r) {
   uint32_t n = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)];
   if (!n) return;
-  ++r.counts.draw_calls;
   glBindVertexArray(r.bark_vao.id);
   glDrawElements(GL_TRIANGLES, GLsizei(n), GL_UNSIGNED_INT, nullptr);
 }
@@ -538,11 +533,9 @@ uint32_t leaf_count(const renderer_state& r) {
 }
 
 // All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
-void draw_leaves(renderer_state& r) {
+void draw_leaves(const renderer_state& r) {
   uint32_t n = leaf_count(r);
   if (!n) return;
-  ++r.counts.draw_calls;
-  ++r.counts.leaf_draw_calls;
   glBindVertexArray(r.leaf_vao.id);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
 }
@@ -601,6 +594,7 @@ bool init_renderer(renderer_state& r) {
   r.radial = compile_program("radial blur", fullscreen_vs, radial_fs);
   r.composite = compile_program("composite", fullscreen_vs, composite_fs);
   r.lines = compile_program("lines", lines_vs, lines_fs);
+  init_overlays(r.overlay);
   r.fallback = compile_program("fallback", bark_vs, fallback_fs);
   if (r.composite.failed || r.fallback.failed) {
     r.error = "renderer: " + gl_last_message();
@@ -682,6 +676,7 @@ bool init_renderer(renderer_state& r) {
 }
 
 void destroy_renderer(renderer_state& r) {
+  destroy_overlays(r.overlay);
   for (gl_program* p : {&r.bark, &r.bark_depth, &r.leaf, &r.leaf_depth, &r.sky, &r.ground, &r.occlusion, &r.radial,
                         &r.composite, &r.lines, &r.fallback})
     delete_gl(*p);
@@ -717,7 +712,6 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
   glBufferData(GL_ARRAY_BUFFER, m.leaves.size() * sizeof(leaf_instance), m.leaves.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  r.uploads_total += 6;
 
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;
@@ -727,7 +721,6 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(8, r.radius_upload.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
-  ++r.uploads_total;
   r.steps = m.steps;
   r.step = m.steps;
   r.has_tree = !m.index.empty() || !m.leaves.empty();
@@ -753,30 +746,14 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
   }
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferSubData(GL_TEXTURE_BUFFER, 0, r.radius_upload.size() * sizeof(float), r.radius_upload.data());
-  ++r.uploads_total;
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   check_gl("set tree step");
 }
 
-void upload_overlays(renderer_state& r, const growth_debug& d) {
-  std::vector<float> v;
-  v.reserve((d.lines.size() + d.points.size()) * 6);
-  for (size_t i = 0; i + 1 < d.lines.size(); i += 2) {
-    glm::vec3 c = i / 2 < d.line_color.size() ? d.line_color[i / 2] : glm::vec3(1, 0.8f, 0.2f);
-    for (size_t k = 0; k < 2; ++k) v.insert(v.end(), {d.lines[i + k].x, d.lines[i + k].y, d.lines[i + k].z, c.x, c.y, c.z});
-  }
-  r.overlay_line_vertices = int(v.size() / 6);
-  for (size_t i = 0; i < d.points.size(); ++i) {
-    float val = i < d.point_value.size() ? d.point_value[i] : 0;
-    glm::vec3 c = val < 0 ? glm::vec3(1, 0.2f, 0.9f) : glm::mix(glm::vec3(1, 1, 0.3f), glm::vec3(0.2f, 0.4f, 1), std::clamp(val, 0.0f, 1.0f));
-    v.insert(v.end(), {d.points[i].x, d.points[i].y, d.points[i].z, c.x, c.y, c.z});
-  }
-  r.overlay_point_vertices = int(v.size() / 6) - r.overlay_line_vertices;
-  glBindBuffer(GL_ARRAY_BUFFER, r.overlay_vertices.id);
-  glBufferData(GL_ARRAY_BUFFER, v.size() * sizeof(float), v.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  ++r.uploads_total;
-  check_gl("upload overlays");
+void upload_overlays(renderer_state& r, const growth_debug& d) { upload_overlays(r, d, nullptr, -1); }
+
+void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator) {
+  upload_overlays(r.overlay, build_overlays(d, t, generator));
 }
 
 // ---------------------------------------------------------------- the frame
@@ -784,8 +761,6 @@ void upload_overlays(renderer_state& r, const growth_debug& d) {
 void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                 gl_framebuffer target, bool overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
-  r.counts = {};
-  const uint64_t uploads_before = r.uploads_total;
   resize_targets(r, width, height, rp.msaa);
   update_user_textures(r, rp);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
@@ -862,7 +837,6 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.sky, "u_sun_light", rp.sun_color * rp.sun_intensity);
     glBindVertexArray(r.empty_vao.id);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
   }
@@ -876,7 +850,6 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.ground, "u_sky_horizon", rp.sky_horizon);
     glBindVertexArray(r.empty_vao.id);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    ++r.counts.draw_calls;
   }
   if (r.has_tree) {
     if (lit_ok) {
@@ -912,17 +885,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       draw_bark(r);
     }
   }
-  if (overlays && !r.lines.failed && r.overlay_line_vertices + r.overlay_point_vertices > 0) {
-    glUseProgram(r.lines.id);
-    set_uniform(r.lines, "u_viewproj", viewproj);
-    glEnable(GL_PROGRAM_POINT_SIZE);
-    glDepthFunc(GL_LEQUAL);
-    glBindVertexArray(r.overlay_vao.id);
-    if (r.overlay_line_vertices) glDrawArrays(GL_LINES, 0, r.overlay_line_vertices);
-    if (r.overlay_point_vertices) glDrawArrays(GL_POINTS, r.overlay_line_vertices, r.overlay_point_vertices);
-    r.counts.draw_calls += (r.overlay_line_vertices > 0) + (r.overlay_point_vertices > 0);
-    glDepthFunc(GL_LESS);
-  }
+  if (overlays) draw_overlays(r.overlay, viewproj, r.step);
   if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.hdr_fbo.id);
@@ -954,7 +917,6 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.occlusion, "u_sun_dir", sun);
     set_uniform(r.occlusion, "u_sun_color", rp.sun_color);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
     mark(r.timings.occlusion);
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.rays_fbo.id);
@@ -968,7 +930,6 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.radial, "u_decay", rp.ray_decay);
     set_uniform(r.radial, "u_exposure", rp.ray_exposure);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
     mark(r.timings.blur);
   } else {
     r.timings.occlusion = r.timings.blur = 0;
@@ -987,12 +948,10 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   set_uniform(r.composite, "u_ray_strength", rays ? ray_fade : 0.0f);
   set_uniform(r.composite, "u_exposure", rp.exposure);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  ++r.counts.draw_calls;
   glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
   glBindVertexArray(0);
   mark(r.timings.composite);
-  r.counts.uploads = int(r.uploads_total - uploads_before);
   check_gl("draw frame");
 }
 

@@ -11,6 +11,7 @@
 
 #include "generators/skeleton.h"
 #include "render/gl/gl_util.h"
+#include "render/gl/overlays.h"
 #include "render/mesh.h"
 #include "render/render_params.h"
 
@@ -34,14 +35,6 @@ glm::vec3 sun_direction(const render_params& p);   // unit vector toward the sun
 
 struct pass_timings { double shadow = 0, lit = 0, occlusion = 0, blur = 0, composite = 0; };
 
-// What the last draw_frame issued, so that tests and `sylva bench --render` can check that leaves
-// stay one instanced call per pass and that an unchanged frame uploads nothing.
-struct frame_counts {
-  int draw_calls = 0;        // every glDraw* of the frame
-  int leaf_draw_calls = 0;   // of which leaf draws (one instanced call per pass, whatever the leaf count)
-  int uploads = 0;           // GL data uploads or storage (re)allocations made inside the frame
-};
-
 struct renderer_state {
   bool ok = false;
   std::string error;
@@ -64,12 +57,11 @@ struct renderer_state {
   glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
   bool has_tree = false;
   int overlay_line_vertices = 0, overlay_point_vertices = 0;
+  overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); .view is the user's choice
   // Measurements.
   bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
   pass_timings timings;
   size_t triangles_drawn = 0, leaves_drawn = 0;
-  frame_counts counts;                // of the last draw_frame
-  uint64_t uploads_total = 0;         // every glBufferData/SubData, glTexImage* and storage call so far
 };
 
 // Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.
@@ -82,6 +74,8 @@ void upload_tree(renderer_state& r, const tree_mesh& m);
 void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step);
 // Growth-debug overlays as lines and points (empty debug clears them).
 void upload_overlays(renderer_state& r, const growth_debug& d);
+// The same, split into kinds for the View toggles: `generator` is the tree_spec index, `t` the grown tree.
+void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator);
 
 // Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
 // `origin` places the image inside the target (the editor's viewport beside its panels).
