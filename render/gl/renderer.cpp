@@ -348,6 +348,7 @@ void upload_2d(gl_texture& t, const image& img, GLenum internal_format) {
 void upload_bark_textures(renderer_state& r, const image& color, const image& normal) {
   upload_2d(r.bark_tex, color, GL_SRGB8_ALPHA8);
   upload_2d(r.bark_normal_tex, normal, GL_RGB8);
+  r.uploads_total += 2;
 }
 
 // All leaf variants share one array texture, so every leaf is drawn in one instanced call.
@@ -363,6 +364,7 @@ void upload_leaf_textures(renderer_state& r, const std::vector<image>& leaves) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
   glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, w, h, count, 0, GL_RGBA, GL_UNSIGNED_BYTE, layers.data());
+  ++r.uploads_total;
   glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -452,6 +454,7 @@ void resize_targets(renderer_state& r, int w, int h, int samples) {
   r.occlusion_fbo = make_framebuffer(r.occlusion_tex, {});
   r.rays_tex = make_color_target(hw, hh, GL_RGBA16F);
   r.rays_fbo = make_framebuffer(r.rays_tex, {});
+  r.uploads_total += samples > 1 ? 6 : 4;
   check_gl("resize targets");
 }
 
@@ -462,6 +465,7 @@ void resize_shadow(renderer_state& r, int size) {
   delete_gl(r.shadow_tex);
   r.shadow_tex = make_depth_texture(size, size, true);
   r.shadow_fbo = make_framebuffer({}, r.shadow_tex);
+  ++r.uploads_total;
   check_gl("resize shadow map");
 }
 
@@ -521,9 +525,10 @@ void bind_tree_textures(const renderer_state& r) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-void draw_bark(const renderer_state& r) {
+void draw_bark(renderer_state& r) {
   uint32_t n = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)];
   if (!n) return;
+  ++r.counts.draw_calls;
   glBindVertexArray(r.bark_vao.id);
   glDrawElements(GL_TRIANGLES, GLsizei(n), GL_UNSIGNED_INT, nullptr);
 }
@@ -533,9 +538,11 @@ uint32_t leaf_count(const renderer_state& r) {
 }
 
 // All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
-void draw_leaves(const renderer_state& r) {
+void draw_leaves(renderer_state& r) {
   uint32_t n = leaf_count(r);
   if (!n) return;
+  ++r.counts.draw_calls;
+  ++r.counts.leaf_draw_calls;
   glBindVertexArray(r.leaf_vao.id);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
 }
@@ -712,6 +719,7 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
   glBufferData(GL_ARRAY_BUFFER, m.leaves.size() * sizeof(leaf_instance), m.leaves.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  r.uploads_total += 6;
 
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;
@@ -721,6 +729,7 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(8, r.radius_upload.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  ++r.uploads_total;
   r.steps = m.steps;
   r.step = m.steps;
   r.has_tree = !m.index.empty() || !m.leaves.empty();
@@ -746,6 +755,7 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
   }
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferSubData(GL_TEXTURE_BUFFER, 0, r.radius_upload.size() * sizeof(float), r.radius_upload.data());
+  ++r.uploads_total;
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   check_gl("set tree step");
 }
@@ -754,6 +764,7 @@ void upload_overlays(renderer_state& r, const growth_debug& d) { upload_overlays
 
 void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator) {
   upload_overlays(r.overlay, build_overlays(d, t, generator));
+  ++r.uploads_total;
 }
 
 // ---------------------------------------------------------------- the frame
@@ -761,6 +772,8 @@ void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skelet
 void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                 gl_framebuffer target, bool overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
+  r.counts = {};
+  const uint64_t uploads_before = r.uploads_total;
   resize_targets(r, width, height, rp.msaa);
   update_user_textures(r, rp);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
@@ -837,6 +850,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.sky, "u_sun_light", rp.sun_color * rp.sun_intensity);
     glBindVertexArray(r.empty_vao.id);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++r.counts.draw_calls;
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
   }
@@ -850,6 +864,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.ground, "u_sky_horizon", rp.sky_horizon);
     glBindVertexArray(r.empty_vao.id);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    ++r.counts.draw_calls;
   }
   if (r.has_tree) {
     if (lit_ok) {
@@ -885,7 +900,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       draw_bark(r);
     }
   }
-  if (overlays) draw_overlays(r.overlay, viewproj, r.step);
+  if (overlays) r.counts.draw_calls += draw_overlays(r.overlay, viewproj, r.step);
   if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.hdr_fbo.id);
@@ -917,6 +932,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.occlusion, "u_sun_dir", sun);
     set_uniform(r.occlusion, "u_sun_color", rp.sun_color);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++r.counts.draw_calls;
     mark(r.timings.occlusion);
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.rays_fbo.id);
@@ -930,6 +946,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.radial, "u_decay", rp.ray_decay);
     set_uniform(r.radial, "u_exposure", rp.ray_exposure);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++r.counts.draw_calls;
     mark(r.timings.blur);
   } else {
     r.timings.occlusion = r.timings.blur = 0;
@@ -948,10 +965,12 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   set_uniform(r.composite, "u_ray_strength", rays ? ray_fade : 0.0f);
   set_uniform(r.composite, "u_exposure", rp.exposure);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++r.counts.draw_calls;
   glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
   glBindVertexArray(0);
   mark(r.timings.composite);
+  r.counts.uploads = int(r.uploads_total - uploads_before);
   check_gl("draw frame");
 }
 

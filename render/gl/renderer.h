@@ -35,6 +35,14 @@ glm::vec3 sun_direction(const render_params& p);   // unit vector toward the sun
 
 struct pass_timings { double shadow = 0, lit = 0, occlusion = 0, blur = 0, composite = 0; };
 
+// What the last draw_frame issued, so that tests and `sylva bench --render` can check that leaves
+// stay one instanced call per pass and that an unchanged frame uploads nothing.
+struct frame_counts {
+  int draw_calls = 0;        // every glDraw* of the frame
+  int leaf_draw_calls = 0;   // of which leaf draws (one instanced call per pass, whatever the leaf count)
+  int uploads = 0;           // GL data uploads or storage (re)allocations made inside the frame
+};
+
 struct renderer_state {
   bool ok = false;
   std::string error;
@@ -62,6 +70,8 @@ struct renderer_state {
   bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
   pass_timings timings;
   size_t triangles_drawn = 0, leaves_drawn = 0;
+  frame_counts counts;                // of the last draw_frame
+  uint64_t uploads_total = 0;         // every glBufferData/SubData, glTexImage* and storage call so far
 };
 
 // Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.
