@@ -23,7 +23,9 @@
 #include <imgui_stdlib.h>
 
 #include "app/editor_generators.h"
+#include "app/export_dialog.h"
 #include "app/headless.h"
+#include "app/preset_browser.h"
 #include "app/worker.h"
 #include "render/export.h"
 #include "render/files.h"
@@ -62,8 +64,8 @@ struct editor_state {
   bool frame_pending = true;      // frame the camera on the next tree
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
-  bool open_picker = false, open_save_as = false, open_export = false, open_about = false;
-  std::string picker_path, save_as_path, export_path = "tree.glb";
+  bool open_picker = false, open_save_as = false, open_about = false;
+  std::string picker_path, save_as_path;
   std::vector<std::string> preset_files;
   // Status.
   std::string message;
@@ -72,6 +74,8 @@ struct editor_state {
   bool screenshot_requested = false;
   std::string screenshot_path;
   std::string texture_message;    // the renderer's last texture error, once shown
+  export_dialog_state exporter;   // app/export_dialog.h
+  preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
 };
 
@@ -254,6 +258,7 @@ void open_preset(editor_state& e, const std::string& path) {
   e.doc = loaded;
   e.undo_base = loaded;
   e.path = path;
+  note_saved_preset(e.browser, e.doc, path);
   e.frame_pending = true;
   std::string m = "Opened " + path;
   if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
@@ -264,21 +269,8 @@ void save_to(editor_state& e, const std::string& path) {
   std::string err = save_preset_file(e.doc, path);
   if (!err.empty()) return set_status(e, "Save failed: " + err, true);
   e.path = path;
+  note_saved_preset(e.browser, e.doc, path);
   set_status(e, "Saved " + path);
-}
-
-void export_to(editor_state& e, const std::string& path) {
-  if (!e.shown || !e.shown->skeleton) return set_status(e, "Nothing to export yet", true);
-  if (fs::path(path).extension() == ".png") {
-    std::string err = save_view_png(e.renderer, e.doc.render, e.camera, 1280, 720, path);
-    return set_status(e, err.empty() ? "Rendered " + path : "Export failed: " + err, !err.empty());
-  }
-  export_info info{generator_name(e.shown->spec), e.shown->spec.seed};
-  export_options o;
-  o.step = e.step < e.shown->skeleton->steps ? e.step : -1;
-  export_result r = export_tree(*e.shown->skeleton, e.shown->mesh, info, path, o);
-  set_status(e, r.error.empty() ? "Exported " + path + " (" + std::to_string(r.bytes / 1024) + " KiB)" : "Export failed: " + r.error,
-             !r.error.empty());
 }
 
 // ---------------------------------------------------------------- undo
@@ -306,12 +298,13 @@ void draw_menu(editor_state& e, GLFWwindow* window) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open preset...", "Ctrl+O")) e.open_picker = true;
+    ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
     if (ImGui::MenuItem("Save", "Ctrl+S")) {
       if (e.path.empty()) e.open_save_as = true;
       else save_to(e, e.path);
     }
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
-    if (ImGui::MenuItem("Export...")) e.open_export = true;
+    ImGui::MenuItem("Export...", nullptr, &e.exporter.open);
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -436,10 +429,6 @@ void draw_dialogs(editor_state& e) {
     ImGui::OpenPopup("Save preset as");
     e.open_save_as = false;
   }
-  if (e.open_export) {
-    ImGui::OpenPopup("Export");
-    e.open_export = false;
-  }
   if (e.open_about) {
     ImGui::OpenPopup("About Sylva");
     e.open_about = false;
@@ -483,19 +472,6 @@ void draw_dialogs(editor_state& e) {
     if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
-  if (ImGui::BeginPopupModal("Export", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::TextUnformatted("The extension picks the format: .glb .gltf .obj .json (skeleton) .png (render)");
-    ImGui::SetNextItemWidth(480);
-    ImGui::InputText("Path", &e.export_path);
-    ImGui::Text("Step: %d (the timeline's position)", e.step);
-    if (ImGui::Button("Export") && !e.export_path.empty()) {
-      export_to(e, e.export_path);
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
-  }
   if (ImGui::BeginPopupModal("About Sylva", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::TextUnformatted("Sylva: a tree designer.");
     ImGui::TextUnformatted("Left-drag orbits, right/middle-drag pans, the wheel zooms, F frames the tree.");
@@ -520,6 +496,7 @@ void handle_keys(editor_state& e, GLFWwindow* window) {
     else save_to(e, e.path);
   }
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) glfwSetWindowShouldClose(window, GLFW_TRUE);
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_pending = true;
   if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
@@ -618,7 +595,10 @@ int run_editor(const editor_options& o) {
     }
   }
   e->undo_base = e->doc;
+  note_saved_preset(e->browser, e->doc, e->path);
   e->show_overlays = o.overlays;
+  if (const char* s = std::getenv("SYLVA_SHOW_BROWSER")) e->browser.open = std::atoi(s) != 0;
+  if (const char* s = std::getenv("SYLVA_SHOW_EXPORT")) e->exporter.open = std::atoi(s) != 0;
 
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
@@ -662,6 +642,12 @@ int run_editor(const editor_options& o) {
 
   if (!init_renderer(e->renderer)) set_status(*e, e->renderer.error, true);
   start_worker(e->worker);
+  {
+    std::vector<std::string> folders;
+    for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
+    init_preset_browser(e->browser, folders);
+  }
+  std::string window_title;
 
   int exit_code = 0, frames_with_tree = 0;
   auto started = std::chrono::steady_clock::now();
@@ -691,6 +677,8 @@ int run_editor(const editor_options& o) {
     if (e->show_timeline) draw_timeline(*e, left, bottom, float(win_w) - left);
     draw_status(*e, float(win_h) - status_height, float(win_w));
     draw_dialogs(*e);
+    if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) open_preset(*e, p);
+    draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
     handle_keys(*e, window);
     handle_mouse(*e, int(bottom - top));
     record_undo(*e);
@@ -722,6 +710,9 @@ int run_editor(const editor_options& o) {
       e->frame_pending = false;
     }
 
+    update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
+    const std::string title = "Sylva - " + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
+    if (title != window_title) glfwSetWindowTitle(window, (window_title = title).c_str());
     ImGui::Render();
     // The 3D view fills the area between the panels (framebuffer pixels, origin bottom-left).
     const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1, sy = win_h > 0 ? float(fb_h) / float(win_h) : 1;
@@ -756,7 +747,9 @@ int run_editor(const editor_options& o) {
     glfwSwapBuffers(window);
   }
 
+  shutdown_export_dialog(e->exporter);
   stop_worker(e->worker);
+  shutdown_preset_browser(e->browser);
   destroy_renderer(e->renderer);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

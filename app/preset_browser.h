@@ -1,0 +1,68 @@
+// The editor's preset browser: a searchable, tag-filtered grid of cached offscreen thumbnails.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include "app/preset_library.h"
+#include "render/files.h"
+#include "render/gl/renderer.h"
+
+namespace sylva {
+
+inline constexpr int thumbnail_size = 128;
+
+// A preset grown and meshed off the main thread, waiting for the main thread to render it.
+struct thumbnail_job {
+  std::string key, png_path;
+  preset doc;
+  std::shared_ptr<const tree_skeleton> skeleton;
+  std::shared_ptr<const tree_mesh> mesh;
+  std::string error;
+};
+
+struct preset_browser_state {
+  bool open = false;
+  std::vector<std::string> folders;          // scanned in order; the user can add more
+  std::vector<preset_entry> entries;
+  std::vector<std::string> tags, selected_tags;
+  std::string query, folder_input, cache_dir;
+  bool rescan = true;
+  // Thumbnails: GL textures by key (main thread only); keys queued or given up on.
+  std::unordered_map<std::string, unsigned> textures;
+  std::set<std::string> pending, failed;
+  std::unique_ptr<renderer_state> renderer;  // a second renderer so the edited tree stays uploaded
+  bool renderer_failed = false;
+  // The growth thread for thumbnails missing from the cache (CPU only; GL stays on the main thread).
+  std::thread thread;
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::deque<thumbnail_job> todo, done;
+  bool quit = false;
+  std::atomic<uint32_t> cancel{0};
+  // The preset as last opened or saved: the edited document differs from it when it has unsaved changes.
+  preset baseline;
+  std::string baseline_path;
+};
+
+// `folders`: where presets live; missing ones are skipped. Starts the thumbnail thread.
+void init_preset_browser(preset_browser_state& b, const std::vector<std::string>& folders);
+// Stops the thread and frees the textures (needs the GL context).
+void shutdown_preset_browser(preset_browser_state& b);
+// Records the document as it was opened or saved, for the unsaved-changes mark.
+void note_saved_preset(preset_browser_state& b, const preset& doc, const std::string& path);
+bool has_unsaved_changes(const preset_browser_state& b, const preset& doc);
+// Loads cached thumbnails and renders at most one new one (main thread, between frames).
+void update_thumbnails(preset_browser_state& b);
+// Draws the browser window when open; returns the path of a preset the user clicked, or "".
+std::string draw_preset_browser(preset_browser_state& b, const preset& doc);
+
+}  // namespace sylva
