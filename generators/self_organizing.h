@@ -18,7 +18,7 @@ enum class so_placement : int { grid = 0, random = 1, explicit_positions = 2 };
 inline constexpr const char* so_placement_names[] = {"grid", "random", "explicit", nullptr};
 
 struct self_organizing_params {
-  int steps = 23;                     // about 20,000 internodes with the defaults
+  int steps = 27;                     // about 20,000 internodes with the defaults
   float internode_length = 0.1f;      // metres
   so_environment environment = so_environment::shadow;
   // Shadow propagation (Palubicki 2009 §4.2); seed 000's values.
@@ -36,12 +36,12 @@ struct self_organizing_params {
   float envelope_bottom = 0;          // metres above the root (buds outside see no markers)
   float envelope_top = 8;
   // Light to resource (seed 001 eqs. 1–2).
-  float sigma = 0;
-  float bm = 0, be = 1.3f;
-  int shed_min_buds = 0;              // N_min; 0 disables shedding
+  float sigma = 0.5f;
+  float bm = 0.02f, be = 1.3f;
+  int shed_min_buds = 20;             // N_min; 0 disables shedding
   // Allocation.
   so_allocation allocation = so_allocation::borchert_honda;
-  float alpha = 2, lambda = 0.5f;
+  float alpha = 2, lambda = 0.55f;
   float w_max = 1.0f, w_min = 0.006f, kappa = 0.5f;
   int terminal_priority_steps = 8;
   // Shoots.
