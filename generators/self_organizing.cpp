@@ -155,17 +155,30 @@ struct so_state {
   std::vector<float> tips;           // living tips supported (pipe model: (r/r₀)^n)
   std::vector<int32_t> buds;         // living buds supported
   std::vector<glm::vec3> opt;        // markers only, 2 per node: direction towards the bud's markers
+  std::vector<glm::ivec3> voxel;     // shadow only: each node's voxel, found once (nodes never move)
   std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
   std::vector<glm::vec3> cone_offset; // the same in metres
   int cone_radius = 0;
   std::vector<const float*> near_chunks;
   float cos_theta = 0, reach = 0;    // perception cone, reach in metres
   float l = 0.1f;
+  // k^e for whole k, filled on first use: tip counts and bud ages repeat every step, and std::pow
+  // per node and step was ~7% of a default tree's growth. Same calls, so the same bits.
+  std::vector<float> tips_pow, age_pow;
 
   so_state(const self_organizing_params& pp, tree_skeleton& tt, rng& rr) : p(pp), t(tt), r(rr) {}
 
+  static float whole_pow(std::vector<float>& memo, float k, float e) {
+    constexpr size_t limit = size_t(1) << 22;
+    if (!(k >= 0 && k < float(limit)) || float(size_t(k)) != k) return std::pow(k, e);
+    const size_t i = size_t(k);
+    for (size_t j = memo.size(); j <= i; ++j) memo.push_back(std::pow(float(j), e));
+    return memo[i];
+  }
+
   int32_t add_node(const glm::vec3& pos, int32_t parent, uint16_t born, uint8_t order, const glm::vec3& s) {
     const int32_t i = t.add_node(pos, parent, 0, born, order);
+    if (p.environment == so_environment::shadow) voxel.push_back(voxel_of(grid, pos));
     side.push_back(s);
     main.push_back(bud_here);
     lat.push_back(bud_here);
@@ -189,8 +202,7 @@ struct so_state {
   // Palubicki 2009 §4.2: the direction to the least-shadowed voxel in the perception cone. Ties go
   // to the voxel closest to the default direction, then to the seeded RNG: seed 000's trees leaned
   // because ties took the first voxel found.
-  glm::vec3 optimal_shadow_direction(const glm::vec3& pos, const glm::vec3& def) {
-    const glm::ivec3 v0 = voxel_of(grid, pos);
+  glm::vec3 optimal_shadow_direction(const glm::vec3& pos, const glm::ivec3& v0, const glm::vec3& def) {
     // The few chunks around the bud, looked up once rather than once per voxel.
     const glm::ivec3 c0 = (v0 - cone_radius) >> shadow_grid::chunk_bits;
     const glm::ivec3 c1 = (v0 + cone_radius) >> shadow_grid::chunk_bits;
@@ -237,10 +249,10 @@ struct so_state {
     for (size_t i = 0; i < n; ++i) {
       if (t.died[i] != never_died || (main[i] != bud_here && lat[i] != bud_here)) continue;
       const float age = float(step - t.born[i]);  // ≥ 1: buds are first seen the step after they form
-      const float e = p.sigma == 0 ? 1.0f : std::pow(age, p.sigma);
+      const float e = p.sigma == 0 ? 1.0f : whole_pow(age_pow, age, p.sigma);
       if (shadow) {
         // Palubicki 2009 §4.2: Q = max(C − s + a, 0); both buds of a node share its voxel.
-        const float s = shadow_at(grid, voxel_of(grid, t.position[i]));
+        const float s = shadow_at(grid, voxel[i]);
         float light = std::max(p.full_exposure - s + p.shadow_a, 0.0f);
         light = e == 1.0f ? light : std::pow(light, e);
         q[2 * i] = main[i] == bud_here ? light : 0.0f;
@@ -302,7 +314,7 @@ struct so_state {
       buds[i] = (m >= 0 ? buds[m] : m == bud_here) + (la >= 0 ? buds[la] : la == bud_here);
       // Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): upkeep BM·(r/r₀)^BE, where the pipe model
       // gives (r/r₀)^n = number of tips, so (r/r₀)^BE = tips^(BE/n).
-      const float upkeep = p.bm > 0 ? p.bm * std::pow(tips[i], be_over_n) : 0.0f;
+      const float upkeep = p.bm > 0 ? p.bm * whole_pow(tips_pow, tips[i], be_over_n) : 0.0f;
       flow[i] = qm + ql - upkeep;
     }
   }
@@ -320,7 +332,7 @@ struct so_state {
       if (main[par] == int32_t(i)) main[par] = no_bud;
       if (lat[par] == int32_t(i)) lat[par] = no_bud;
       if (p.environment == so_environment::shadow)
-        add_shadow_pyramid(grid, voxel_of(grid, t.position[i]), p.shadow_a, p.shadow_b, p.q_max, -1);
+        add_shadow_pyramid(grid, voxel[i], p.shadow_a, p.shadow_b, p.q_max, -1);
     }
     return any;
   }
@@ -445,7 +457,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   t.tree_count = int(roots.size());
   const bool shadow = p.environment == so_environment::shadow;
   if (shadow) {
-    for (int32_t i : roots) add_shadow_pyramid(st.grid, voxel_of(st.grid, t.position[i]), p.shadow_a, p.shadow_b, p.q_max);
+    for (int32_t i : roots) add_shadow_pyramid(st.grid, st.voxel[i], p.shadow_a, p.shadow_b, p.q_max);
   } else {
     // Markers fill an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1).
     const float bottom = std::min(p.envelope_bottom, p.envelope_top), top = std::max(p.envelope_bottom, p.envelope_top);
@@ -494,7 +506,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[2 * i + k], def);
         // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
-        const glm::vec3 optimal = shadow ? st.optimal_shadow_direction(t.position[i], def) : marker_dir;
+        const glm::vec3 optimal = shadow ? st.optimal_shadow_direction(t.position[i], st.voxel[i], def) : marker_dir;
         const glm::vec3 dir = safe_normalize(p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism, def);
         for (int m = 0; m < plan.metamers; ++m) {
           if (int64_t(t.size()) >= p.node_cap) { rep.hit_node_cap = true; break; }
@@ -519,7 +531,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     }
     // Grow the environment with the new nodes.
     for (int32_t i : grown) {
-      if (shadow) add_shadow_pyramid(st.grid, voxel_of(st.grid, t.position[i]), p.shadow_a, p.shadow_b, p.q_max);
+      if (shadow) add_shadow_pyramid(st.grid, st.voxel[i], p.shadow_a, p.shadow_b, p.q_max);
       else st.remove_markers_near(t.position[i]);
     }
     step = T;
