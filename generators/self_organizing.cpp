@@ -218,9 +218,11 @@ struct so_state {
     int ties = 0;
     for (size_t k = 0; k < cone.size(); ++k) {
       const glm::vec3 d = base + cone_offset[k];
-      const float c = glm::dot(d, def), len2 = glm::dot(d, d);
+      const float c = glm::dot(d, def);
+      if (cos_theta >= 0 && c <= 0) continue;   // behind the bud: half the offsets, rejected before |d|
+      const float len2 = glm::dot(d, d);
       if (len2 > reach2 || len2 < 1e-12f) continue;
-      if (cos_theta >= 0 ? (c <= 0 || c * c < cos2 * len2) : c < cos_theta * std::sqrt(len2)) continue;
+      if (cos_theta >= 0 ? c * c < cos2 * len2 : c < cos_theta * std::sqrt(len2)) continue;
       const glm::ivec3 v = v0 + cone[k];
       const glm::ivec3 cc = (v >> shadow_grid::chunk_bits) - c0;
       const float* chunk = near_chunks[(cc.z * cn.y + cc.y) * cn.x + cc.x];

@@ -21,6 +21,19 @@ size_t slot_of(uint64_t key, size_t mask) {
   return size_t(key) & mask;
 }
 
+// 1 inside [a, b] of an 8-voxel chunk row, 0 outside: ds times this is the row's increment.
+struct row_mask_table {
+  float m[shadow_grid::chunk_side][shadow_grid::chunk_side][shadow_grid::chunk_side];
+};
+constexpr row_mask_table make_row_masks() {
+  row_mask_table t{};
+  for (int a = 0; a < shadow_grid::chunk_side; ++a)
+    for (int b = 0; b < shadow_grid::chunk_side; ++b)
+      for (int k = 0; k < shadow_grid::chunk_side; ++k) t.m[a][b][k] = k >= a && k <= b ? 1.0f : 0.0f;
+  return t;
+}
+constexpr row_mask_table row_masks = make_row_masks();
+
 glm::ivec3 chunk_of_voxel(const glm::ivec3& v) {
   return {v.x >> shadow_grid::chunk_bits, v.y >> shadow_grid::chunk_bits, v.z >> shadow_grid::chunk_bits};
 }
@@ -110,14 +123,15 @@ void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, i
     const int x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
     // Visit the layer chunk by chunk: one hash lookup per chunk, not per voxel. This loop is the
     // largest cost of a default tree's growth, so each chunk row takes one fixed 8-wide add (two
-    // SIMD adds) of ds inside [x0, x1] and +0 outside. Adding +0 changes no value a cell can hold:
-    // cells start at +0 and a sum is -0 only when both terms are, so no cell is ever -0.
+    // SIMD adds) of ds inside [x0, x1] and ds·0 = ±0 outside. Adding ±0 changes no value a cell can
+    // hold: cells start at +0 and a sum is -0 only when both terms are, so no cell is ever -0.
     for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
       const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
       for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {   // z then x: chunks are created in that order
         const int xa = std::max(x0, cx * side) & m, xb = std::min(x1, cx * side + m) & m;
+        const float* mask = row_masks.m[xa][xb];
         float add[side];
-        for (int k = 0; k < side; ++k) add[k] = k >= xa && k <= xb ? ds : 0.0f;
+        for (int k = 0; k < side; ++k) add[k] = ds * mask[k];
         float* row = get_chunk(g, {cx, y >> bits, cz}) + cell_index({0, y, za});
         for (int z = za; z <= zb; ++z, row += side)
           for (int k = 0; k < side; ++k) row[k] += add[k];
