@@ -266,17 +266,6 @@ void main() {
 }
 )";
 
-const char* lines_vs = R"(#version 330 core
-layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_color;
-uniform mat4 u_viewproj;
-out vec3 v_color;
-void main() { v_color = a_color; gl_Position = u_viewproj * vec4(a_position, 1.0); gl_PointSize = 4.0; }
-)";
-const char* lines_fs = R"(#version 330 core
-in vec3 v_color; out vec4 o_color;
-void main() { o_color = vec4(v_color, 1.0); }
-)";
-
 // Used when a lit program fails to compile: flat colour, no lighting, never a crash.
 const char* fallback_fs = R"(#version 330 core
 uniform vec3 u_color; out vec4 o_color;
@@ -600,7 +589,6 @@ bool init_renderer(renderer_state& r) {
   r.occlusion = compile_program("occlusion", fullscreen_vs, occ_fs.c_str());
   r.radial = compile_program("radial blur", fullscreen_vs, radial_fs);
   r.composite = compile_program("composite", fullscreen_vs, composite_fs);
-  r.lines = compile_program("lines", lines_vs, lines_fs);
   init_overlays(r.overlay);
   r.fallback = compile_program("fallback", bark_vs, fallback_fs);
   if (r.composite.failed || r.fallback.failed) {
@@ -613,9 +601,8 @@ bool init_renderer(renderer_state& r) {
   glGenVertexArrays(1, &r.empty_vao.id);
   glGenVertexArrays(1, &r.bark_vao.id);
   glGenVertexArrays(1, &r.leaf_vao.id);
-  glGenVertexArrays(1, &r.overlay_vao.id);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
-                       &r.leaf_instances, &r.node_radius, &r.overlay_vertices})
+                       &r.leaf_instances, &r.node_radius})
     glGenBuffers(1, &b->id);
 
   // Bark: one buffer per attribute, matching tree_mesh's arrays so upload is a straight copy.
@@ -656,13 +643,6 @@ bool init_renderer(renderer_state& r) {
   glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
   for (int i = 1; i <= 5; ++i) glVertexAttribDivisor(i, 1);
 
-  // Overlays: interleaved position + colour.
-  glBindVertexArray(r.overlay_vao.id);
-  glBindBuffer(GL_ARRAY_BUFFER, r.overlay_vertices.id);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, nullptr);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (void*)12);
   glBindVertexArray(0);
 
   // Per-node radii for scrubbing, read in the vertex shader through a buffer texture.
@@ -685,11 +665,11 @@ bool init_renderer(renderer_state& r) {
 void destroy_renderer(renderer_state& r) {
   destroy_overlays(r.overlay);
   for (gl_program* p : {&r.bark, &r.bark_depth, &r.leaf, &r.leaf_depth, &r.sky, &r.ground, &r.occlusion, &r.radial,
-                        &r.composite, &r.lines, &r.fallback})
+                        &r.composite, &r.fallback})
     delete_gl(*p);
-  for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao, &r.overlay_vao}) delete_gl(*v);
+  for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
-                       &r.leaf_instances, &r.node_radius, &r.overlay_vertices})
+                       &r.leaf_instances, &r.node_radius})
     delete_gl(*b);
   for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.leaf_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth,
                         &r.occlusion_tex, &r.rays_tex})
@@ -760,7 +740,6 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
   check_gl("set tree step");
 }
 
-void upload_overlays(renderer_state& r, const growth_debug& d) { upload_overlays(r, d, nullptr, -1); }
 
 void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator) {
   upload_overlays(r.overlay, build_overlays(d, t, generator));

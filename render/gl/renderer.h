@@ -46,10 +46,9 @@ struct frame_counts {
 struct renderer_state {
   bool ok = false;
   std::string error;
-  gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, composite, lines, fallback;
-  gl_vertex_array bark_vao, leaf_vao, empty_vao, overlay_vao;
-  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius,
-      overlay_vertices;
+  gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, composite, fallback;
+  gl_vertex_array bark_vao, leaf_vao, empty_vao;
+  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius;
   gl_texture node_radius_tex, bark_tex, bark_normal_tex, leaf_tex, shadow_tex, hdr_color, hdr_depth, occlusion_tex, rays_tex;
   gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, msaa_fbo;
   gl_renderbuffer msaa_color, msaa_depth;   // multisampled lit pass, resolved into hdr_color/hdr_depth
@@ -64,7 +63,6 @@ struct renderer_state {
   int steps = 0, step = 0, node_count = 0;
   glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
   bool has_tree = false;
-  int overlay_line_vertices = 0, overlay_point_vertices = 0;
   overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); .view is the user's choice
   // Measurements.
   bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
@@ -82,9 +80,8 @@ void destroy_renderer(renderer_state& r);
 void upload_tree(renderer_state& r, const tree_mesh& m);
 // Shows the tree as it stood at `step`: draw counts plus one small per-node radius upload.
 void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step);
-// Growth-debug overlays as lines and points (empty debug clears them).
-void upload_overlays(renderer_state& r, const growth_debug& d);
-// The same, split into kinds for the View toggles: `generator` is the tree_spec index, `t` the grown tree.
+// Growth-debug overlays, split into kinds for the View toggles: `generator` is the tree_spec index,
+// `t` the grown tree (empty debug clears them).
 void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator);
 
 // Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
