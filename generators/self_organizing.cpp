@@ -158,6 +158,8 @@ struct so_state {
   std::vector<glm::ivec3> voxel;     // shadow only: each node's voxel, found once (nodes never move)
   std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
   std::vector<glm::vec3> cone_offset; // the same in metres
+  std::vector<float> cone_x, cone_y, cone_z;   // cone_offset by component, for the vectorised cone test
+  std::vector<uint8_t> in_cone;               // scratch: which offsets pass the cone test
   int cone_radius = 0;
   std::vector<const float*> near_chunks;
   float cos_theta = 0, reach = 0;    // perception cone, reach in metres
@@ -216,13 +218,33 @@ struct so_state {
     float best_s = 0, best_dot = -2;
     glm::vec3 best = def;
     int ties = 0;
-    for (size_t k = 0; k < cone.size(); ++k) {
+    // Pass 1, branch-free so that it vectorises: most offsets lie outside the cone, and testing them
+    // one by one was a quarter of a default tree's growth. Same operations in the same order as
+    // glm::dot, so the same verdicts, NaN included (each test is the negation of a rejection).
+    const size_t n = cone.size();
+    in_cone.resize(n);
+    if (cos_theta >= 0) {
+      const float bx = base.x, by = base.y, bz = base.z, ex = def.x, ey = def.y, ez = def.z;
+      const float* ox = cone_x.data();
+      const float* oy = cone_y.data();
+      const float* oz = cone_z.data();
+      uint8_t* pass = in_cone.data();
+      for (size_t k = 0; k < n; ++k) {
+        const float dx = bx + ox[k], dy = by + oy[k], dz = bz + oz[k];
+        const float c = dx * ex + dy * ey + dz * ez, len2 = dx * dx + dy * dy + dz * dz;
+        pass[k] = uint8_t(!(c <= 0) & !(len2 > reach2) & !(len2 < 1e-12f) & !(c * c < cos2 * len2));
+      }
+    } else {
+      for (size_t k = 0; k < n; ++k) {
+        const glm::vec3 d = base + cone_offset[k];
+        const float c = glm::dot(d, def), len2 = glm::dot(d, d);
+        in_cone[k] = !(len2 > reach2 || len2 < 1e-12f) && !(c < cos_theta * std::sqrt(len2));
+      }
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (!in_cone[k]) continue;
       const glm::vec3 d = base + cone_offset[k];
-      const float c = glm::dot(d, def);
-      if (cos_theta >= 0 && c <= 0) continue;   // behind the bud: half the offsets, rejected before |d|
-      const float len2 = glm::dot(d, d);
-      if (len2 > reach2 || len2 < 1e-12f) continue;
-      if (cos_theta >= 0 ? c * c < cos2 * len2 : c < cos_theta * std::sqrt(len2)) continue;
+      const float c = glm::dot(d, def), len2 = glm::dot(d, d);
       const glm::ivec3 v = v0 + cone[k];
       const glm::ivec3 cc = (v >> shadow_grid::chunk_bits) - c0;
       const float* chunk = near_chunks[(cc.z * cn.y + cc.y) * cn.x + cc.x];
@@ -441,6 +463,9 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
           if (float(x * x + y * y + z * z) <= rv * rv) {
             st.cone.push_back({x, y, z});
             st.cone_offset.push_back(glm::vec3(x, y, z) * st.grid.voxel_size);
+            st.cone_x.push_back(st.cone_offset.back().x);
+            st.cone_y.push_back(st.cone_offset.back().y);
+            st.cone_z.push_back(st.cone_offset.back().z);
           }
     st.cone_radius = R;
   }
