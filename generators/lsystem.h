@@ -11,6 +11,9 @@ namespace sylva {
 
 enum class lsystem_mode : int { honda = 0, text = 1 };
 inline constexpr const char* lsystem_mode_names[] = {"honda", "text", nullptr};
+// Where text-mode branch widths come from: the turtle's !(w) / #width, or the pipe model.
+enum class lsystem_widths : int { turtle = 0, pipe = 1 };
+inline constexpr const char* lsystem_widths_names[] = {"turtle", "pipe", nullptr};
 
 struct lsystem_params {
   lsystem_mode mode = lsystem_mode::honda;
@@ -29,6 +32,10 @@ struct lsystem_params {
       "// ABOP Fig. 1.24d\n#define delta 20 // [0,90] branching angle\n#angle delta\n#axiom X\n"
       "X -> F[+X]F[-X]+X\nF -> FF\n";
   float leaf_size = 0.08f;  // metres, for L without a parameter
+  // Most textbook systems draw every F at one width; the pipe model instead thickens each segment
+  // by what it carries, which is what makes them read as plants.
+  lsystem_widths widths = lsystem_widths::turtle;
+  float pipe_exponent = 2.0f, tip_radius = 0.004f;
   int node_cap = 2000000;
   int module_cap = 4000000;
   bool operator==(const lsystem_params&) const = default;
@@ -54,6 +61,9 @@ void visit_params(P& p, V&& v) {
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
   v(p.source, param_info{"source", "L-system", "", 0, 0, "The L-system text (text mode)", param_multiline, "L-system text"});
   v(p.leaf_size, param_info{"turtle_leaf_size", "Leaf size", "", 0.005f, 1, "Blade length in metres of a leaf placed by L (L(s) gives s model units instead)", param_log});
+  v(p.widths, param_info{"widths", "Widths", "", 0, 1, "turtle: widths from !(w) and #width; pipe: the pipe model r^n = Σ r_i^n from thin tips (Shinozaki 1964)", 0, nullptr, lsystem_widths_names});
+  v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model exponent (pipe widths): 2 keeps the cross-section area, larger gives thinner trunks"});
+  v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of the youngest segments in metres (pipe widths)", param_log});
   v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
 }
 
@@ -62,7 +72,8 @@ inline bool param_relevant(const lsystem_params& p, const void* field, const par
   const bool honda_only = field == &p.s0 || field == &p.w0 || field == &p.min_length || field == &p.alpha1 ||
                           field == &p.alpha2 || field == &p.phi1 || field == &p.phi2 || field == &p.r1 ||
                           field == &p.r2 || field == &p.q || field == &p.e;
-  const bool text_only = field == &p.source || field == &p.leaf_size || field == &p.module_cap;
+  const bool text_only = field == &p.source || field == &p.leaf_size || field == &p.module_cap ||
+                         field == &p.widths || field == &p.pipe_exponent || field == &p.tip_radius;
   if (honda_only) return p.mode == lsystem_mode::honda;
   if (text_only) return p.mode == lsystem_mode::text;
   return true;

@@ -23,7 +23,8 @@ std::vector<std::string> hidden_keys(const P& p) {
 TEST(EditorLogic, LsystemHondaModeHidesTextSettings) {
   lsystem_params p;
   p.mode = lsystem_mode::honda;
-  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"source", "turtle_leaf_size", "module_cap"}));
+  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"source", "turtle_leaf_size", "widths", "pipe_exponent",
+                                                      "tip_radius", "module_cap"}));
 }
 
 TEST(EditorLogic, LsystemTextModeHidesHondaSliders) {

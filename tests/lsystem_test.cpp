@@ -402,3 +402,30 @@ TEST(LSystem, RandIsSeeded) {
   EXPECT_EQ(a.params, derive_text(src, 1, 5).params);
   EXPECT_NE(a.params, derive_text(src, 1, 6).params);
 }
+
+TEST(LSystemWidths, PipeWidthsThickenFromTheTips) {
+  // Fig. 1.24a-like system with n = 1: F -> F[+F]F[-F]F gives one axis of three F with two
+  // one-F branches, i.e. three tips. With the pipe model the first segment carries all three:
+  // r = r0 * 3^(1/n).
+  lsystem_params p;
+  p.mode = lsystem_mode::text;
+  p.source = "#angle 25\n#axiom F\nF -> F[+F]F[-F]F\n";
+  p.derivations = 1;
+  p.widths = lsystem_widths::pipe;
+  p.pipe_exponent = 2;
+  p.tip_radius = 0.01f;
+  tree_skeleton t = grow_lsystem(p, {});
+  ASSERT_EQ(validate_skeleton(t), "");
+  ASSERT_EQ(t.size(), 6u);  // root + five F
+  int tips = 0;
+  std::vector<int> children(t.size(), 0);
+  for (size_t i = 1; i < t.size(); ++i) ++children[t.parent[i]];
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (children[i] == 0) {
+      ++tips;
+      EXPECT_FLOAT_EQ(t.radius[i], 0.01f);
+    }
+  }
+  EXPECT_EQ(tips, 3);
+  EXPECT_NEAR(t.radius[0], 0.01f * std::sqrt(3.0f), 1e-6f);
+}
