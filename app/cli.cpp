@@ -16,7 +16,6 @@
 #include <vector>
 
 #include <epoxy/gl.h>
-#include <GLFW/glfw3.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -485,32 +484,8 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
   const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
   out.nodes = t.size();
 
-  GLFWwindow* window = nullptr;
-  std::string why;
-  for (int attempt = 0; attempt < 2 && !window; ++attempt) {   // a shared display may refuse once
-    if (attempt) ::usleep(200 * 1000);
-    if (!glfwInit()) {
-      const char* desc = nullptr;
-      glfwGetError(&desc);
-      why = std::string("cannot initialise GLFW: ") + (desc ? desc : "no reason given");
-      continue;
-    }
-    glfwDefaultWindowHints();
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, "sylva bench", nullptr, nullptr);
-    if (!window) {
-      const char* desc = nullptr;
-      glfwGetError(&desc);
-      why = std::string("cannot create an OpenGL 3.3 core context: ") + (desc ? desc : "no reason given");
-      glfwTerminate();
-    }
-  }
-  if (!window) return why;
-  glfwMakeContextCurrent(window);
+  hidden_gl_context context;
+  if (std::string why = open_hidden_gl_context(context, "sylva bench", false); !why.empty()) return why;
 
   std::string error;
   renderer_state r;
@@ -568,18 +543,14 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
   delete_gl(target);
   delete_gl(color);
   destroy_renderer(r);
-  glfwDestroyWindow(window);
-  glfwTerminate();
+  close_hidden_gl_context(context);
   return error;
 }
 
 int run_bench_render(std::vector<std::string> paths, int repeat, bool as_json, int width, int height,
                      bool preset_light) {
   const char* cmd = "bench --render";
-  const char* display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((!display || !*display) && (!wayland || !*wayland))
-    return fail(cmd, "rendering needs a display: DISPLAY is not set (run under xvfb-run -a)");
+if (std::string why = display_missing("rendering"); !why.empty()) return fail(cmd, why);
   if (paths.empty()) {   // the default presets: Honda's tree a and one preset per other generator
     for (const char* name : {"lsystem_honda_a", "self_organizing_default", "space_colonization_seed_cube",
                              "guiding_vectors_default"})

@@ -63,16 +63,56 @@ std::string save_view_png(renderer_state& r, const render_params& rp, const orbi
   return error;
 }
 
+std::string display_missing(const char* what) {
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!display || !*display) && (!wayland || !*wayland))
+    return std::string(what) + " needs a display: DISPLAY is not set (run under xvfb-run -a)";
+  return "";
+}
+
+std::string open_hidden_gl_context(hidden_gl_context& c, const char* title, bool debug) {
+  std::string why;
+  GLFWwindow* window = nullptr;
+  for (int attempt = 0; attempt < 2 && !window; ++attempt) {
+    if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (!glfwInit()) {
+      why = glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
+      continue;
+    }
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    if (debug) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+    window = glfwCreateWindow(64, 64, title, nullptr, nullptr);
+    if (!window) {
+      why = glfw_error("cannot create an OpenGL 3.3 core context");
+      glfwTerminate();
+    }
+  }
+  if (!window) return why;
+  glfwMakeContextCurrent(window);
+  c.window = window;
+  return "";
+}
+
+void close_hidden_gl_context(hidden_gl_context& c) {
+  if (!c.window) return;
+  glfwDestroyWindow(static_cast<GLFWwindow*>(c.window));
+  glfwTerminate();
+  c.window = nullptr;
+}
+
 std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height) {
   return render_preset_png(p, step, path, width, height, nullptr);
 }
 
 std::string render_preset_png(const preset& p, int step, const std::string& path, int width, int height,
                               headless_stats* stats) {
-  const char* display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((!display || !*display) && (!wayland || !*wayland))
-    return "PNG rendering needs a display: DISPLAY is not set (run under xvfb-run -a)";
+  if (std::string why = display_missing("PNG rendering"); !why.empty()) return why;
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
     return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 16..8192";
 
@@ -86,30 +126,8 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
   tree_mesh mesh = mesh_tree(tree, p.mesh, p.spec.seed);
   const double mesh_ms = ms_since(t0);
 
-  // One retry: a display shared with other clients now and then refuses a connection.
-  GLFWwindow* window = nullptr;
-  std::string why;
-  for (int attempt = 0; attempt < 2 && !window; ++attempt) {
-    if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    if (!glfwInit()) {
-      why = glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
-      continue;
-    }
-    glfwDefaultWindowHints();
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, "sylva render", nullptr, nullptr);
-    if (!window) {
-      why = glfw_error("cannot create an OpenGL 3.3 core context");
-      glfwTerminate();
-    }
-  }
-  if (!window) return why;
-  glfwMakeContextCurrent(window);
+  hidden_gl_context context;
+  if (std::string why = open_hidden_gl_context(context, "sylva render", true); !why.empty()) return why;
   install_gl_debug_output();
   const int errors_before = gl_error_count();
 
@@ -144,8 +162,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
     }
   }
   destroy_renderer(r);
-  glfwDestroyWindow(window);
-  glfwTerminate();
+  close_hidden_gl_context(context);
   return error;
 }
 

@@ -10,6 +10,18 @@ namespace sylva {
 struct renderer_state;
 struct orbit_camera;
 
+// A hidden window whose OpenGL 3.3 core context is current, for rendering without the editor.
+struct hidden_gl_context {
+  void* window = nullptr;   // GLFWwindow*
+  bool ok() const { return window != nullptr; }
+};
+// "" when a display is named by DISPLAY or WAYLAND_DISPLAY, else the reason (for `what` needs).
+std::string display_missing(const char* what);
+// Opens the context (one retry: a display shared with other clients now and then refuses a
+// connection). Returns "" or the reason; `debug` asks for a debug context.
+std::string open_hidden_gl_context(hidden_gl_context& c, const char* title, bool debug);
+void close_hidden_gl_context(hidden_gl_context& c);
+
 struct headless_stats {
   bool measure_passes = false;   // input: time each pass (glFinish between passes; benchmarks only)
   double shadow_ms = 0, lit_ms = 0, occlusion_ms = 0, blur_ms = 0, composite_ms = 0;
