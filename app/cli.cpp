@@ -504,14 +504,7 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
       rp.shadows = rp.god_rays = true;
     }
     // The image goes to an off-screen RGBA8 target of the asked size, as for `export x.png`.
-    glGenTextures(1, &color.id);
-    glBindTexture(GL_TEXTURE_2D, color.id);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glGenFramebuffers(1, &target.id);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.id);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the image target";
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    error = create_color_target(width, height, color, target);
     const int errors_before = gl_error_count();
     std::vector<double> shadow, lit, occlusion, blur, composite, frame;
     r.measure_passes = true;

@@ -31,17 +31,9 @@ std::string save_view_png(renderer_state& r, const render_params& rp, const orbi
                           const std::string& path, double* frame_ms) {
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
     return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 16..8192";
-  // An off-screen RGBA8 target: hidden windows have no reliable back buffer to read.
   gl_texture color;
   gl_framebuffer fbo;
-  glGenTextures(1, &color.id);
-  glBindTexture(GL_TEXTURE_2D, color.id);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glGenFramebuffers(1, &fbo.id);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-  std::string error;
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the image target";
+  std::string error = create_color_target(width, height, color, fbo);
   if (error.empty()) {
     auto t0 = std::chrono::steady_clock::now();
     draw_frame(r, rp, cam, width, height, fbo);

@@ -140,6 +140,18 @@ void set_uniform(const gl_program& p, const char* name, const glm::mat4& v) {
   glUniformMatrix4fv(glGetUniformLocation(p.id, name), 1, GL_FALSE, glm::value_ptr(v));
 }
 
+std::string create_color_target(int width, int height, gl_texture& color, gl_framebuffer& fbo) {
+  glGenTextures(1, &color.id);
+  glBindTexture(GL_TEXTURE_2D, color.id);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glGenFramebuffers(1, &fbo.id);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return complete ? "" : "cannot create the image target";
+}
+
 std::string save_png_rgba(const std::string& path, int width, int height, const unsigned char* rgba) {
   if (width <= 0 || height <= 0 || !rgba) return "empty image";
   if (!stbi_write_png(path.c_str(), width, height, 4, rgba, width * 4))

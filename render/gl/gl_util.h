@@ -48,6 +48,10 @@ void set_uniform(const gl_program& p, const char* name, const glm::vec3& v);
 void set_uniform(const gl_program& p, const char* name, const glm::vec4& v);
 void set_uniform(const gl_program& p, const char* name, const glm::mat4& v);
 
+// An off-screen RGBA8 colour target of the given size (hidden windows have no reliable back buffer
+// to read). Returns "" or the error; the framebuffer is left unbound.
+std::string create_color_target(int width, int height, gl_texture& color, gl_framebuffer& fbo);
+
 // PNG files through stb (compiled privately here so no other target's stb clashes with ours).
 // Rows are top to bottom, RGBA8. Returns "" or the error.
 std::string save_png_rgba(const std::string& path, int width, int height, const unsigned char* rgba);
