@@ -13,15 +13,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/run_sylva.h"
+
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
 
-struct run_result {
-  int code = -1;
-  std::string out, err;
-};
 
 fs::path scratch() {
   static const fs::path d = [] {
@@ -49,21 +47,7 @@ std::string slurp(const fs::path& p) {
 }
 
 // Runs `sylva ARGS` with DISPLAY unset (no test may open a window), capturing both streams.
-run_result sylva(const std::string& args) {
-  const fs::path err = scratch() / "stderr.txt";
-  const std::string cmd = "env -u DISPLAY -u WAYLAND_DISPLAY '" + std::string(SYLVA_BINARY) + "' " + args +
-                          " 2>'" + err.string() + "'";
-  run_result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = slurp(err);
-  return r;
-}
+sylva_run sylva(const std::string& args) { return run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY", args); }
 
 std::string preset_path(const char* name) { return (fs::path(SYLVA_SOURCE_DIR) / "presets" / name).string(); }
 
@@ -82,7 +66,7 @@ size_t skeleton_nodes(const fs::path& p) {
 }  // namespace
 
 TEST(Cli, ParamsJsonListsEveryGenerator) {
-  const run_result r = sylva("params --json");
+  const sylva_run r = sylva("params --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out, nullptr, false);
   ASSERT_TRUE(j.is_array()) << r.out.substr(0, 200);
@@ -108,7 +92,7 @@ TEST(Cli, UsageErrorsExitTwo) {
                                  "export " + a + " -o x.json --seeds 5-2",
                                  "bench --repeat 0"}) {
     SCOPED_TRACE(args);
-    const run_result r = sylva(args);
+    const sylva_run r = sylva(args);
     EXPECT_EQ(r.code, 2);
     EXPECT_FALSE(r.err.empty());
   }
@@ -116,7 +100,7 @@ TEST(Cli, UsageErrorsExitTwo) {
 
 TEST(Cli, ExportJsonAndObjWriteFiles) {
   const fs::path json_out = scratch() / "a" / "tree.json";  // the folder is created
-  run_result r = sylva("export " + preset_path("lsystem_honda_a.json") + " -o " + json_out.string());
+  sylva_run r = sylva("export " + preset_path("lsystem_honda_a.json") + " -o " + json_out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(skeleton_nodes(json_out), size_t(1) << 10);  // tree a: 10 derivations, min 0 -> 2^10 nodes
   EXPECT_NE(r.out.find("1024 nodes"), std::string::npos) << r.out;
@@ -130,7 +114,7 @@ TEST(Cli, ExportJsonAndObjWriteFiles) {
 
 TEST(Cli, BatchSeedsAndSweeps) {
   const fs::path out = scratch() / "batch" / "tree.json";
-  run_result r = sylva("export " + preset_path("lsystem_honda_a.json") + " -o " + out.string() + " --seeds 4-6");
+  sylva_run r = sylva("export " + preset_path("lsystem_honda_a.json") + " -o " + out.string() + " --seeds 4-6");
   ASSERT_EQ(r.code, 0) << r.err;
   for (int s = 4; s <= 6; ++s) EXPECT_TRUE(fs::exists(scratch() / "batch" / ("tree-" + std::to_string(s) + ".json")));
   int lines = 0;
@@ -148,7 +132,7 @@ TEST(Cli, BatchSeedsAndSweeps) {
 
 TEST(Cli, FailuresExitOneWithAReason) {
   // An unwritable output path.
-  run_result r = sylva("export " + preset_path("lsystem_honda_a.json") + " -o /dev/null/tree.json");
+  sylva_run r = sylva("export " + preset_path("lsystem_honda_a.json") + " -o /dev/null/tree.json");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("/dev/null"), std::string::npos) << r.err;
 
@@ -180,7 +164,7 @@ TEST(Cli, WarningsGoToStderrWithExitZero) {
   // Out of range (clamped) and an unknown key: warnings, and the export still succeeds.
   const std::string p = write_scratch("clamped.json",
                                       R"({"sylva_preset":1,"generator":"lsystem","params":{"derivations":3,"r1":7,"colour":1}})");
-  const run_result r = sylva("export " + p + " -o " + (scratch() / "clamped.json.out.json").string());
+  const sylva_run r = sylva("export " + p + " -o " + (scratch() / "clamped.json.out.json").string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("params.r1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("params.colour"), std::string::npos) << r.err;
@@ -189,7 +173,7 @@ TEST(Cli, WarningsGoToStderrWithExitZero) {
 TEST(Cli, BenchJsonLine) {
   const std::string p = write_scratch("small.json", R"({"sylva_preset":1,"name":"small","generator":"lsystem",
       "params":{"derivations":4}})");
-  const run_result r = sylva("bench " + p + " --repeat 2 --json");
+  const sylva_run r = sylva("bench " + p + " --repeat 2 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out, nullptr, false);
   ASSERT_TRUE(j.is_object()) << r.out;

@@ -21,6 +21,7 @@
 #include <GLFW/glfw3.h>
 
 #include "render/files.h"
+#include "tests/run_sylva.h"
 #include "render/gl/renderer.h"
 
 // Counts heap allocations made through operator new, so a test can tell whether a frame allocates.
@@ -173,37 +174,11 @@ TEST(RenderBench, LeafDrawCallsDoNotGrowWithTheLeafCount) {
 
 namespace {
 
-struct command_result {
-  int code = -1;
-  std::string out, err;
-};
-
-// Runs the sylva binary; `env` prefixes the command (e.g. "env -u DISPLAY").
-command_result run_sylva(const std::string& env, const std::string& args) {
-  const std::filesystem::path err =
-      std::filesystem::temp_directory_path() / ("sylva_render_bench_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = env + " '" + std::string(SYLVA_BINARY) + "' " + args + " 2>'" + err.string() + "'";
-  command_result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(err);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  std::error_code ec;
-  std::filesystem::remove(err, ec);
-  return r;
-}
 
 }  // namespace
 
 TEST(RenderBench, BenchRenderWithoutADisplayIsAClearFailure) {
-  const command_result r = run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY", "bench --render --repeat 1");
+  const sylva_run r = run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY", "bench --render --repeat 1");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("DISPLAY"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
@@ -212,7 +187,7 @@ TEST(RenderBench, BenchRenderWithoutADisplayIsAClearFailure) {
 TEST(RenderBench, BenchRenderReportsEveryPassAndTheFrameCounts) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
-  const command_result r =
+  const sylva_run r =
       run_sylva("env", "bench --render --repeat 2 --json --width 96 --height 64 '" + preset + "'");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);   // one preset: one JSON line
