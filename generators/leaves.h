@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "generators/archetypes.h"
 #include "generators/params.h"
 #include "generators/skeleton.h"
 
@@ -14,6 +15,7 @@ struct leaf_params {
   float size_jitter = 0.3f; // relative random variation of the size
   int min_order = 1;        // only nodes of at least this branch order carry leaves
   float spread = 50;        // degrees between a leaf and its twig
+  leaf_archetype archetype = leaf_archetype::ovate;  // which card every placed leaf uses
   bool operator==(const leaf_params&) const = default;
 };
 
@@ -24,6 +26,7 @@ void visit_params(P& p, V&& v) {
   v(p.size_jitter, param_info{"leaf_size_jitter", "Size variation", "", 0, 1, "Relative random variation of leaf size"});
   v(p.min_order, param_info{"leaf_min_order", "Leaf order threshold", "", 0, 8, "Only branches of at least this order carry leaves"});
   v(p.spread, param_info{"leaf_spread", "Leaf angle", "", 0, 90, "Angle between a leaf and its twig", param_degrees});
+  v(p.archetype, param_info{"leaf_archetype", "Leaf archetype", "", 0, 8, "Procedural leaf card: ovate, lobed (oak), palmate (maple), pinnate (ash), pine needles, flat spray (spruce), scale spray (cypress), palm frond, twig cluster", 0, nullptr, leaf_archetype_names});
 }
 
 // Leaves on every node that is a tip at some step: a leaf is born with its node and dies when the

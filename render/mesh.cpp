@@ -203,10 +203,9 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
       cursor[s] = m.leaf_end[s - 1];
     }
     m.leaves.resize(m.leaf_end.back());
-    rng r(seed ^ 0x7e47c0deull);
     const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
     for (const leaf& l : src) {
-      const uint8_t tex = uint8_t(r.uniform_int(4));  // drawn for every leaf so choices stay stable
+      const uint8_t tex = uint8_t(p.leaves.archetype);  // leaf_instance::texture is the archetype
       if (!usable(l)) continue;
       const glm::quat q = l.orientation;
       m.leaves[cursor[step_of(l)]++] = {l.position, glm::vec4(q.x, q.y, q.z, q.w), l.size * scale, l.born, l.died,

@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "generators/archetypes.h"
 #include "generators/params.h"
 
 namespace sylva {
@@ -21,6 +22,7 @@ struct render_params {
   glm::vec3 sky_horizon{0.75f, 0.85f, 0.95f};
   float ambient = 0.35f;
   float exposure = 1.0f;
+  bark_archetype bark = bark_archetype::furrowed;   // procedural bark texture set
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};
   bool ground = true;
@@ -61,7 +63,8 @@ void visit_params(P& p, V&& v) {
   v(p.sky_horizon, param_info{"sky_horizon", "Sky horizon", "", 0, 1, "Sky colour at the horizon (linear RGB)"});
   v(p.ambient, param_info{"ambient", "Ambient", "", 0, 2, "Hemispheric sky light"});
   v(p.exposure, param_info{"exposure", "Exposure", "", 0.05f, 8, "Exposure before tonemapping", param_log});
-  v(p.bark_color, param_info{"bark_color", "Bark colour", "", 0, 1, "Bark tint (linear RGB)", 0, "Materials"});
+  v(p.bark, param_info{"bark_archetype", "Bark", "", 0, 4, "Procedural bark: furrowed (oak), plated (pine), smooth with lenticels (birch, beech), peeling strips (cedar), ringed leaf scars (palm)", 0, "Materials", bark_archetype_names});
+  v(p.bark_color, param_info{"bark_color", "Bark colour", "", 0, 1, "Bark tint (linear RGB)"});
   v(p.leaf_color, param_info{"leaf_color", "Leaf colour", "", 0, 1, "Leaf tint (linear RGB)"});
   v(p.ground, param_info{"ground", "Ground", "", 0, 1, "Draw the ground plane"});
   v(p.ground_color, param_info{"ground_color", "Ground colour", "", 0, 1, "Ground albedo (linear RGB)"});

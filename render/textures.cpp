@@ -3,6 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -158,6 +162,54 @@ std::array<float, 4> leaf_atlas_cell(int k) {
   k = ((k % 4) + 4) % 4;
   const float u0 = 0.5f * float(k % 2), v0 = 0.5f * float(k / 2);
   return {u0, v0, u0 + 0.5f, v0 + 0.5f};
+}
+
+// ---- Archetypes (stubs: the generic bark and the four broad leaves until the real sets land)
+namespace {
+image flat_normal(int n) {
+  image img{n, n, 3, std::vector<uint8_t>(size_t(n) * n * 3)};
+  for (size_t k = 0; k < size_t(n) * n; ++k) img.pixels[k * 3] = 128, img.pixels[k * 3 + 1] = 128, img.pixels[k * 3 + 2] = 255;
+  return img;
+}
+image grey(int n, uint8_t v) { return image{n, n, 3, std::vector<uint8_t>(size_t(n) * n * 3, v)}; }
+}  // namespace
+
+const leaf_texture_set& leaf_archetype_textures(leaf_archetype a, int size, uint64_t seed) {
+  static std::mutex mu;
+  static std::map<std::tuple<int, int, uint64_t>, std::unique_ptr<leaf_texture_set>> cache;
+  std::lock_guard lock(mu);
+  auto& slot = cache[{int(a), size, seed}];
+  if (!slot) {
+    slot = std::make_unique<leaf_texture_set>();
+    slot->color = make_leaf_texture(size, int(a) % 4, seed);
+    slot->normal = flat_normal(slot->color.width);
+    slot->thickness = grey(slot->color.width, 200);
+  }
+  return *slot;
+}
+
+const bark_texture_set& bark_archetype_textures(bark_archetype a, int size, uint64_t seed) {
+  static std::mutex mu;
+  static std::map<std::tuple<int, int, uint64_t>, std::unique_ptr<bark_texture_set>> cache;
+  std::lock_guard lock(mu);
+  auto& slot = cache[{int(a), size, seed}];
+  if (!slot) {
+    slot = std::make_unique<bark_texture_set>();
+    slot->color = make_bark_color(size, seed);
+    slot->normal = make_bark_normal(size, seed);
+    slot->roughness = grey(slot->color.width, 230);
+  }
+  return *slot;
+}
+
+image tinted_texture(const image& color, const glm::vec3& tint) {
+  image out = color;
+  for (size_t k = 0; k < size_t(out.width) * out.height; ++k)
+    for (int c = 0; c < 3; ++c) {
+      uint8_t& v = out.pixels[k * size_t(out.channels) + size_t(c)];
+      v = to_byte(float(v) / 255.0f * tint[c] * 2.0f);
+    }
+  return out;
 }
 
 std::string encode_png(const image& img, std::string& out) {
