@@ -414,6 +414,10 @@ void draw_status(editor_state& e, float y, float w) {
   const std::string& m = !e.message.empty() || !r ? e.message : r->report.message;
   const bool err = e.message_is_error || (e.message.empty() && r && r->report.error);
   ImGui::TextColored(err ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", m.c_str());
+  if (r && !r->mesh.message.empty()) {   // the leaf cap: growth went on, the foliage stopped
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "   %s", r->mesh.message.c_str());
+  }
   if (r && !r->report.stop_reason.empty()) {   // why growth ended: points used up, cap, step limit ...
     ImGui::SameLine();
     ImGui::TextDisabled("   ended: %s", r->report.stop_reason.c_str());

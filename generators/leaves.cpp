@@ -1,12 +1,135 @@
-// Shared leaf placement on the tips of a skeleton.
+// The foliage model: leaves along young shoots (with phyllotaxis and retention), tips, or the
+// generator's own leaves.
 #include "generators/leaves.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/quaternion.hpp>
+#include <glm/mat3x3.hpp>
 
 namespace sylva {
+namespace {
+
+// Leaf frame (skeleton.h: blade along +Y, normal +Z) from the blade direction b and a wanted
+// normal direction w; w need not be perpendicular to b.
+glm::quat blade_frame(const glm::vec3& b, glm::vec3 w, const glm::vec3& fallback) {
+  w -= glm::dot(w, b) * b;
+  float len = glm::length(w);
+  if (len < 1e-4f) {
+    w = fallback - glm::dot(fallback, b) * b;
+    len = glm::length(w);
+    if (len < 1e-6f) w = std::abs(b.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1), w -= glm::dot(w, b) * b, len = glm::length(w);
+  }
+  const glm::vec3 n = w / len;
+  return glm::normalize(glm::quat_cast(glm::mat3(glm::cross(b, n), b, n)));
+}
+
+uint16_t retention_end(uint16_t born, int retention, uint16_t died) {
+  const int end = int(born) + std::max(retention, 0) + 1;
+  return end >= int(never_died) ? died : std::min<uint16_t>(died, uint16_t(end));
+}
+
+}  // namespace
+
+foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed) {
+  foliage out;
+  const size_t n = t.size();
+  if (n == 0) return out;
+  // Internodes from the end of each node's own axis (its continuation is the child of the same
+  // order), on the final tree; parent < i, so one reverse sweep.
+  std::vector<uint16_t> from_tip;
+  if (p.outer_internodes > 0) {
+    from_tip.assign(n, never_died);
+    for (size_t i = n; i-- > 0;) {
+      if (from_tip[i] == never_died) from_tip[i] = 0;
+      const int32_t par = t.parent[i];
+      if (par >= 0 && t.order[par] == t.order[i])
+        from_tip[par] = std::min<uint16_t>(from_tip[par], uint16_t(std::min<int>(from_tip[i] + 1, never_died - 1)));
+    }
+  }
+  const int per_node = p.arrangement == leaf_arrangement::alternate ? 1
+                       : p.arrangement == leaf_arrangement::opposite ? 2
+                                                                     : std::clamp(p.whorl, 2, 8);
+  const float spacing = std::isfinite(p.spacing) ? std::clamp(p.spacing, 0.001f, 100.0f) : 0.06f;
+  const int cluster = p.clusters ? std::clamp(p.cluster_size, 2, 32) : 1;
+  const size_t cap = size_t(std::clamp(p.cap, 1, 2000000));
+  auto carries = [&](size_t i) {
+    return t.parent[i] >= 0 && t.order[i] >= p.min_order && t.died[i] > t.born[i] &&
+           (from_tip.empty() || from_tip[i] < p.outer_internodes);
+  };
+  // Reserve from the young shoots' total length (one cheap pass) so placement never regrows.
+  double length = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (carries(i)) length += glm::length(t.position[i] - t.position[t.parent[i]]);
+  out.leaves.reserve(std::min(cap, size_t(length / spacing * per_node / cluster) + n / 8 + 16));
+
+  rng r(seed ^ 0xf011a9eull);
+  const float spread = glm::radians(std::isfinite(p.spread) ? p.spread : 50.0f);
+  const float cs = std::cos(spread), sn = std::sin(spread);
+  const float divergence = glm::radians(std::isfinite(p.divergence) ? p.divergence : 137.5f);
+  const float droop = std::isfinite(p.droop) ? std::clamp(p.droop, 0.0f, 1.0f) : 0.0f;
+  const float jitter = std::isfinite(p.size_jitter) ? std::clamp(p.size_jitter, 0.0f, 1.0f) : 0.0f;
+  const float taper = std::isfinite(p.taper) ? std::clamp(p.taper, 0.0f, 0.95f) : 0.0f;
+  const float base_size = std::isfinite(p.size) && p.size > 0 ? p.size : 0.1f;
+  // A cluster card covers the area of its leaves: side grows with the square root of the count.
+  const float card_scale = p.clusters ? 0.9f * std::sqrt(float(cluster)) : 1.0f;
+  const uint8_t card = p.clusters ? uint8_t(p.cluster_archetype) : uint8_t(255);
+  const float step_around = 2 * 3.14159265f / float(per_node);
+  const glm::vec3 up(0, 1, 0), down(0, -1, 0);
+  std::vector<float> phase(n, 0);   // phyllotactic angle carried along each axis
+  float taper_pow[9];
+  for (int k = 0; k < 9; ++k) taper_pow[k] = std::pow(1 - taper, float(k));
+
+  for (size_t i = 0; i < n && !out.capped; ++i) {
+    const int32_t par = t.parent[i];
+    if (par < 0) continue;
+    glm::vec3 d = t.position[i] - t.position[par];
+    const float len = glm::length(d);
+    phase[i] = phase[par];
+    if (!carries(i) || !(len > 1e-6f)) continue;
+    d /= len;
+    // Leaf nodes along the internode; the fraction gives one more with its probability.
+    const float want = len / spacing / float(cluster);
+    int nodes = int(want);
+    if (r.uniform() < want - float(nodes)) ++nodes;
+    if (nodes == 0) continue;
+    glm::vec3 e1 = glm::cross(d, up);
+    const float e1len = glm::length(e1);
+    e1 = e1len > 1e-3f ? e1 / e1len : glm::vec3(1, 0, 0);
+    const glm::vec3 e2 = glm::cross(d, e1);
+    const uint16_t died = retention_end(t.born[i], p.retention, t.died[i]);
+    const int above = std::clamp(int(t.order[i]) - p.min_order, 0, 8);
+    const float size = base_size * taper_pow[above] * card_scale;
+    float az = phase[i];
+    for (int k = 0; k < nodes; ++k) {
+      const float along = (float(k) + 0.5f + 0.3f * r.uniform(-1, 1)) / float(nodes);
+      const glm::vec3 at = t.position[par] + d * (len * along);
+      for (int m = 0; m < per_node; ++m) {
+        if (out.leaves.size() >= cap) { out.capped = true; break; }
+        const float a = az + step_around * float(m) + r.uniform(-0.15f, 0.15f);
+        const glm::vec3 radial = std::cos(a) * e1 + std::sin(a) * e2;
+        glm::vec3 b = cs * d + sn * radial;
+        if (droop > 0) b = glm::normalize(b + droop * 2.0f * (down - b * std::max(glm::dot(b, down), 0.0f)));
+        // Blades turn their upper face to the sky and a little outward.
+        leaf l;
+        l.position = at;
+        l.orientation = blade_frame(b, up + 0.6f * radial, radial);
+        l.size = size * (1 + jitter * r.uniform(-1, 1));
+        l.born = t.born[i];
+        l.died = died;
+        l.node = int32_t(i);
+        l.archetype = card;
+        out.leaves.push_back(l);
+      }
+      az += divergence;
+    }
+    phase[i] = std::fmod(az, 2 * 3.14159265f);
+  }
+  return out;
+}
 
 std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed) {
   const size_t n = t.size();
@@ -49,6 +172,23 @@ std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p,
     }
   }
   return out;
+}
+
+foliage place_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed) {
+  foliage f;
+  if (p.mode == leaf_mode::generator && !t.leaves.empty()) {
+    f.leaves = t.leaves;
+  } else if (p.mode == leaf_mode::tips) {
+    f.leaves = place_tip_leaves(t, p, seed);
+  } else {
+    return place_shoot_leaves(t, p, seed);
+  }
+  const size_t cap = size_t(std::clamp(p.cap, 1, 2000000));
+  if (f.leaves.size() > cap) {
+    f.leaves.resize(cap);
+    f.capped = true;
+  }
+  return f;
 }
 
 }  // namespace sylva

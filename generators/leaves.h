@@ -1,6 +1,9 @@
-// Shared leaf placement: leaves on the tips of the tree, for generators without a leaf model.
+// The foliage model shared by all four generators (issue 11): leaves along every young shoot, in
+// the species' arrangement, kept for the species' leaf retention; the older tip-only placement and
+// each generator's own leaf rule stay available as modes.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "generators/archetypes.h"
@@ -9,28 +12,86 @@
 
 namespace sylva {
 
+enum class leaf_mode : int { shoots = 0, tips, generator };
+inline constexpr const char* leaf_mode_names[] = {"shoots", "tips", "generator", nullptr};
+
+// How leaves sit on a leaf node of a shoot (phyllotaxis).
+enum class leaf_arrangement : int { alternate = 0, opposite, whorled };
+inline constexpr const char* leaf_arrangement_names[] = {"alternate", "opposite", "whorled", nullptr};
+
 struct leaf_params {
-  float density = 4;        // leaves per tip node (fractional part: probability of one more)
-  float size = 0.15f;       // blade length, metres
-  float size_jitter = 0.3f; // relative random variation of the size
-  int min_order = 1;        // only nodes of at least this branch order carry leaves
-  float spread = 50;        // degrees between a leaf and its twig
-  leaf_archetype archetype = leaf_archetype::ovate;  // which card every placed leaf uses
+  leaf_mode mode = leaf_mode::shoots;
+  int retention = 1;          // steps a node keeps its leaves: age (step - born) <= retention
+  int outer_internodes = 0;   // > 0: only nodes within this many internodes of a shoot tip
+  float spacing = 0.06f;      // metres between leaf nodes along a shoot
+  leaf_arrangement arrangement = leaf_arrangement::alternate;
+  int whorl = 3;              // leaves per node when whorled
+  float divergence = 137.5f;  // degrees between successive leaf nodes around the shoot
+  float spread = 50;          // degrees between a leaf and its shoot (insertion angle)
+  float droop = 0.25f;        // 0: leaves follow the insertion angle; 1: they hang straight down
+  float density = 4;          // tips mode: leaves per tip node (fractional part: probability of one more)
+  float size = 0.15f;         // blade length (card side), metres
+  float size_jitter = 0.3f;   // relative random variation of the size
+  float taper = 0;            // leaves shrink by this share per branch order above min_order
+  int min_order = 0;          // only nodes of at least this branch order carry leaves
+  leaf_archetype archetype = leaf_archetype::ovate;  // the card every leaf uses
+  int cap = 300000;           // at most this many leaves; growth goes on, the status bar says so
+  bool clusters = false;      // cluster cards: one card carries several leaves
+  int cluster_size = 6;       // leaves one cluster card stands for
+  leaf_archetype cluster_archetype = leaf_archetype::twig_cluster;
   bool operator==(const leaf_params&) const = default;
 };
 
 template <params_of<leaf_params> P, class V>
 void visit_params(P& p, V&& v) {
-  v(p.density, param_info{"leaf_density", "Leaf density", "", 0, 32, "Leaves per tip node", 0, "Leaves"});
-  v(p.size, param_info{"leaf_size", "Leaf size", "", 0.005f, 2, "Leaf blade length in metres", param_log});
+  v(p.mode, param_info{"leaf_mode", "Leaf placement", "", 0, 2, "shoots: along every young shoot (the foliage model); tips: a tuft on each current tip; generator: the generator's own leaf rule (space colonization's spiral, the L-system's L), else shoots", 0, "Leaves", leaf_mode_names});
+  v(p.archetype, param_info{"leaf_archetype", "Leaf archetype", "", 0, 8, "Procedural leaf card: ovate (birch, beech), lobed (oak), palmate (maple), pinnate compound (ash), pine needle fascicles, flat spray (spruce, fir), scale spray (cypress), palm frond, twig cluster", 0, nullptr, leaf_archetype_names});
+  v(p.retention, param_info{"leaf_retention", "Leaf retention", "", 0, 64, "Growth steps a shoot keeps its leaves: 1 for deciduous trees (this season's and last season's shoots), 3-7 for conifers' needles"});
+  v(p.outer_internodes, param_info{"leaf_outer_internodes", "Outer internodes", "", 0, 64, "Only nodes within this many internodes of a shoot tip carry leaves (0: no limit)"});
+  v(p.spacing, param_info{"leaf_spacing", "Leaf spacing", "", 0.005f, 2, "Distance between leaf nodes along a shoot, metres", param_log});
+  v(p.arrangement, param_info{"leaf_arrangement", "Arrangement", "", 0, 2, "Leaves per node: alternate (one), opposite (two), whorled (n)", 0, nullptr, leaf_arrangement_names});
+  v(p.whorl, param_info{"leaf_whorl", "Whorl size", "n", 2, 8, "Leaves per node when whorled"});
+  v(p.divergence, param_info{"leaf_divergence", "Divergence", "", 0, 180, "Angle around the shoot between successive leaf nodes (137.5° spiral, 180° two-ranked, 90° decussate)", param_degrees});
+  v(p.spread, param_info{"leaf_spread", "Insertion angle", "", 0, 120, "Angle between a leaf and its shoot", param_degrees});
+  v(p.droop, param_info{"leaf_droop", "Droop", "", 0, 1, "How far leaves hang toward the ground (1: straight down)"});
+  v(p.density, param_info{"leaf_density", "Leaves per tip", "", 0, 32, "Tips mode: leaves on each tip node"});
+  v(p.size, param_info{"leaf_size", "Leaf size", "", 0.005f, 4, "Leaf card side in metres", param_log});
   v(p.size_jitter, param_info{"leaf_size_jitter", "Size variation", "", 0, 1, "Relative random variation of leaf size"});
+  v(p.taper, param_info{"leaf_taper", "Size taper", "", 0, 0.9f, "Leaves shrink by this share per branch order above the order threshold"});
   v(p.min_order, param_info{"leaf_min_order", "Leaf order threshold", "", 0, 8, "Only branches of at least this order carry leaves"});
-  v(p.spread, param_info{"leaf_spread", "Leaf angle", "", 0, 90, "Angle between a leaf and its twig", param_degrees});
-  v(p.archetype, param_info{"leaf_archetype", "Leaf archetype", "", 0, 8, "Procedural leaf card: ovate, lobed (oak), palmate (maple), pinnate (ash), pine needles, flat spray (spruce), scale spray (cypress), palm frond, twig cluster", 0, nullptr, leaf_archetype_names});
+  v(p.cap, param_info{"leaf_cap", "Leaf cap", "", 1000, 2000000, "At most this many leaves; past it growth goes on and the status bar says so", param_log | param_on_release});
+  v(p.clusters, param_info{"leaf_clusters", "Cluster cards", "", 0, 1, "One card carries a twig with several leaves: a dense crown for few instances (game LODs)"});
+  v(p.cluster_size, param_info{"leaf_cluster_size", "Leaves per card", "", 2, 32, "How many leaves one cluster card stands for"});
+  v(p.cluster_archetype, param_info{"leaf_cluster_archetype", "Cluster card", "", 0, 8, "Archetype of the cluster cards", 0, nullptr, leaf_archetype_names});
 }
+
+// The editor shows only the sliders that matter for the current mode.
+inline bool param_relevant(const leaf_params& p, const void* field, const param_info&) {
+  const bool shoots = p.mode != leaf_mode::tips;
+  if (field == &p.density) return p.mode == leaf_mode::tips;
+  if (field == &p.retention || field == &p.outer_internodes || field == &p.spacing || field == &p.arrangement ||
+      field == &p.divergence || field == &p.droop || field == &p.clusters)
+    return shoots;
+  if (field == &p.whorl) return shoots && p.arrangement == leaf_arrangement::whorled;
+  if (field == &p.cluster_size || field == &p.cluster_archetype) return shoots && p.clusters;
+  return true;
+}
+
+struct foliage {
+  std::vector<leaf> leaves;
+  bool capped = false;       // the leaf cap stopped placement
+};
+
+// Leaves along every young shoot: each internode of order >= min_order carries leaf nodes every
+// `spacing` metres, each with 1, 2 or n leaves; a leaf lives from its node's birth until the node
+// is older than `retention` steps or is shed.
+foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed);
 
 // Leaves on every node that is a tip at some step: a leaf is born with its node and dies when the
 // node gets its first child (or is shed), so playback shows foliage on the growing tips.
 std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed);
+
+// The leaves `p.mode` asks for, capped at p.cap.
+foliage place_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed);
 
 }  // namespace sylva

@@ -22,6 +22,7 @@ struct leaf {
   uint16_t born = 0;          // growth step in which it appeared
   uint16_t died = never_died; // step in which it was shed (with its node)
   int32_t node = -1;          // node it hangs on
+  uint8_t archetype = 255;    // leaf_archetype of its card; 255: the mesh's leaf archetype
 };
 
 struct tree_skeleton {               // node i is the tip of the internode from parent[i] to i

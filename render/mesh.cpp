@@ -188,15 +188,25 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     }
   }
 
-  // Leaves: the generator's own, else tips (leaves.h); each picks one of the four leaf textures.
+  // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
-    std::vector<leaf> placed;
-    const std::vector<leaf>& src = t.leaves.empty() ? (placed = place_tip_leaves(t, p.leaves, seed)) : t.leaves;
+    foliage placed;
+    const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
+    if (!own) placed = place_leaves(t, p.leaves, seed);
+    const std::vector<leaf>& src = own ? t.leaves : placed.leaves;   // the generator's, uncopied
+    const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
     auto usable = [&](const leaf& l) { return l.node >= 0 && size_t(l.node) < n && finite3(l.position); };
     auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
-    for (const leaf& l : src)
-      if (usable(l)) ++m.leaf_end[step_of(l)];
+    size_t kept = 0, end = src.size();
+    for (size_t k = 0; k < src.size(); ++k) {
+      if (!usable(src[k])) continue;
+      if (kept == cap) { end = k; placed.capped = true; break; }
+      ++kept;
+      ++m.leaf_end[step_of(src[k])];
+    }
+    if (placed.capped)
+      m.message = "leaf cap reached: " + std::to_string(kept) + " leaves placed (raise Leaf cap or Leaf spacing)";
     std::vector<uint32_t> cursor(m.leaf_end.size(), 0);
     for (size_t s = 1; s < m.leaf_end.size(); ++s) {
       m.leaf_end[s] += m.leaf_end[s - 1];
@@ -204,10 +214,12 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     }
     m.leaves.resize(m.leaf_end.back());
     const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
-    for (const leaf& l : src) {
-      const uint8_t tex = uint8_t(p.leaves.archetype);  // leaf_instance::texture is the archetype
+    const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
+    for (size_t k = 0; k < end; ++k) {
+      const leaf& l = src[k];
       if (!usable(l)) continue;
       const glm::quat q = l.orientation;
+      const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
       m.leaves[cursor[step_of(l)]++] = {l.position, glm::vec4(q.x, q.y, q.z, q.w), l.size * scale, l.born, l.died,
                                         uint32_t(l.node), tex};
     }

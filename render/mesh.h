@@ -41,7 +41,7 @@ struct leaf_instance {
   float size;
   uint16_t born, died;
   uint32_t node;
-  uint8_t texture;         // which leaf texture (0..3)
+  uint8_t texture;         // leaf archetype of the card (generators/archetypes.h)
 };
 
 struct tree_mesh {
@@ -59,6 +59,7 @@ struct tree_mesh {
   glm::vec3 bounds_min{0}, bounds_max{0};
   int steps = 0;
   int radial_segments = 0;           // ring stride is radial_segments + 1
+  std::string message;               // for the status bar, e.g. the leaf cap was reached
   size_t triangles() const { return index.size() / 3; }
 };
 

@@ -42,6 +42,8 @@ struct honda_tree {
     lp.derivations = n;
     t = grow_honda(lp, {});
     p.radial_segments = 6;
+    p.leaves.mode = leaf_mode::tips;   // 4 leaves on each lateral tip: counts derived by hand
+    p.leaves.min_order = 1;
     m = mesh_tree(t, p);
     o.mesh = p;
     o.texture_size = 64;
@@ -152,6 +154,7 @@ TEST(Export, ForestIsOneNodePerTreeAndBigMeshesUse32BitIndices) {
   t.tree_count = 2;
   mesh_params p;
   p.radial_segments = 32;  // 2202 rings * 33 = 72666 vertices; each tree alone has 36333
+  p.leaves_enabled = false;
   export_options o;
   o.mesh = p;
   o.texture_size = 16;

@@ -146,6 +146,7 @@ TEST(Mesh, SkeletonAtStepDropsShedBranches) {
   EXPECT_EQ(validate_skeleton(s2), "");
   // The final view for export leaves the shed lateral out: 2 internodes of 8 quads remain.
   mesh_params p;
+  p.leaves.mode = leaf_mode::generator;
   const tree_mesh full = mesh_tree(t, p);
   EXPECT_EQ(full.index.size(), size_t(4 * 8 * 6));
   const tree_mesh last = mesh_tree_at_step(t, full, p, -1);
@@ -161,6 +162,7 @@ TEST(Mesh, LeavesScaledSortedAndSeeded) {
   t.leaves.push_back({{1, 2, 0}, {1, 0, 0, 0}, 0.1f, 1, never_died, 3});
   t.leaves.push_back({{0, 1, 0}, {1, 0, 0, 0}, 0.3f, 0, never_died, 1});
   mesh_params p;
+  p.leaves.mode = leaf_mode::generator;
   p.leaf_scale = 2;
   const tree_mesh m = mesh_tree(t, p, 7);
   ASSERT_EQ(m.leaves.size(), size_t(3));
@@ -170,7 +172,7 @@ TEST(Mesh, LeavesScaledSortedAndSeeded) {
   EXPECT_EQ(m.leaf_end, (std::vector<uint32_t>{1, 2, 3}));
   const tree_mesh again = mesh_tree(t, p, 7);
   for (size_t k = 0; k < 3; ++k) {
-    EXPECT_LT(m.leaves[k].texture, 4);
+    EXPECT_EQ(m.leaves[k].texture, uint8_t(leaf_archetype::ovate));   // the mesh's archetype
     EXPECT_EQ(m.leaves[k].texture, again.leaves[k].texture);
   }
   p.leaves_enabled = false;
@@ -178,6 +180,8 @@ TEST(Mesh, LeavesScaledSortedAndSeeded) {
   // Without generator leaves, tips get leaves from place_tip_leaves (order >= 1: the lateral).
   t.leaves.clear();
   p.leaves_enabled = true;
+  p.leaves.mode = leaf_mode::tips;
+  p.leaves.min_order = 1;
   p.leaves.density = 3;
   const tree_mesh tips = mesh_tree(t, p);
   EXPECT_EQ(tips.leaves.size(), size_t(3));
