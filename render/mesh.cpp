@@ -121,14 +121,24 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     sin_a[k] = std::sin(a);
     u_of[k] = float(k) / float(seg);
   }
+  // Constant texel density from trunk to twig: the texture wraps round(circumference * uv_repeat)
+  // times around each axis (at least once), counted at the axis's base so it never jumps along it.
+  std::vector<float> wraps(n, 1.0f);
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t par = t.parent[i];
+    if (par >= 0 && cont[par] == int32_t(i)) { wraps[i] = wraps[par]; continue; }
+    const float w = std::round(6.2831853f * m.final_radius[i] * std::abs(uv_repeat));
+    wraps[i] = std::isfinite(w) ? std::clamp(w, 1.0f, 64.0f) : 1.0f;
+  }
   auto emit_ring = [&](const glm::vec3& c, const glm::vec3& tan, const glm::vec3& nrm, float r, float v,
                        uint32_t node) {
     const glm::vec3 bin = glm::cross(tan, nrm);
+    const float w = wraps[node];
     for (int k = 0; k < stride; ++k) {
       const glm::vec3 d = nrm * cos_a[k] + bin * sin_a[k];
       out_pos[emitted] = c + d * r;
       out_nrm[emitted] = d;
-      out_uv[emitted] = {u_of[k], v};
+      out_uv[emitted] = {u_of[k] * w, v};
       out_node[emitted] = node;
       ++emitted;
     }

@@ -63,9 +63,10 @@ TEST(Mesh, RingsSitAtNodeRadius) {
     }
   // The lateral's base ring lies across the child's direction (1,1,0)/√2, inside the trunk's tube.
   for (int k = 0; k < 8; ++k) EXPECT_NEAR(glm::dot(m.normal[3 * 9 + k], glm::vec3(1, 1, 0)), 0.0f, 1e-6f);
-  // Seam vertices coincide; u runs 0..1 and v grows by length * uv_repeat (1 m * 2 here).
+  // Seam vertices coincide; u runs 0..round(2π · 0.2 m · 2) = 3 around the trunk (texel density
+  // as along it) and v grows by length * uv_repeat (1 m * 2 here).
   EXPECT_EQ(m.position[9], m.position[9 + 8]);
-  EXPECT_FLOAT_EQ(m.uv[9 + 8].x, 1.0f);
+  EXPECT_FLOAT_EQ(m.uv[9 + 8].x, 3.0f);
   EXPECT_FLOAT_EQ(m.uv[9].y, 2.0f);
   EXPECT_FLOAT_EQ(m.uv[2 * 9].y, 4.0f);
 }
@@ -205,4 +206,27 @@ TEST(Mesh, BadInputGivesEmptyMeshNotACrash) {
   EXPECT_EQ(validate_mesh(m), "");
   m.index[4] = uint32_t(m.position.size());
   EXPECT_NE(validate_mesh(m), "");
+}
+
+TEST(Mesh, BarkTexelDensityIsTheSameOnTrunkAndTwig) {
+  // Trunk of radius 0.5 m: circumference 3.14 m, at 2 repeats a metre the texture wraps 6 times;
+  // the 5 cm lateral wraps round(0.63) -> at least once. Both keep 2 repeats a metre along.
+  tree_skeleton t;
+  t.add_node({0, 0, 0}, -1, 0.5f, 0, 0);
+  t.add_node({0, 1, 0}, 0, 0.45f, 1, 0);   // continues the trunk: keeps its 6 wraps
+  t.add_node({0, 2, 0}, 1, 0.1f, 1, 0);    // still the trunk: 6 wraps though thinner
+  t.add_node({1, 1, 0}, 1, 0.05f, 1, 1);   // a lateral: its own count
+  t.steps = 1;
+  mesh_params p;
+  p.radial_segments = 8;
+  p.uv_repeat = 2;
+  p.leaves_enabled = false;
+  const tree_mesh m = mesh_tree(t, p);
+  const int stride = 9;
+  EXPECT_FLOAT_EQ(m.uv[8].x, 6.0f);               // root ring's seam
+  EXPECT_FLOAT_EQ(m.uv[stride + 8].x, 6.0f);      // node 1 continues the axis
+  EXPECT_FLOAT_EQ(m.uv[2 * stride + 8].x, 6.0f);  // node 2 too
+  EXPECT_FLOAT_EQ(m.uv[m.uv.size() - 1].x, 1.0f); // the lateral's tip ring
+  // Texels per metre around: wraps / circumference, within 20% on the trunk's rings.
+  EXPECT_NEAR(6.0f / (6.2831853f * 0.5f), 2.0f, 0.2f * 2.0f);
 }
