@@ -23,7 +23,8 @@ glm::quat blade_frame(const glm::vec3& b, glm::vec3 w, const glm::vec3& fallback
     len = glm::length(w);
     if (len < 1e-6f) w = std::abs(b.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1), w -= glm::dot(w, b) * b, len = glm::length(w);
   }
-  const glm::vec3 n = w / len;
+  glm::vec3 n = w / len;
+  if (n.y < 0) n = -n;   // the upper face is the one toward the sky
   return glm::normalize(glm::quat_cast(glm::mat3(glm::cross(b, n), b, n)));
 }
 
@@ -113,10 +114,12 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
         const glm::vec3 radial = std::cos(a) * e1 + std::sin(a) * e2;
         glm::vec3 b = cs * d + sn * radial;
         if (droop > 0) b = glm::normalize(b + droop * 2.0f * (down - b * std::max(glm::dot(b, down), 0.0f)));
-        // Blades turn their upper face to the sky and a little outward.
+        // Blades turn their upper face outward and to the sky, each a little differently, so a crown
+        // reads as dense from the side as from above.
+        const glm::vec3 wobble(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f));
         leaf l;
         l.position = at;
-        l.orientation = blade_frame(b, up + 0.6f * radial, radial);
+        l.orientation = blade_frame(b, 0.7f * up + radial + wobble, radial);
         l.size = size * (1 + jitter * r.uniform(-1, 1));
         l.born = t.born[i];
         l.died = died;
