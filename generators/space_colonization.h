@@ -69,7 +69,7 @@ void visit_params(P& p, V&& v) {
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (seed 003's Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
   v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
-  v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment", 0, "Leaves"});
+  v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment (used when the leaf mode is generator)", 0, "Own leaves (leaf mode: generator)"});
   v(p.leaves_max, param_info{"leaves_max", "Leaves per segment (max)", "", 0, 64, "Most leaves on a terminal segment; 0 for a bare tree"});
   v(p.leaf_size_min, param_info{"leaf_size_min", "Leaf size (min)", "", 0.001f, 2, "Smallest leaf blade length in metres", param_log});
   v(p.leaf_size_max, param_info{"leaf_size_max", "Leaf size (max)", "", 0.001f, 2, "Largest leaf blade length in metres", param_log});

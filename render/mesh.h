@@ -35,6 +35,14 @@ void visit_params(P& p, V&& v) {
   visit_params(p.leaves, v);
 }
 
+// The leaf sliders follow the leaf mode (leaves.h); the rest always show.
+inline bool param_relevant(const mesh_params& p, const void* field, const param_info& info) {
+  const char* lo = reinterpret_cast<const char*>(&p.leaves);
+  const char* at = static_cast<const char*>(field);
+  if (at >= lo && at < lo + sizeof(leaf_params)) return p.leaves_enabled && param_relevant(p.leaves, field, info);
+  return true;
+}
+
 struct leaf_instance {
   glm::vec3 position;
   glm::vec4 orientation;   // quaternion (x, y, z, w)
