@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "render/files.h"
 
 using namespace sylva;
@@ -368,4 +370,46 @@ TEST(Files, AtomicWriteAndRead) {
   ASSERT_TRUE(load_preset_file(path, q).ok);
   EXPECT_EQ(p, q);
   fs::remove_all(dir);
+}
+
+TEST(Preset, UnknownArchetypeLoadsWithAWarningAndTheDefault) {
+  preset p;
+  const load_result r = load_preset_json(R"({"sylva_preset": 1, "generator": "lsystem",
+    "mesh": {"leaf_archetype": "fern", "leaf_mode": "shoots"}, "render": {"bark_archetype": "marble"}})", p);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_NE(r.warnings[0].find("fern"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[1].find("marble"), std::string::npos) << r.warnings[1];
+  EXPECT_EQ(p.mesh.leaves.archetype, leaf_archetype::ovate);
+  EXPECT_EQ(p.render.bark, bark_archetype::furrowed);
+  // A known name round-trips through save and load.
+  p.mesh.leaves.archetype = leaf_archetype::needles;
+  p.render.bark = bark_archetype::plated;
+  preset q;
+  ASSERT_TRUE(load_preset_json(save_preset_json(p), q).error.empty());
+  EXPECT_EQ(q.mesh.leaves.archetype, leaf_archetype::needles);
+  EXPECT_EQ(q.render.bark, bark_archetype::plated);
+}
+
+TEST(Preset, EverySpeciesPresetNamesItsArchetypes) {
+  // Issue 11: every species preset chooses its leaf archetype and bark; the library has at least
+  // one preset per leaf archetype.
+  std::set<int> leaf_used;
+  int species = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(SYLVA_SOURCE_DIR) / "presets")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("species_", 0) != 0) continue;
+    ++species;
+    std::string text;
+    ASSERT_EQ(read_file(entry.path().string(), text), "");
+    const auto j = nlohmann::json::parse(text);
+    EXPECT_TRUE(j["mesh"].contains("leaf_archetype")) << name;
+    EXPECT_TRUE(j["render"].contains("bark_archetype")) << name;
+    preset p;
+    ASSERT_TRUE(load_preset_json(text, p).warnings.empty()) << name;
+    leaf_used.insert(int(p.mesh.leaves.archetype));
+    if (p.mesh.leaves.clusters) leaf_used.insert(int(p.mesh.leaves.cluster_archetype));
+  }
+  EXPECT_GE(species, 13);
+  EXPECT_EQ(leaf_used.size(), size_t(leaf_archetype_count));
 }
