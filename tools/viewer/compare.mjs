@@ -4,7 +4,7 @@
 // exports the GLBs first.
 //
 //   node tools/viewer/compare.mjs --glb-dir DIR --preset-dir presets --out-dir docs/compare
-//        --grid docs/side_by_side.png [--ez "Oak Medium,Pine Medium,..."] [--size 768]
+//        --grid docs/side_by_side.png [--ez "Oak Medium,Pine Medium,..."] [--size 768] [--azimuths 45,135,225,315]
 //
 // DIR holds species_NAME.glb for each exported preset; presets/species_NAME.json gives the
 // tags (a "conifer" tag picks the conifer goal).
@@ -18,7 +18,7 @@ const DEFAULT_EZ = ['Oak Medium', 'Pine Medium', 'Aspen Medium', 'Ash Medium'];
 const GOAL = { broadleaf: 0.55, conifer: 0.45 };
 
 const args = process.argv.slice(2);
-const opt = { size: 768, ez: DEFAULT_EZ, glbDir: null, presetDir: 'presets', outDir: 'docs/compare', grid: 'docs/side_by_side.png', binary: '' };
+const opt = { size: 768, ez: DEFAULT_EZ, glbDir: null, presetDir: 'presets', outDir: 'docs/compare', grid: 'docs/side_by_side.png', binary: '', azimuths: [45, 135, 225, 315] };
 for (let i = 0; i < args.length; i++) {
   const a = args[i];
   const next = () => args[++i];
@@ -29,6 +29,7 @@ for (let i = 0; i < args.length; i++) {
   else if (a === '--size') opt.size = Number(next());
   else if (a === '--ez') opt.ez = next().split(',').map((s) => s.trim()).filter(Boolean);
   else if (a === '--binary') opt.binary = next();
+  else if (a === '--azimuths') opt.azimuths = next().split(',').filter(Boolean).map(Number);
   else {
     process.stderr.write(`compare: unknown argument ${a}\n`);
     process.exit(2);
@@ -101,6 +102,15 @@ try {
       delete r.image;
       delete r.overlay;
       Object.assign(t, r, { overlay_png: overlay, goal: GOAL[t.kind] });
+      // The same measurement from the other three iso corners: how much of a tree's number is
+      // the side it happens to show.
+      t.coverage_by_azimuth = { 45: r.coverage };
+      for (const az of opt.azimuths.filter((a) => a !== 45)) {
+        const ra = await viewer.show(spec, { view: `35,${az}`, size: opt.size, measure: true, image: false });
+        t.coverage_by_azimuth[az] = ra.coverage;
+      }
+      const all = Object.values(t.coverage_by_azimuth);
+      t.coverage_mean_azimuths = all.reduce((a, b) => a + b, 0) / all.length;
       t.meets_goal = t.coverage >= t.goal;
     } catch (e) {
       t.error = e.message;
@@ -112,6 +122,8 @@ try {
   await viewer.close();
 }
 const seconds = (Date.now() - t0) / 1000;
+
+process.stdout.write(`coverage: iso view at azimuth 45 deg (the goal's number); 4-az: mean over azimuths ${opt.azimuths.join(', ')}\n`);
 
 // Side-by-side grid: Sylva's grid species on the first row (a grey tile for each missing one),
 // ez-tree's presets on the second.
@@ -161,7 +173,7 @@ const report = {
   ez_tree_version: pkgVersion('@dgreenheck/ez-tree'),
   three_version: pkgVersion('three'),
   renderer: viewer.webgl,
-  view: { name: 'iso', elevation_deg: 35, azimuth_deg: 45, fov_deg: 30, size: opt.size },
+  view: { name: 'iso', elevation_deg: 35, azimuth_deg: 45, fov_deg: 30, size: opt.size, extra_azimuths_deg: opt.azimuths.filter((a) => a !== 45) },
   goal: GOAL,
   missing: missing.map((s) => `species_${s}.json`),
   page_requests: [...new Set(viewer.requests)],
@@ -175,14 +187,14 @@ fs.writeFileSync(path.join(opt.outDir, 'coverage.json'), JSON.stringify(report, 
 const pad = (s, n) => String(s).padEnd(n);
 const lpad = (s, n) => String(s).padStart(n);
 const lines = [];
-lines.push(`${pad('tree', 24)} ${pad('kind', 9)} ${lpad('coverage', 8)} ${lpad('goal', 5)} ${pad('ok', 3)} ${lpad('hull_px', 8)} ${lpad('leaf_px', 8)} ${lpad('bark_px', 8)} ${lpad('triangles', 9)} ${lpad('calls', 5)}`);
+lines.push(`${pad('tree', 24)} ${pad('kind', 9)} ${lpad('coverage', 8)} ${lpad('4-az', 6)} ${lpad('goal', 5)} ${pad('ok', 3)} ${lpad('hull_px', 8)} ${lpad('leaf_px', 8)} ${lpad('bark_px', 8)} ${lpad('triangles', 9)} ${lpad('calls', 5)}`);
 for (const t of trees) {
   if (t.error) {
     lines.push(`${pad(t.name, 24)} ${pad(t.kind, 9)} ${t.error}`);
     continue;
   }
   lines.push(
-    `${pad(t.name, 24)} ${pad(t.kind, 9)} ${lpad((100 * t.coverage).toFixed(1) + '%', 8)} ${lpad(Math.round(100 * t.goal) + '%', 5)} ${pad(t.meets_goal ? 'yes' : 'no', 3)} ${lpad(t.hull_px, 8)} ${lpad(t.leaf_px, 8)} ${lpad(t.bark_px, 8)} ${lpad(t.triangles, 9)} ${lpad(t.draw_calls, 5)}`,
+    `${pad(t.name, 24)} ${pad(t.kind, 9)} ${lpad((100 * t.coverage).toFixed(1) + '%', 8)} ${lpad((100 * t.coverage_mean_azimuths).toFixed(1) + '%', 6)} ${lpad(Math.round(100 * t.goal) + '%', 5)} ${pad(t.meets_goal ? 'yes' : 'no', 3)} ${lpad(t.hull_px, 8)} ${lpad(t.leaf_px, 8)} ${lpad(t.bark_px, 8)} ${lpad(t.triangles, 9)} ${lpad(t.draw_calls, 5)}`,
   );
 }
 process.stdout.write(lines.join('\n') + '\n');

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Renders one tree to a PNG with the viewer page in headless Chromium.
-//   node tools/viewer/render.mjs FILE.glb OUT.png [--view iso|front|side|top] [--size 768]
+//   node tools/viewer/render.mjs FILE.glb OUT.png [--view iso|front|side|top|ELEV,AZIM] [--size 768]
 //   node tools/viewer/render.mjs --ez "Oak Medium" OUT.png
 // --measure prints the coverage numbers as JSON too; --overlay FILE.png writes the measurement
 // picture (hull, leaves, bark).
@@ -9,7 +9,7 @@ import { openViewer, writeDataURL } from './lib/harness.mjs';
 
 function usage(code) {
   process.stderr.write(
-    'usage: node tools/viewer/render.mjs (FILE.glb | --ez PRESET) OUT.png [--view iso|front|side|top] [--size N] [--measure] [--overlay FILE.png] [--verbose]\n',
+    'usage: node tools/viewer/render.mjs (FILE.glb | --ez PRESET) OUT.png [--view iso|front|side|top|ELEV,AZIM] [--size N] [--measure] [--overlay FILE.png] [--verbose]\n',
   );
   process.exit(code);
 }

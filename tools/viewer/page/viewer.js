@@ -143,8 +143,10 @@ function outlinePoints(root) {
 // Fitting the points rather than the bounding box keeps the empty corners of the box (its
 // ground corners in the iso view) from shrinking the tree.
 function fitCamera(points, box, viewName, aspect) {
-  const v = VIEWS[viewName];
-  if (!v) throw new Error(`unknown view ${viewName}; views: ${Object.keys(VIEWS).join(', ')}`);
+  // A named view, or "ELEVATION,AZIMUTH" in degrees.
+  const m = /^(-?[\d.]+),(-?[\d.]+)$/.exec(viewName);
+  const v = m ? { elevation: Number(m[1]), azimuth: Number(m[2]) } : VIEWS[viewName];
+  if (!v) throw new Error(`unknown view ${viewName}; views: ${Object.keys(VIEWS).join(', ')} or ELEVATION,AZIMUTH`);
   const el = THREE.MathUtils.degToRad(v.elevation);
   const az = THREE.MathUtils.degToRad(v.azimuth);
   const dir = new THREE.Vector3(Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az));
@@ -283,6 +285,9 @@ async function show(spec, opts = {}) {
     const cov = computeCoverage(masks);
     const { hullMask, ...numbers } = cov;
     Object.assign(result, numbers);
+    // Diagnostic only: the same ratio over the hull of the leaf pixels alone (bare branch tips
+    // sticking out of the foliage do not widen it).
+    result.coverage_leaf_hull = computeCoverage({ ...masks, whole: masks.leaf }).coverage;
     if (opts.overlay) result.overlay = rgbaToDataURL(overlayRGBA(masks, hullMask, cov.crown_base_row), size);
   }
   return result;
