@@ -166,6 +166,24 @@ try {
   process.stderr.write(`compare: montage failed: ${e.message}\n`);
 }
 
+// Every Sylva species in one more grid (docs/compare/all_species.png), six to a row.
+const allSylva = trees.filter((t) => t.source === 'sylva');
+if (gridOk && allSylva.length) {
+  const a = [];
+  for (const t of allSylva) a.push('-label', label(t), t.error ? 'xc:#c8ccd0' : path.join(opt.outDir, t.png));
+  try {
+    execFileSync(
+      'montage',
+      [...a, '-tile', `${cols}x`, '-geometry', `${tileSize}x${tileSize}+6+6`, '-font', 'DejaVu-Sans', '-pointsize', '15', '-background', 'white',
+        '-title', `Sylva species presets (${opt.presetDir}), iso view, leaf coverage of the crown hull`, path.join(opt.outDir, 'all_species.png')],
+      { stdio: ['ignore', 'inherit', 'inherit'] },
+    );
+  } catch (e) {
+    gridOk = false;
+    process.stderr.write(`compare: montage failed: ${e.message}\n`);
+  }
+}
+
 const report = {
   generated: new Date().toISOString(),
   sylva_binary: opt.binary || null,

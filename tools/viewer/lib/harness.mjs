@@ -86,48 +86,69 @@ export function chromiumPath() {
   return process.env.SYLVA_CHROMIUM || '/usr/bin/chromium';
 }
 
-// Launches Chromium, opens the viewer page on a server for `files`, and returns helpers.
-// Every request the page makes is recorded; any that leaves the local server is refused.
+// Launches Chromium and a server for `files`, and returns helpers. Each show() of a new tree
+// runs in a fresh page (a crashed page or browser is replaced), so one huge tree cannot starve
+// the next. Every request the pages make is recorded; any that leaves the local server is
+// refused.
 export async function openViewer(files = [], { size = 768, verbose = false } = {}) {
   const server = await startServer(files);
-  const browser = await chromium.launch({ executablePath: chromiumPath(), args: CHROMIUM_ARGS, headless: true });
-  const page = await browser.newPage({ viewport: { width: size, height: size }, deviceScaleFactor: 1 });
   const requests = [];
   const errors = [];
-  await page.route('**/*', (route) => {
-    const u = route.request().url();
-    if (u.startsWith(server.origin) || u.startsWith('data:') || u.startsWith('blob:')) return route.continue();
-    errors.push(`refused request outside the local server: ${u}`);
-    return route.abort();
-  });
-  page.on('request', (r) => {
-    const u = r.url();
-    if (!u.startsWith('data:') && !u.startsWith('blob:')) requests.push(u.replace(server.origin, ''));
-  });
-  // three's FileLoader reads a fetch body through its own stream wrapper; Chromium then reports
-  // the finished request as ERR_ABORTED although every byte arrived. Only a request that got no
-  // successful response counts as failed.
-  const answered = new Set();
-  page.on('response', (r) => {
-    if (r.status() >= 400) errors.push(`HTTP ${r.status()}: ${r.url()}`);
-    else answered.add(r.url());
-  });
-  page.on('requestfailed', (r) => {
-    const why = r.failure()?.errorText || '';
-    if (why.includes('ERR_ABORTED') && answered.has(r.url())) return;
-    errors.push(`request failed: ${r.url()} ${why}`);
-  });
-  page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-  page.on('console', (m) => {
-    if (verbose || m.type() === 'error') process.stderr.write(`[page ${m.type()}] ${m.text()}\n`);
-  });
-  await page.goto(`${server.origin}/`);
+  let browser = null;
+  let page = null;
+  let pageKey = null; // the spec the current page holds
+
+  async function newPage() {
+    if (page) await page.close().catch(() => {});
+    page = null;
+    pageKey = null;
+    if (!browser || !browser.isConnected()) {
+      if (browser) await browser.close().catch(() => {});
+      browser = await chromium.launch({ executablePath: chromiumPath(), args: CHROMIUM_ARGS, headless: true });
+    }
+    const p = await browser.newPage({ viewport: { width: size, height: size }, deviceScaleFactor: 1 });
+    await p.route('**/*', (route) => {
+      const u = route.request().url();
+      if (u.startsWith(server.origin) || u.startsWith('data:') || u.startsWith('blob:')) return route.continue();
+      errors.push(`refused request outside the local server: ${u}`);
+      return route.abort();
+    });
+    p.on('request', (r) => {
+      const u = r.url();
+      if (!u.startsWith('data:') && !u.startsWith('blob:')) requests.push(u.replace(server.origin, ''));
+    });
+    // three's FileLoader reads a fetch body through its own stream wrapper; Chromium then
+    // reports the finished request as ERR_ABORTED although every byte arrived. Only a request
+    // that got no successful response counts as failed.
+    const answered = new Set();
+    p.on('response', (r) => {
+      if (r.status() >= 400) errors.push(`HTTP ${r.status()}: ${r.url()}`);
+      else answered.add(r.url());
+    });
+    p.on('requestfailed', (r) => {
+      const why = r.failure()?.errorText || '';
+      if (why.includes('ERR_ABORTED') && answered.has(r.url())) return;
+      errors.push(`request failed: ${r.url()} ${why}`);
+    });
+    p.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
+    p.on('console', (m) => {
+      if (verbose || m.type() === 'error') process.stderr.write(`[page ${m.type()}] ${m.text()}\n`);
+    });
+    await p.goto(`${server.origin}/`);
+    try {
+      await p.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 60000 });
+    } catch (e) {
+      throw new Error(`the viewer page did not start: ${errors.join('; ') || e.message}`);
+    }
+    page = p;
+  }
+
   try {
-    await page.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 60000 });
+    await newPage();
   } catch (e) {
-    await browser.close();
+    if (browser) await browser.close().catch(() => {});
     await server.close();
-    throw new Error(`the viewer page did not start: ${errors.join('; ') || e.message}`);
+    throw e;
   }
   const webgl = await page.evaluate(() => {
     const gl = document.createElement('canvas').getContext('webgl2');
@@ -136,18 +157,28 @@ export async function openViewer(files = [], { size = 768, verbose = false } = {
     return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
   });
   return {
-    page,
     requests,
     errors,
     webgl,
     fileUrl: server.fileUrl,
-    // spec: { kind: 'glb', file: index } or { kind: 'ez', preset: name }
+    // spec: { kind: 'glb', file: index } or { kind: 'ez', preset: name }. The same spec as the
+    // last call reuses the loaded tree (another view of it); a different one gets a fresh page.
     async show(spec, opts) {
       const s = spec.kind === 'glb' ? { kind: 'glb', url: server.fileUrl(spec.file) } : spec;
-      return page.evaluate(([s2, o]) => window.viewer.show(s2, o), [s, opts]);
+      const key = JSON.stringify(s);
+      if (pageKey !== null && pageKey !== key) await newPage();
+      else if (!page || page.isClosed() || !browser.isConnected()) await newPage();
+      pageKey = key;
+      try {
+        return await page.evaluate(([s2, o]) => window.viewer.show(s2, o), [s, opts]);
+      } catch (e) {
+        pageKey = null;
+        if (page.isClosed() || !browser.isConnected()) page = null;
+        throw e;
+      }
     },
     async close() {
-      await browser.close();
+      if (browser) await browser.close().catch(() => {});
       await server.close();
     },
   };

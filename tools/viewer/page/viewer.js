@@ -239,10 +239,14 @@ function rgbaToDataURL(rgba, size) {
 async function show(spec, opts = {}) {
   const size = opts.size || 768;
   const view = opts.view || 'iso';
-  clear();
+  const key = JSON.stringify(spec);
   const t0 = performance.now();
-  current = spec.kind === 'ez' ? await loadEz(spec.preset) : await loadGLB(spec.url);
-  scene.add(current.root);
+  if (!current || current.key !== key) {
+    clear();
+    current = spec.kind === 'ez' ? await loadEz(spec.preset) : await loadGLB(spec.url);
+    current.key = key;
+    scene.add(current.root);
+  }
   current.root.updateMatrixWorld(true);
   const box = new THREE.Box3().setFromObject(current.root, true);
   const loadMs = performance.now() - t0;
