@@ -87,6 +87,10 @@ for (const preset of opt.ez) {
 }
 
 fs.mkdirSync(opt.outDir, { recursive: true });
+// Pictures of an earlier run (a preset since removed) would linger next to the new ones.
+for (const f of fs.readdirSync(opt.outDir)) {
+  if (/^(sylva_|ez_).*\.png$|^all_species\.png$/.test(f)) fs.rmSync(path.join(opt.outDir, f));
+}
 const t0 = Date.now();
 const viewer = await openViewer(files, { size: opt.size });
 let failures = 0;

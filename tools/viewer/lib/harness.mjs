@@ -5,7 +5,14 @@ import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+
+let chromium;
+try {
+  ({ chromium } = await import('playwright-core'));
+} catch {
+  process.stderr.write('tools/viewer: playwright-core is not installed; run `bash scripts/compare-trees.sh` once, or `npm ci` in tools/viewer\n');
+  process.exit(1);
+}
 
 export const VIEWER_DIR = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
