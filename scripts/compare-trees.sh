@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Renders Sylva's species presets and ez-tree's presets in the same three.js viewer (headless
+# Chromium) and measures leaf coverage of the crown hull (issue 11; docs/COMPARE.md).
+#
+#   bash scripts/compare-trees.sh [SYLVA_BINARY] [PRESET_DIR]
+#
+# SYLVA_BINARY defaults to ./build/app/sylva, PRESET_DIR to presets/ (both relative to where it
+# is run, normally the repository root). Writes docs/compare/*.png, docs/compare/coverage.json
+# and docs/side_by_side.png, and prints the coverage table. Installs what it needs on first use:
+# Debian chromium and imagemagick (apt, only when missing) and tools/viewer's npm packages
+# (only when missing). SYLVA_CHROMIUM overrides the browser path; SIZE the image size (768).
+set -euo pipefail
+
+SYLVA=${1:-./build/app/sylva}
+PRESETS=${2:-presets}
+OUT_DIR=${OUT_DIR:-docs/compare}
+GRID=${GRID:-docs/side_by_side.png}
+SIZE=${SIZE:-768}
+VIEWER="$(cd "$(dirname "$0")/../tools/viewer" && pwd)"
+start=$(date +%s)
+
+if [ ! -x "$SYLVA" ]; then
+  echo "compare-trees: no sylva binary at $SYLVA (build it, or pass its path)" >&2
+  exit 1
+fi
+if [ ! -d "$PRESETS" ]; then
+  echo "compare-trees: no preset directory $PRESETS" >&2
+  exit 1
+fi
+
+# Debian packages, only when missing.
+need=()
+[ -x "${SYLVA_CHROMIUM:-/usr/bin/chromium}" ] || need+=(chromium)
+command -v montage >/dev/null 2>&1 || need+=(imagemagick)
+command -v node >/dev/null 2>&1 || need+=(nodejs)
+command -v npm >/dev/null 2>&1 || need+=(npm)
+fc-list 2>/dev/null | grep -qi dejavu || need+=(fonts-dejavu-core)
+if [ ${#need[@]} -gt 0 ]; then
+  echo "compare-trees: installing ${need[*]}" >&2
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi
+
+# npm packages (three, ez-tree, playwright-core; no browser download), only when missing.
+if [ ! -f "$VIEWER/node_modules/three/package.json" ] \
+  || [ ! -f "$VIEWER/node_modules/@dgreenheck/ez-tree/package.json" ] \
+  || [ ! -f "$VIEWER/node_modules/playwright-core/package.json" ]; then
+  echo "compare-trees: npm ci in tools/viewer" >&2
+  (cd "$VIEWER" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi
+
+# Export every species preset.
+GLB_DIR=$(mktemp -d)
+trap 'rm -rf "$GLB_DIR"' EXIT
+export_start=$(date +%s)
+for preset in "$PRESETS"/species_*.json; do
+  [ -e "$preset" ] || continue
+  name=$(basename "$preset" .json)
+  if ! "$SYLVA" export "$preset" -o "$GLB_DIR/$name.glb" >"$GLB_DIR/$name.log" 2>&1; then
+    echo "compare-trees: export of $preset failed:" >&2
+    sed 's/^/  /' "$GLB_DIR/$name.log" >&2
+    rm -f "$GLB_DIR/$name.glb"
+  fi
+done
+export_end=$(date +%s)
+echo "compare-trees: exported $(ls "$GLB_DIR"/*.glb 2>/dev/null | wc -l) species presets in $((export_end - export_start)) s" >&2
+
+status=0
+node "$VIEWER/compare.mjs" --glb-dir "$GLB_DIR" --preset-dir "$PRESETS" --out-dir "$OUT_DIR" \
+  --grid "$GRID" --size "$SIZE" --binary "$SYLVA" || status=$?
+echo "compare-trees: done in $(($(date +%s) - start)) s" >&2
+exit $status
