@@ -1,7 +1,10 @@
 // Exporters: glTF 2.0 (.glb / .gltf + .bin + PNGs), OBJ + MTL + PNGs, and the skeleton JSON.
 #include "render/export.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -132,16 +135,41 @@ std::string stem_path(const std::string& path) {
   return (p.parent_path() / p.stem()).string();
 }
 
-// Writes every (path, bytes) pair atomically; on a failure removes the ones already written.
+// Writes every (path, bytes) pair all or nothing: each goes to a temporary file beside its target
+// first (write_file_atomic: written, synced), and only when all of them are complete are they
+// renamed into place, the last pair (the main file, which names the others) last. On any failure
+// the temporary files and the files already renamed are removed.
 std::string write_all(const std::vector<std::pair<std::string, std::string>>& files, export_result& r) {
+  namespace fs = std::filesystem;
+  static std::atomic<unsigned> counter{0};
+  std::vector<std::string> temps;
+  std::error_code ec;
+  auto undo = [&] {
+    for (const std::string& t : temps) fs::remove(t, ec);
+    for (const std::string& done : r.files) fs::remove(done, ec);
+    r.files.clear();
+  };
   for (const auto& [path, bytes] : files) {
-    if (std::string err = write_file_atomic(path, bytes); !err.empty()) {
-      std::error_code ec;
-      for (const std::string& done : r.files) std::filesystem::remove(done, ec);
-      r.files.clear();
+    const fs::path target(path);
+    std::string name = ".";
+    name += target.filename().string();
+    name += ".part-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string temp = (target.parent_path() / name).string();
+    if (std::string err = write_file_atomic(temp, bytes); !err.empty()) {
+      undo();
+      return "cannot write " + path + " (" + err + ")";
+    }
+    temps.push_back(temp);
+  }
+  for (size_t k = 0; k < files.size(); ++k) {
+    fs::rename(temps[k], files[k].first, ec);
+    if (ec) {
+      const std::string err = "cannot write " + files[k].first + ": " + ec.message();
+      temps.erase(temps.begin(), temps.begin() + std::ptrdiff_t(k));
+      undo();
       return err;
     }
-    r.files.push_back(path);
+    r.files.push_back(files[k].first);
   }
   return "";
 }

@@ -117,6 +117,8 @@ TEST(Export, GltfWritesBinAndTexturesNextToIt) {
   const tinygltf::Mesh* bark = find_mesh(model, "bark");
   ASSERT_TRUE(bark);
   EXPECT_EQ(model.accessors[bark->primitives[0].indices].count, h.m.index.size());
+  for (const auto& e : fs::directory_iterator(dir.dir))  // no temporary files left behind
+    EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
   EXPECT_EQ(model.images[0].width, 64);  // the PNG decodes
   image leaves;
   ASSERT_EQ(load_png(dir / "tree_leaves.png", leaves), "");
