@@ -11,8 +11,13 @@
 #include <cstdio>
 #include <cctype>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string_view>
+#include <thread>
+#include <tuple>
 
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
@@ -300,6 +305,45 @@ struct material_pngs {
   std::string color, normal, roughness;
 };
 
+// The PNGs of a procedural material (bark: colour, normal, roughness; leaf: colour, normal), the
+// colour tinted as the viewport tints it. PNG compression is most of an export's time, so the
+// images are encoded in parallel and the result is kept for the process: the export dialog's size
+// estimate and the export after it encode once. nullptr with `error` set when encoding fails.
+std::shared_ptr<const material_pngs> procedural_pngs(bool bark, int archetype, int size, uint64_t seed,
+                                                     const glm::vec3& tint, std::string& error) {
+  using key_type = std::tuple<bool, int, int, uint64_t, float, float, float>;
+  static std::mutex mutex;
+  static std::map<key_type, std::shared_ptr<const material_pngs>> cache;
+  const key_type key{bark, archetype, size, seed, tint.x, tint.y, tint.z};
+  {
+    std::lock_guard lock(mutex);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  std::vector<image> images;
+  if (bark) {
+    const bark_texture_set& set = bark_archetype_textures(bark_archetype(std::clamp(archetype, 0, bark_archetype_count - 1)), size, seed);
+    images = {tinted_texture(set.color, tint), set.normal, set.roughness};
+  } else {
+    const leaf_texture_set& set = leaf_archetype_textures(leaf_archetype(std::clamp(archetype, 0, leaf_slots - 1)), size, seed);
+    images = {tinted_texture(set.color, tint), set.normal};
+  }
+  std::vector<std::string> png(images.size()), err(images.size());
+  std::vector<std::thread> helpers;
+  for (size_t k = 1; k < images.size(); ++k) helpers.emplace_back([&, k] { err[k] = encode_png(images[k], png[k]); });
+  err[0] = encode_png(images[0], png[0]);
+  for (std::thread& t : helpers) t.join();
+  for (const std::string& e : err)
+    if (!e.empty()) {
+      error = e;
+      return nullptr;
+    }
+  auto out = std::make_shared<const material_pngs>(material_pngs{std::move(png[0]), std::move(png[1]), bark ? std::move(png[2]) : ""});
+  std::lock_guard lock(mutex);
+  if (cache.size() >= 32) cache.clear();  // tints being edited: keep the memory bounded
+  cache.emplace(key, out);
+  return out;
+}
+
 // The materials of one export: the bark, and the leaves by slot (leaf_slot()). Loads the user's
 // textures once (a file that cannot be used is a warning and the procedural texture stands in)
 // and makes each material's PNGs on first use, so only the archetypes present cost anything.
@@ -347,11 +391,8 @@ class material_source {
     material_pngs m;
     if (user_bark_) {
       m.color = png_of(bark_color_);
-    } else {
-      const bark_texture_set& set = bark_archetype_textures(o_.bark, size_, o_.texture_seed);
-      m.color = encode(tinted_texture(set.color, o_.bark_color));
-      m.roughness = encode(set.roughness);
-      if (!user_bark_normal_) m.normal = encode(set.normal);
+    } else if (auto p = procedural_pngs(true, int(o_.bark), size_, o_.texture_seed, o_.bark_color, error)) {
+      m = *p;
     }
     if (user_bark_normal_) m.normal = png_of(bark_normal_);
     if (!error.empty()) return nullptr;
@@ -364,10 +405,8 @@ class material_source {
     material_pngs m;
     if (user_leaf_) {
       m.color = png_of(leaf_);
-    } else {
-      const leaf_texture_set& set = leaf_archetype_textures(leaf_archetype(slot), size_, o_.texture_seed);
-      m.color = encode(tinted_texture(set.color, o_.leaf_color));
-      m.normal = encode(set.normal);
+    } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, o_.leaf_color, error)) {
+      m = *p;
     }
     if (!error.empty()) return nullptr;
     cached = std::move(m);
