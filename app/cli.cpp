@@ -266,11 +266,17 @@ int run_export(const export_args& a) {
     o.growth_animation = a.animation;
     o.seconds_per_step = a.seconds_per_step;
     o.mesh = p.mesh;
-    o.texture_seed = p.spec.seed;
+    apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
     t0 = clock_type::now();
     const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
     const double export_ms = ms_since(t0);
     if (!r.error.empty()) return fail(cmd, r.error);
+    // Warnings (a user texture that could not be used) do not fail the export: it was written.
+    for (size_t at = 0; at < r.warning.size();) {
+      const size_t end = std::min(r.warning.find('\n', at), r.warning.size());
+      warn(path, r.warning.substr(at, end - at));
+      at = end + 1;
+    }
     std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
                 path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
                 double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());

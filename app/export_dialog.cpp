@@ -41,7 +41,7 @@ export_options options_for(const export_dialog_state& d, const export_context& c
   o.growth_animation = d.animation && (f == 0 || f == 1);
   o.seconds_per_step = d.seconds_per_step;
   o.mesh = c.tree->mesh_settings;
-  o.texture_seed = c.tree->spec.seed;
+  apply_render_params(o, c.doc.render);  // the same materials and user textures as `sylva export`
   return o;
 }
 
@@ -89,6 +89,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   if (done) {
     join(d);
     if (d.job_dry) {
+      d.warning = done->warning;  // a user texture that cannot be used shows before the export
       d.estimate = !done->error.empty() ? "cannot estimate: " + done->error
                                         : "about " + human_bytes(done->bytes) + ", " + std::to_string(done->triangles) +
                                               " triangles" +
@@ -97,7 +98,10 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       error = !done->error.empty();
       status = error ? "Export failed: " + done->error
                      : "Exported " + d.path + " (" + human_bytes(done->bytes) + ", " + std::to_string(done->files.size()) + " file(s))";
+      d.warning = error ? "" : done->warning;
+      if (!d.warning.empty()) status += "; warning: " + d.warning.substr(0, d.warning.find('\n'));
       if (error) std::fprintf(stderr, "sylva: %s\n", status.c_str());
+      if (!d.warning.empty()) std::fprintf(stderr, "sylva: export warning: %s\n", d.warning.c_str());
     }
   }
   if (!d.open) return;
@@ -140,9 +144,11 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
 
   // The size estimate: a dry run of the same export, redone whenever an input changes.
   if (have_tree && f >= 0 && f != 4) {
-    char key[160];
-    std::snprintf(key, sizeof key, "%u|%d|%d|%d|%d|%g", c.tree->generation, f, d.final_tree ? -1 : c.step,
-                  int(d.animation && gltf), int(d.final_tree), double(d.seconds_per_step));
+    char head[160];
+    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,
+                  int(d.animation && gltf), int(d.final_tree), double(d.seconds_per_step), int(c.doc.render.bark));
+    const render_params& rp = c.doc.render;
+    const std::string key = std::string(head) + "|" + rp.bark_texture + "|" + rp.leaf_texture + "|" + rp.leaf_opacity;
     if (key != d.estimate_key && !busy) {
       d.estimate_key = key;
       d.estimate = "estimating...";
@@ -152,6 +158,8 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   } else if (f == 4) {
     ImGui::TextDisabled("A 1280x720 render of the current view.");
   }
+
+  if (!d.warning.empty()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "Warning: %s", d.warning.c_str());
 
   if (busy && !d.job_dry) {
     ImGui::ProgressBar(d.progress.load(), ImVec2(400, 0));

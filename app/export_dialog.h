@@ -33,6 +33,7 @@ struct export_dialog_state {
   std::optional<export_result> finished;   // set by the thread, taken by the UI
   std::string estimate_key;                // what the shown estimate was computed for
   std::string estimate;                    // "", "estimating...", "about 1.2 MiB, 34,000 triangles"
+  std::string warning;                     // the last export's warning (a user texture it could not use)
 };
 
 struct export_context {

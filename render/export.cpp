@@ -1,14 +1,27 @@
 // Exporters: glTF 2.0 (.glb / .gltf + .bin + PNGs), OBJ + MTL + PNGs, and the skeleton JSON.
 #include "render/export.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string_view>
+#include <thread>
+#include <tuple>
 
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
+#include <stb_image.h>
 
 #include "render/files.h"
 #include "render/textures.h"
@@ -22,31 +35,45 @@ using json = nlohmann::json;
 struct geometry {
   std::vector<glm::vec3> position, normal;
   std::vector<glm::vec2> uv;
-  std::vector<glm::vec4> tangent;  // bark only (it carries a normal map)
+  std::vector<glm::vec4> tangent;  // +u direction, w = handedness (written when a normal map is)
   std::vector<uint32_t> index;
   bool empty() const { return index.empty(); }
 };
 
+// Leaves go into one geometry per material slot: the archetype index, or slot 0 for everything
+// when the user's leaf texture replaces the archetypes.
+constexpr int leaf_slots = leaf_archetype_count;
+
 struct tree_part {
-  geometry bark, leaves;
+  geometry bark;
+  std::array<geometry, leaf_slots> leaves;
 };
 
-// A leaf instance as a quad of one blade length square, base at the petiole (leaf frame of
-// skeleton.h: blade in local XY, normal +Z, petiole along -Y); UVs pick its atlas cell.
+int leaf_slot(const leaf_instance& l, bool one_leaf_material) {
+  return one_leaf_material ? 0 : std::clamp(int(l.texture), 0, leaf_slots - 1);
+}
+
+// A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
+// skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
+// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner).
 void bake_leaf(geometry& g, const leaf_instance& l) {
   const glm::quat q(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z);
   const float h = l.size, w = l.size * 0.5f;
   const glm::vec3 corner[4] = {{-w, 0, 0}, {w, 0, 0}, {w, h, 0}, {-w, h, 0}};
-  const auto cell = leaf_atlas_cell(l.texture);
-  const glm::vec2 uv[4] = {{cell[0], cell[3]}, {cell[2], cell[3]}, {cell[2], cell[1]}, {cell[0], cell[1]}};
-  glm::vec3 n = q * glm::vec3(0, 0, 1);
-  const float len = glm::length(n);
-  n = len > 1e-6f ? n / len : glm::vec3(0, 0, 1);
+  const glm::vec2 uv[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  auto unit = [](glm::vec3 v, glm::vec3 fallback) {
+    const float len = glm::length(v);
+    return len > 1e-6f ? v / len : fallback;
+  };
+  const glm::vec3 n = unit(q * glm::vec3(0, 0, 1), glm::vec3(0, 0, 1));
+  // Tangent along +u (local +X); the bitangent n x t = local +Y runs up the image, so w = +1.
+  const glm::vec4 t(unit(q * glm::vec3(1, 0, 0), glm::vec3(1, 0, 0)), 1.0f);
   const uint32_t base = uint32_t(g.position.size());
   for (int k = 0; k < 4; ++k) {
     g.position.push_back(l.position + q * corner[k]);
     g.normal.push_back(n);
     g.uv.push_back(uv[k]);
+    g.tangent.push_back(t);
   }
   for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
 }
@@ -67,8 +94,9 @@ bool has_shed(const tree_skeleton& t, int s) {
 }
 
 // Splits a mesh into one part per tree (a forest is one glTF node per tree); leaves alive at
-// `step` are baked into quads unless `instanced`, in which case they are left to the caller.
-std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake) {
+// `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
+// they are left to the caller.
+std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material) {
   std::vector<int32_t> tree_of(t.size(), 0);
   int trees = 0;
   for (size_t i = 0; i < t.size(); ++i) tree_of[i] = t.parent[i] < 0 ? trees++ : tree_of[t.parent[i]];
@@ -77,10 +105,14 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
   if (parts.size() == 1) {  // the common case: reserve exactly, so big trees are not copied while growing
     geometry& g = parts[0].bark;
     g.position.reserve(nv), g.normal.reserve(nv), g.uv.reserve(nv), g.tangent.reserve(nv), g.index.reserve(m.index.size());
-    size_t alive = 0;
-    for (const leaf_instance& l : m.leaves) alive += l.born <= step && step < l.died;
-    geometry& f = parts[0].leaves;
-    f.position.reserve(4 * alive), f.normal.reserve(4 * alive), f.uv.reserve(4 * alive), f.index.reserve(6 * alive);
+    std::array<size_t, leaf_slots> alive{};
+    if (bake)
+      for (const leaf_instance& l : m.leaves) alive[size_t(leaf_slot(l, one_leaf_material))] += l.born <= step && step < l.died;
+    for (int k = 0; k < leaf_slots; ++k) {
+      geometry& f = parts[0].leaves[size_t(k)];
+      const size_t n = alive[size_t(k)];
+      f.position.reserve(4 * n), f.normal.reserve(4 * n), f.uv.reserve(4 * n), f.tangent.reserve(4 * n), f.index.reserve(6 * n);
+    }
   }
   std::vector<uint32_t> local(nv, UINT32_MAX);
   const int seg = std::max(m.radial_segments, 1), stride = seg + 1;
@@ -108,7 +140,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
   if (bake)
     for (const leaf_instance& l : m.leaves)
       if (l.born <= step && step < l.died)
-        bake_leaf(parts[l.node < tree_of.size() ? tree_of[l.node] : 0].leaves, l);
+        bake_leaf(parts[l.node < tree_of.size() ? tree_of[l.node] : 0].leaves[size_t(leaf_slot(l, one_leaf_material))], l);
   return parts;
 }
 
@@ -132,16 +164,41 @@ std::string stem_path(const std::string& path) {
   return (p.parent_path() / p.stem()).string();
 }
 
-// Writes every (path, bytes) pair atomically; on a failure removes the ones already written.
+// Writes every (path, bytes) pair all or nothing: each goes to a temporary file beside its target
+// first (write_file_atomic: written, synced), and only when all of them are complete are they
+// renamed into place, the last pair (the main file, which names the others) last. On any failure
+// the temporary files and the files already renamed are removed.
 std::string write_all(const std::vector<std::pair<std::string, std::string>>& files, export_result& r) {
+  namespace fs = std::filesystem;
+  static std::atomic<unsigned> counter{0};
+  std::vector<std::string> temps;
+  std::error_code ec;
+  auto undo = [&] {
+    for (const std::string& t : temps) fs::remove(t, ec);
+    for (const std::string& done : r.files) fs::remove(done, ec);
+    r.files.clear();
+  };
   for (const auto& [path, bytes] : files) {
-    if (std::string err = write_file_atomic(path, bytes); !err.empty()) {
-      std::error_code ec;
-      for (const std::string& done : r.files) std::filesystem::remove(done, ec);
-      r.files.clear();
+    const fs::path target(path);
+    std::string name = ".";
+    name += target.filename().string();
+    name += ".part-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string temp = (target.parent_path() / name).string();
+    if (std::string err = write_file_atomic(temp, bytes); !err.empty()) {
+      undo();
+      return "cannot write " + path + " (" + err + ")";
+    }
+    temps.push_back(temp);
+  }
+  for (size_t k = 0; k < files.size(); ++k) {
+    fs::rename(temps[k], files[k].first, ec);
+    if (ec) {
+      const std::string err = "cannot write " + files[k].first + ": " + ec.message();
+      temps.erase(temps.begin(), temps.begin() + std::ptrdiff_t(k));
+      undo();
       return err;
     }
-    r.files.push_back(path);
+    r.files.push_back(files[k].first);
   }
   return "";
 }
@@ -188,15 +245,17 @@ struct gltf_doc {
     }
     return add_accessor(add_view(idx.data(), idx.size() * 4, element_array_buffer), gl_uint, idx.size(), "SCALAR");
   }
-  // A mesh with one primitive; -1 when the geometry is empty (glTF forbids empty accessors).
-  int add_mesh(const geometry& g, int material, const char* name) {
-    if (g.empty()) return -1;
+  // One primitive; TANGENT only when its material has a normal map.
+  json add_primitive(const geometry& g, int material, bool tangents) {
     json attr = {{"POSITION", add_vectors(g.position, "VEC3", array_buffer, true)},
                  {"NORMAL", add_vectors(g.normal, "VEC3", array_buffer)},
                  {"TEXCOORD_0", add_vectors(g.uv, "VEC2", array_buffer)}};
-    if (!g.tangent.empty()) attr["TANGENT"] = add_vectors(g.tangent, "VEC4", array_buffer);
+    if (tangents && !g.tangent.empty()) attr["TANGENT"] = add_vectors(g.tangent, "VEC4", array_buffer);
     const int idx = add_indices(g.index, g.position.size());
-    j["meshes"].push_back({{"name", name}, {"primitives", {{{"attributes", attr}, {"indices", idx}, {"material", material}}}}});
+    return {{"attributes", attr}, {"indices", idx}, {"material", material}};
+  }
+  int add_mesh(const std::string& name, json primitives) {
+    j["meshes"].push_back({{"name", name}, {"primitives", std::move(primitives)}});
     return int(j["meshes"].size()) - 1;
   }
   int add_node(json node) {
@@ -205,102 +264,323 @@ struct gltf_doc {
   }
 };
 
-struct gltf_textures {
-  std::string bark_png, normal_png, leaves_png;
+// ---------------------------------------------------------------- materials and their textures
+constexpr uintmax_t max_user_texture_bytes = uintmax_t(64) << 20;
+constexpr int max_user_texture_side = 8192;
+
+// A texture of the user's: its pixels (RGBA), and the file's own bytes when it is a PNG, which
+// is then written unchanged.
+struct user_image {
+  image pixels;
+  std::string png;
 };
 
-// Materials 0 (bark) and 1 (leaves) with textures 0..2; images embedded (GLB) or as files.
-void add_materials(gltf_doc& d, const gltf_textures& tex, bool embed, const std::string& stem_name) {
-  d.j["samplers"] = json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}},
-                                 {{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 33071}, {"wrapT", 33071}}});
-  const std::pair<const std::string*, const char*> images[3] = {
-      {&tex.bark_png, "_bark.png"}, {&tex.normal_png, "_bark_normal.png"}, {&tex.leaves_png, "_leaves.png"}};
-  for (const auto& [png, suffix] : images) {
-    if (embed)
-      d.j["images"].push_back({{"bufferView", d.add_view(png->data(), png->size(), 0)}, {"mimeType", "image/png"}});
-    else
-      d.j["images"].push_back({{"uri", stem_name + suffix}});
-  }
-  d.j["textures"] = json::array({{{"sampler", 0}, {"source", 0}}, {{"sampler", 0}, {"source", 1}}, {{"sampler", 1}, {"source", 2}}});
-  d.j["materials"] = json::array(
-      {{{"name", "bark"},
-        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.9}}},
-        {"normalTexture", {{"index", 1}}}},
-       {{"name", "leaves"},
-        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}},
-        {"alphaMode", "MASK"},
-        {"alphaCutoff", 0.5},
-        {"doubleSided", true}}});
-}
-
-// Procedural textures, or the user's PNGs where given; "" or an error naming the file.
-std::string make_gltf_textures(const export_options& o, gltf_textures& g) {
-  const int n = std::clamp(o.texture_size, 16, 2048);
-  texture_set t = make_textures(n, n / 2, o.texture_seed);
-  for (auto [path, img] : {std::pair{&o.bark_texture, &t.bark_color}, std::pair{&o.bark_normal_texture, &t.bark_normal}})
-    if (!path->empty())
-      if (std::string err = load_png(*path, *img); !err.empty()) return "texture " + err;
-  image atlas;
-  if (!o.leaf_texture.empty()) {
-    image leaf;
-    if (std::string err = load_png(o.leaf_texture, leaf); !err.empty()) return "texture " + err;
-    atlas = make_leaf_atlas({leaf, leaf, leaf, leaf});
-  } else {
-    atlas = make_leaf_atlas(t.leaf);
-  }
-  for (auto [img, png] : {std::pair{&t.bark_color, &g.bark_png}, std::pair{&t.bark_normal, &g.normal_png}, std::pair{&atlas, &g.leaves_png}})
-    if (std::string err = encode_png(*img, *png); !err.empty()) return err;
+// "" with `out` filled, or why the file cannot be used (missing, too big, not an image).
+std::string load_user_image(const std::string& path, user_image& out) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return "file not found";
+  if (!fs::is_regular_file(path, ec)) return "not a file";
+  const uintmax_t on_disk = fs::file_size(path, ec);
+  if (ec) return "cannot read it: " + ec.message();
+  if (on_disk > max_user_texture_bytes)
+    return "the file is " + std::to_string(on_disk >> 20) + " MB, over the limit of " +
+           std::to_string(max_user_texture_bytes >> 20) + " MB";
+  std::string bytes;
+  if (std::string err = read_file(path, bytes); !err.empty()) return err;
+  int w = 0, h = 0, ch = 0;
+  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch))
+    return "not a readable PNG (corrupt, or another format)";
+  if (w > max_user_texture_side || h > max_user_texture_side)
+    return std::to_string(w) + "x" + std::to_string(h) + " pixels, over the limit of " +
+           std::to_string(max_user_texture_side) + " a side";
+  if (std::string err = decode_png(bytes, out.pixels); !err.empty()) return err;
+  static constexpr std::string_view png_signature("\x89PNG\r\n\x1a\n", 8);
+  if (std::string_view(bytes).substr(0, 8) == png_signature) out.png = std::move(bytes);
   return "";
 }
 
-// Nodes for one view of the tree: one node per tree, with a bark and a leaves child.
-// Returns the node ids to put under the parent; counts triangles.
-std::vector<int> add_tree_nodes(gltf_doc& d, const step_view& v, int step, bool instanced, const std::string& prefix,
-                                size_t& triangles) {
-  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced);
-  std::vector<int> out;
-  int leaf_quad_mesh = -1;
+// PNG bytes of one material's textures; "" = the material has none of that kind.
+struct material_pngs {
+  std::string color, normal, roughness;
+};
+
+// The PNGs of a procedural material (bark: colour, normal, roughness; leaf: colour, normal), the
+// colour tinted as the viewport tints it. PNG compression is most of an export's time, so the
+// images are encoded in parallel and the result is kept for the process: the export dialog's size
+// estimate and the export after it encode once. nullptr with `error` set when encoding fails.
+std::shared_ptr<const material_pngs> procedural_pngs(bool bark, int archetype, int size, uint64_t seed,
+                                                     const glm::vec3& tint, std::string& error) {
+  using key_type = std::tuple<bool, int, int, uint64_t, float, float, float>;
+  static std::mutex mutex;
+  static std::map<key_type, std::shared_ptr<const material_pngs>> cache;
+  const key_type key{bark, archetype, size, seed, tint.x, tint.y, tint.z};
+  {
+    std::lock_guard lock(mutex);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  std::vector<image> images;
+  if (bark) {
+    const bark_texture_set& set = bark_archetype_textures(bark_archetype(std::clamp(archetype, 0, bark_archetype_count - 1)), size, seed);
+    images = {tinted_texture(set.color, tint), set.normal, set.roughness};
+  } else {
+    const leaf_texture_set& set = leaf_archetype_textures(leaf_archetype(std::clamp(archetype, 0, leaf_slots - 1)), size, seed);
+    images = {tinted_texture(set.color, tint), set.normal};
+  }
+  std::vector<std::string> png(images.size()), err(images.size());
+  std::vector<std::thread> helpers;
+  for (size_t k = 1; k < images.size(); ++k) helpers.emplace_back([&, k] { err[k] = encode_png(images[k], png[k]); });
+  err[0] = encode_png(images[0], png[0]);
+  for (std::thread& t : helpers) t.join();
+  for (const std::string& e : err)
+    if (!e.empty()) {
+      error = e;
+      return nullptr;
+    }
+  auto out = std::make_shared<const material_pngs>(material_pngs{std::move(png[0]), std::move(png[1]), bark ? std::move(png[2]) : ""});
+  std::lock_guard lock(mutex);
+  if (cache.size() >= 32) cache.clear();  // tints being edited: keep the memory bounded
+  cache.emplace(key, out);
+  return out;
+}
+
+// The materials of one export: the bark, and the leaves by slot (leaf_slot()). Loads the user's
+// textures once (a file that cannot be used is a warning and the procedural texture stands in)
+// and makes each material's PNGs on first use, so only the archetypes present cost anything.
+class material_source {
+ public:
+  material_source(const export_options& o, std::string& warning)
+      : o_(o), size_(std::clamp(o.texture_size, 16, 4096)), warning_(warning) {
+    const std::string bark_name = bark_archetype_names[std::clamp(int(o.bark), 0, bark_archetype_count - 1)];
+    user_bark_ = load("bark texture", o.bark_texture, "using the procedural " + bark_name + " bark", bark_color_);
+    user_bark_normal_ = load("bark normal map", o.bark_normal_texture,
+                             user_bark_ ? "the bark gets no normal map" : "using the procedural one", bark_normal_);
+    user_leaf_ = load("leaf texture", o.leaf_texture, "using the procedural leaves", leaf_);
+    if (!o.leaf_opacity.empty() && o.leaf_texture.empty()) {
+      warn("leaf opacity map " + o.leaf_opacity + ": there is no leaf texture of your own to cut out; ignored");
+    } else if (user_leaf_) {
+      user_image opacity;
+      if (load("leaf opacity map", o.leaf_opacity, "keeping the leaf texture's own alpha", opacity)) {
+        image& leaf = leaf_.pixels;
+        if (opacity.pixels.width != leaf.width || opacity.pixels.height != leaf.height) {
+          warn("leaf opacity map " + o.leaf_opacity + " is " + std::to_string(opacity.pixels.width) + "x" +
+               std::to_string(opacity.pixels.height) + " pixels but the leaf texture is " + std::to_string(leaf.width) +
+               "x" + std::to_string(leaf.height) + "; they must be the same size, so the leaf texture keeps its own alpha");
+        } else {
+          // Grey opacity (its red channel, as the viewport reads it) becomes the alpha.
+          for (size_t i = 0; i < size_t(leaf.width) * size_t(leaf.height); ++i) leaf.pixels[i * 4 + 3] = opacity.pixels.pixels[i * 4];
+          leaf_.png.clear();  // re-encoded with the new alpha
+        }
+      }
+    }
+  }
+
+  // The user's leaf texture replaces every archetype: all leaves share slot 0 and one material.
+  bool one_leaf_material() const { return user_leaf_; }
+  std::string bark_name() const {
+    return user_bark_ ? "bark_custom" : std::string("bark_") + bark_archetype_names[std::clamp(int(o_.bark), 0, bark_archetype_count - 1)];
+  }
+  std::string leaf_name(int slot) const {
+    return user_leaf_ ? "leaves_custom" : std::string("leaves_") + leaf_archetype_names[std::clamp(slot, 0, leaf_slots - 1)];
+  }
+  float alpha_cutoff() const { return std::clamp(o_.alpha_cutoff, 0.0f, 1.0f); }
+
+  // The PNGs of a material, made on first use; nullptr after an encoding failure (see error).
+  const material_pngs* bark() {
+    if (bark_) return &*bark_;
+    material_pngs m;
+    if (user_bark_) {
+      m.color = png_of(bark_color_);
+    } else if (auto p = procedural_pngs(true, int(o_.bark), size_, o_.texture_seed, o_.bark_color, error)) {
+      m = *p;
+    }
+    if (user_bark_normal_) m.normal = png_of(bark_normal_);
+    if (!error.empty()) return nullptr;
+    bark_ = std::move(m);
+    return &*bark_;
+  }
+  const material_pngs* leaf(int slot) {
+    auto& cached = leaves_[size_t(slot)];
+    if (cached) return &*cached;
+    material_pngs m;
+    if (user_leaf_) {
+      m.color = png_of(leaf_);
+    } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, o_.leaf_color, error)) {
+      m = *p;
+    }
+    if (!error.empty()) return nullptr;
+    cached = std::move(m);
+    return &*cached;
+  }
+
+  std::string error;  // a PNG that could not be encoded
+
+ private:
+  void warn(const std::string& line) { warning_ += (warning_.empty() ? "" : "\n") + line; }
+  bool load(const std::string& what, const std::string& path, const std::string& fallback, user_image& out) {
+    if (path.empty()) return false;
+    const std::string why = load_user_image(path, out);
+    if (why.empty()) return true;
+    warn(what + " " + path + ": " + why + "; " + fallback);
+    return false;
+  }
+  std::string encode(const image& img) {
+    std::string png;
+    if (std::string err = encode_png(img, png); !err.empty() && error.empty()) error = err;
+    return png;
+  }
+  std::string png_of(const user_image& u) { return u.png.empty() ? encode(u.pixels) : u.png; }
+
+  const export_options& o_;
+  int size_;
+  std::string& warning_;
+  bool user_bark_ = false, user_bark_normal_ = false, user_leaf_ = false;
+  user_image bark_color_, bark_normal_, leaf_;
+  std::optional<material_pngs> bark_;
+  std::array<std::optional<material_pngs>, leaf_slots> leaves_;
+};
+
+// Percent-encodes a file name for a glTF uri (RFC 3986: unreserved characters stay).
+std::string uri_of(const std::string& name) {
+  static const char hex[] = "0123456789ABCDEF";
+  std::string out;
+  for (const unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') out.push_back(char(c));
+    else out += {'%', hex[c >> 4], hex[c & 15]};
+  }
+  return out;
+}
+
+// glTF materials, textures and images, added when a primitive first needs them. Images are
+// embedded (GLB) or listed in `files` to be written beside the .gltf.
+struct gltf_materials {
+  gltf_doc& d;
+  material_source& src;
+  bool embed;
+  std::string stem_name;
+  std::vector<std::pair<std::string, std::string>> files;  // (file name, PNG bytes)
+  int bark = -1;
+  bool bark_normal = false;
+  std::array<int, leaf_slots> leaf = make_filled(-1);
+  std::array<bool, leaf_slots> leaf_normal{};
+  std::array<int, leaf_slots> quad_mesh = make_filled(-1);  // EXT_mesh_gpu_instancing: one card per slot
+
+  static std::array<int, leaf_slots> make_filled(int v) {
+    std::array<int, leaf_slots> a;
+    a.fill(v);
+    return a;
+  }
+  // Sampler 0 repeats (bark tiles), sampler 1 clamps (leaf cards).
+  int texture(const std::string& png, bool repeat, const std::string& name) {
+    if (!d.j.contains("samplers"))
+      d.j["samplers"] = json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}},
+                                     {{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 33071}, {"wrapT", 33071}}});
+    if (embed) {
+      d.j["images"].push_back({{"name", name}, {"bufferView", d.add_view(png.data(), png.size(), 0)}, {"mimeType", "image/png"}});
+    } else {
+      const std::string file = stem_name + "_" + name + ".png";
+      d.j["images"].push_back({{"name", name}, {"uri", uri_of(file)}});
+      files.emplace_back(file, png);
+    }
+    d.j["textures"].push_back({{"sampler", repeat ? 0 : 1}, {"source", int(d.j["images"].size()) - 1}});
+    return int(d.j["textures"].size()) - 1;
+  }
+  int add_material(json m) {
+    d.j["materials"].push_back(std::move(m));
+    return int(d.j["materials"].size()) - 1;
+  }
+  // -1 when a PNG could not be encoded (src.error says why).
+  int bark_material() {
+    if (bark >= 0) return bark;
+    const material_pngs* p = src.bark();
+    if (!p) return -1;
+    const std::string name = src.bark_name();
+    json pbr = {{"baseColorTexture", {{"index", texture(p->color, true, name)}}}, {"metallicFactor", 0.0}};
+    if (!p->roughness.empty()) pbr["metallicRoughnessTexture"] = {{"index", texture(p->roughness, true, name + "_roughness")}};
+    else pbr["roughnessFactor"] = 0.9;
+    json m = {{"name", name}, {"pbrMetallicRoughness", pbr}};
+    if (!p->normal.empty()) m["normalTexture"] = {{"index", texture(p->normal, true, name + "_normal")}};
+    bark_normal = !p->normal.empty();
+    return bark = add_material(std::move(m));
+  }
+  int leaf_material(int slot) {
+    if (leaf[size_t(slot)] >= 0) return leaf[size_t(slot)];
+    const material_pngs* p = src.leaf(slot);
+    if (!p) return -1;
+    const std::string name = src.leaf_name(slot);
+    json m = {{"name", name},
+              {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture(p->color, false, name)}}},
+                                        {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}},
+              {"alphaMode", "MASK"},
+              {"alphaCutoff", src.alpha_cutoff()},
+              {"doubleSided", true}};
+    if (!p->normal.empty()) m["normalTexture"] = {{"index", texture(p->normal, false, name + "_normal")}};
+    leaf_normal[size_t(slot)] = !p->normal.empty();
+    return leaf[size_t(slot)] = add_material(std::move(m));
+  }
+};
+
+// Nodes for one view of the tree: one node per tree, with a bark child and a leaves child (one
+// primitive per leaf material). Returns the node ids to put under the parent; counts triangles.
+// "" or the error.
+std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v, int step, bool instanced,
+                           const std::string& prefix, size_t& triangles, std::vector<int>& out) {
+  const bool one = mats.src.one_leaf_material();
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one);
   for (size_t k = 0; k < parts.size(); ++k) {
     const tree_part& part = parts[k];
     json tree = {{"name", prefix + (parts.size() > 1 ? "tree_" + std::to_string(k + 1) : "tree")}};
     json children = json::array();
-    if (int mesh = d.add_mesh(part.bark, 0, "bark"); mesh >= 0) {
+    if (!part.bark.empty()) {
+      const int mat = mats.bark_material();
+      if (mat < 0) return mats.src.error;
+      const int mesh = d.add_mesh("bark", json::array({d.add_primitive(part.bark, mat, mats.bark_normal)}));
       children.push_back(d.add_node({{"name", "bark"}, {"mesh", mesh}}));
       triangles += part.bark.index.size() / 3;
     }
-    if (!instanced) {
-      if (int mesh = d.add_mesh(part.leaves, 1, "leaves"); mesh >= 0) {
-        children.push_back(d.add_node({{"name", "leaves"}, {"mesh", mesh}}));
-        triangles += part.leaves.index.size() / 3;
-      }
+    json prims = json::array();
+    for (int slot = 0; slot < leaf_slots; ++slot) {
+      const geometry& g = part.leaves[size_t(slot)];
+      if (g.empty()) continue;
+      const int mat = mats.leaf_material(slot);
+      if (mat < 0) return mats.src.error;
+      prims.push_back(d.add_primitive(g, mat, mats.leaf_normal[size_t(slot)]));
+      triangles += g.index.size() / 3;
     }
+    if (!prims.empty()) children.push_back(d.add_node({{"name", "leaves"}, {"mesh", d.add_mesh("leaves", std::move(prims))}}));
     if (!children.empty()) tree["children"] = children;
     out.push_back(d.add_node(tree));
   }
   if (instanced) {
-    // EXT_mesh_gpu_instancing: one leaf quad, one instance per leaf alive at `step`.
-    std::vector<glm::vec3> tr, sc;
-    std::vector<glm::vec4> rot;
-    geometry quad;
+    // EXT_mesh_gpu_instancing: one leaf card per material, one instance per leaf alive at `step`.
+    std::array<std::vector<glm::vec3>, leaf_slots> tr, sc;
+    std::array<std::vector<glm::vec4>, leaf_slots> rot;
     for (const leaf_instance& l : v.mesh->leaves) {
       if (!(l.born <= step && step < l.died)) continue;
-      if (quad.empty()) bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0});
-      const glm::vec4 q = l.orientation / std::max(glm::length(l.orientation), 1e-12f);
-      tr.push_back(l.position);
-      rot.push_back(q);
-      sc.push_back(glm::vec3(std::max(l.size, 1e-6f)));
+      const size_t slot = size_t(leaf_slot(l, one));
+      tr[slot].push_back(l.position);
+      rot[slot].push_back(l.orientation / std::max(glm::length(l.orientation), 1e-12f));
+      sc[slot].push_back(glm::vec3(std::max(l.size, 1e-6f)));
     }
-    if (!tr.empty()) {
-      leaf_quad_mesh = d.add_mesh(quad, 1, "leaf");
-      json attrs = {{"TRANSLATION", d.add_vectors(tr, "VEC3", 0)}, {"ROTATION", d.add_vectors(rot, "VEC4", 0)},
-                    {"SCALE", d.add_vectors(sc, "VEC3", 0)}};
-      out.push_back(d.add_node({{"name", prefix + "leaves"}, {"mesh", leaf_quad_mesh},
+    for (int slot = 0; slot < leaf_slots; ++slot) {
+      const size_t s = size_t(slot);
+      if (tr[s].empty()) continue;
+      if (mats.quad_mesh[s] < 0) {
+        const int mat = mats.leaf_material(slot);
+        if (mat < 0) return mats.src.error;
+        geometry quad;
+        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0});
+        mats.quad_mesh[s] = d.add_mesh(mats.src.leaf_name(slot), json::array({d.add_primitive(quad, mat, mats.leaf_normal[s])}));
+      }
+      json attrs = {{"TRANSLATION", d.add_vectors(tr[s], "VEC3", 0)}, {"ROTATION", d.add_vectors(rot[s], "VEC4", 0)},
+                    {"SCALE", d.add_vectors(sc[s], "VEC3", 0)}};
+      out.push_back(d.add_node({{"name", prefix + mats.src.leaf_name(slot)}, {"mesh", mats.quad_mesh[s]},
                                 {"extensions", {{"EXT_mesh_gpu_instancing", {{"attributes", attrs}}}}}}));
       d.j["extensionsUsed"] = json::array({"EXT_mesh_gpu_instancing"});
-      triangles += 2 * tr.size();
+      triangles += 2 * tr[s].size();
     }
   }
-  return out;
+  return "";
 }
 
 std::string glb_container(std::string js, std::string& b) {
@@ -330,12 +610,10 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
   gltf_doc d;
   d.j["asset"] = {{"version", "2.0"}, {"generator", "Sylva"},
                   {"extras", {{"generator", info.generator}, {"seed", info.seed}}}};
-  gltf_textures tex;
-  if (r.error = make_gltf_textures(o, tex); !r.error.empty()) return r;
+  material_source src(o, r.warning);
+  gltf_materials mats{d, src, binary, stem_name};
   // The final tree's buffer size, so that big exports are not copied while the buffer grows.
-  d.bin.reserve(m.position.size() * 48 + m.index.size() * 4 + m.leaves.size() * 152 + tex.bark_png.size() +
-                tex.normal_png.size() + tex.leaves_png.size() + 64);
-  add_materials(d, tex, binary, stem_name);
+  d.bin.reserve(m.position.size() * 48 + m.index.size() * 4 + m.leaves.size() * 200 + (size_t(1) << 20));
   if (o.progress) o.progress(0.1f);
 
   const int final_step = std::max(t.steps, 0);
@@ -344,7 +622,7 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     const int s = o.step < 0 ? final_step : std::min(o.step, final_step);
     step_view v;
     view_at(v, t, m, o.mesh, s);
-    roots = add_tree_nodes(d, v, s, o.gltf_instancing, "", r.triangles);
+    if (r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "", r.triangles, roots); !r.error.empty()) return r;
   } else {
     // Growth over time: one node per step, shown in turn by STEP scale keyframes.
     int count = std::clamp(std::min(o.max_animation_steps, final_step + 1), 1, final_step + 1);
@@ -368,7 +646,9 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       step_view v;
       view_at(v, t, m, o.mesh, s);
       json node = {{"name", "step_" + std::to_string(s)}};
-      const std::vector<int> kids = add_tree_nodes(d, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles);
+      std::vector<int> kids;
+      r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles, kids);
+      if (!r.error.empty()) return r;
       if (!kids.empty()) node["children"] = kids;
       std::vector<float> times, scales;
       auto key = [&](float time, float scale) { times.push_back(time); for (int k = 0; k < 3; ++k) scales.push_back(scale); };
@@ -395,11 +675,10 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     d.j["buffers"] = json::array({{{"byteLength", d.bin.size()}}});
     files.emplace_back(path, glb_container(d.j.dump(), d.bin));
   } else {
-    d.j["buffers"] = json::array({{{"byteLength", d.bin.size()}, {"uri", stem_name + ".bin"}}});
+    d.j["buffers"] = json::array({{{"byteLength", d.bin.size()}, {"uri", uri_of(stem_name + ".bin")}}});
     files.emplace_back(stem + ".bin", std::move(d.bin));
-    files.emplace_back(stem + "_bark.png", tex.bark_png);
-    files.emplace_back(stem + "_bark_normal.png", tex.normal_png);
-    files.emplace_back(stem + "_leaves.png", tex.leaves_png);
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    for (auto& [name, png] : mats.files) files.emplace_back((std::filesystem::path(dir) / name).string(), std::move(png));
     files.emplace_back(path, d.j.dump(1));
   }
   r.bytes = files.back().second.size();
@@ -421,13 +700,17 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   export_result r;
   const std::string stem = stem_path(path), stem_name = file_name(stem);
   const int s = o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
+  material_source src(o, r.warning);
   step_view v;
   view_at(v, t, m, o.mesh, s);
-  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true);
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material());
   std::string text = "# Sylva tree: generator " + info.generator + ", seed " + std::to_string(info.seed) +
                      ", step " + std::to_string(s) + "\nmtllib " + stem_name + ".mtl\n";
   size_t verts = 0;
-  for (const tree_part& p : parts) verts += p.bark.position.size() + p.leaves.position.size();
+  for (const tree_part& p : parts) {
+    verts += p.bark.position.size();
+    for (const geometry& g : p.leaves) verts += g.position.size();
+  }
   text.reserve(verts * 110);
   auto vertices = [&](const geometry& g) {
     for (size_t k = 0; k < g.position.size(); ++k) {
@@ -437,16 +720,20 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
       text += '\n';
     }
   };
-  // All vertices first, then faces by group, so that `bark` and `leaves` are single groups.
-  std::vector<size_t> bark_base, leaf_base;
+  // All vertices first, then faces by material, so that each material is a single group.
+  std::vector<size_t> bark_base;
+  std::vector<std::array<size_t, leaf_slots>> leaf_base;
   size_t next = 1;  // OBJ indices start at 1
   for (const tree_part& p : parts) {
     bark_base.push_back(next);
     vertices(p.bark);
     next += p.bark.position.size();
-    leaf_base.push_back(next);
-    vertices(p.leaves);
-    next += p.leaves.position.size();
+    leaf_base.emplace_back();
+    for (int slot = 0; slot < leaf_slots; ++slot) {
+      leaf_base.back()[size_t(slot)] = next;
+      vertices(p.leaves[size_t(slot)]);
+      next += p.leaves[size_t(slot)].position.size();
+    }
   }
   if (cancelled(o)) { r.error = "export cancelled"; return r; }
   auto faces = [&](const geometry& g, size_t base) {
@@ -462,21 +749,50 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
     }
     r.triangles += g.index.size() / 3;
   };
-  text += "g bark\nusemtl bark\n";
-  for (size_t k = 0; k < parts.size(); ++k) faces(parts[k].bark, bark_base[k]);
-  text += "g leaves\nusemtl leaves\n";
-  for (size_t k = 0; k < parts.size(); ++k) faces(parts[k].leaves, leaf_base[k]);
-
-  const std::string mtl = "# Sylva materials\nnewmtl bark\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd " + stem_name +
-                          "_bark.png\nnorm " + stem_name + "_bark_normal.png\n\nnewmtl leaves\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd " +
-                          stem_name + "_leaves.png\nmap_d -imfchan m " + stem_name + "_leaves.png\n";
-  gltf_textures tex;
-  if (r.error = make_gltf_textures(o, tex); !r.error.empty()) return r;
-  std::vector<std::pair<std::string, std::string>> files = {{stem + ".mtl", mtl},
-                                                            {stem + "_bark.png", tex.bark_png},
-                                                            {stem + "_bark_normal.png", tex.normal_png},
-                                                            {stem + "_leaves.png", tex.leaves_png},
-                                                            {path, std::move(text)}};
+  // The MTL and its PNGs: each material's textures beside the .obj, named after the material.
+  std::string mtl = "# Sylva materials (map_Bump and norm: tangent-space normal maps)\n";
+  std::vector<std::pair<std::string, std::string>> files;
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  auto png_file = [&](const std::string& name, const std::string& png) {
+    const std::string file = stem_name + "_" + name + ".png";
+    files.emplace_back((std::filesystem::path(dir) / file).string(), png);
+    return file;
+  };
+  bool any_bark = false;
+  for (const tree_part& p : parts) any_bark |= !p.bark.empty();
+  if (any_bark) {
+    const material_pngs* pngs = src.bark();
+    if (!pngs) { r.error = src.error; return r; }
+    const std::string name = src.bark_name();
+    text += "g bark\nusemtl " + name + "\n";
+    for (size_t k = 0; k < parts.size(); ++k) faces(parts[k].bark, bark_base[k]);
+    mtl += "\nnewmtl " + name + "\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nNs 0\nd 1\nillum 1\nmap_Kd " + png_file(name, pngs->color) + "\n";
+    if (!pngs->normal.empty()) {
+      const std::string normal = png_file(name + "_normal", pngs->normal);
+      mtl += "map_Bump -bm 1 " + normal + "\nnorm " + normal + "\n";
+    }
+    if (!pngs->roughness.empty()) mtl += "Pr 1\nPm 0\nmap_Pr " + png_file(name + "_roughness", pngs->roughness) + "\n";
+  }
+  for (int slot = 0; slot < leaf_slots; ++slot) {
+    bool used = false;
+    for (const tree_part& p : parts) used |= !p.leaves[size_t(slot)].empty();
+    if (!used) continue;
+    const material_pngs* pngs = src.leaf(slot);
+    if (!pngs) { r.error = src.error; return r; }
+    const std::string name = src.leaf_name(slot);
+    text += "g " + name + "\nusemtl " + name + "\n";
+    for (size_t k = 0; k < parts.size(); ++k) faces(parts[k].leaves[size_t(slot)], leaf_base[k][size_t(slot)]);
+    // The colour PNG carries the cut-out in its alpha: map_d reads that channel of the same file.
+    const std::string color = png_file(name, pngs->color);
+    mtl += "\nnewmtl " + name + "\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nNs 40\nd 1\nillum 1\nmap_Kd " + color +
+           "\nmap_d -imfchan m " + color + "\n";
+    if (!pngs->normal.empty()) {
+      const std::string normal = png_file(name + "_normal", pngs->normal);
+      mtl += "map_Bump -bm 1 " + normal + "\nnorm " + normal + "\n";
+    }
+  }
+  files.emplace_back(stem + ".mtl", std::move(mtl));
+  files.emplace_back(path, std::move(text));
   r.bytes = files.back().second.size();
   if (o.dry_run) return r;
   r.error = write_all(files, r);
@@ -508,6 +824,16 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
   json doc = {{"sylva_skeleton", 1}, {"generator", info.generator}, {"seed", info.seed}, {"steps", t.steps},
               {"tree_count", t.tree_count}, {"nodes", nodes}, {"leaves", leaves}};
   return doc.dump();
+}
+
+void apply_render_params(export_options& o, const render_params& rp) {
+  o.bark = rp.bark;
+  o.bark_color = rp.bark_color;
+  o.leaf_color = rp.leaf_color;
+  o.alpha_cutoff = rp.alpha_cutoff;
+  o.bark_texture = rp.bark_texture;
+  o.leaf_texture = rp.leaf_texture;
+  o.leaf_opacity = rp.leaf_opacity;
 }
 
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,

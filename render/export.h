@@ -5,8 +5,12 @@
 #include <functional>
 #include <string>
 
+#include <glm/vec3.hpp>
+
+#include "generators/archetypes.h"
 #include "generators/tree_spec.h"
 #include "render/mesh.h"
+#include "render/render_params.h"
 
 namespace sylva {
 
@@ -21,12 +25,24 @@ struct export_options {
   std::function<void(float)> progress;
   mesh_params mesh;             // the params `m` was built with: re-meshes step views and animation steps
   bool dry_run = false;         // compute export_result.bytes (the size) without writing anything
-  int texture_size = 256;       // bark texture edge in pixels (leaves get half, in a 2x2 atlas)
+  // Materials (fill them from the preset with apply_render_params). Bark: one material from the
+  // archetype's texture set; leaves: one material per leaf archetype present (leaf_instance::texture).
+  int texture_size = 512;               // edge in pixels of every texture (bark and each leaf card)
   uint64_t texture_seed = 1;
+  bark_archetype bark = bark_archetype::furrowed;
+  glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
+  glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
+  float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
   // The user's PNGs instead of the procedural textures ("" = procedural). A user leaf texture
-  // fills all four cells of the leaf atlas.
-  std::string bark_texture, bark_normal_texture, leaf_texture;
+  // replaces every archetype's colour (one leaf material); leaf_opacity (same size, grey: white is
+  // leaf) becomes its alpha. A missing, corrupt or huge file is a warning and the export falls back
+  // to the procedural texture.
+  std::string bark_texture, bark_normal_texture, leaf_texture, leaf_opacity;
 };
+
+// The material settings of a preset's render params: bark archetype, tints, alpha cutoff and the
+// user's texture paths. The CLI and the export dialog both fill export_options through this.
+void apply_render_params(export_options& o, const render_params& rp);
 
 struct export_info {
   std::string generator;   // generator name, written into the files
@@ -35,6 +51,7 @@ struct export_info {
 
 struct export_result {
   std::string error;        // "" on success
+  std::string warning;      // "" or lines (\n-separated) the user should see; the export was written
   size_t bytes = 0;         // size of the main file written
   std::vector<std::string> files;  // every file written
   size_t triangles = 0;     // in the main mesh (all steps for a growth animation)

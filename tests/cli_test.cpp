@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
 
 #include "tests/run_sylva.h"
 
@@ -168,6 +169,68 @@ TEST(Cli, WarningsGoToStderrWithExitZero) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("params.r1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("params.colour"), std::string::npos) << r.err;
+}
+
+// 4x4 PNGs: an RGB bark gradient, a green RGBA leaf (alpha 255 everywhere) and a grey opacity
+// map whose odd columns are white.
+const std::string bark_png(
+    "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x00\x04\x08\x02\x00\x00\x00"
+    "\x26\x93\x09\x29\x00\x00\x00\x3f\x49\x44\x41\x54\x78\xda\x01\x34\x00\xcb\xff\x00\x00\x05\x0a\x0f\x14\x19\x1e\x23\x28"
+    "\x2d\x32\x37\x00\x3c\x41\x46\x4b\x50\x55\x5a\x5f\x64\x69\x6e\x73\x00\x78\x7d\x82\x87\x8c\x91\x96\x9b\xa0\xa5\xaa\xaf"
+    "\x00\xb4\xb9\xbe\xc3\xc8\xcd\xd2\xd7\xdc\xe1\xe6\xeb\x7b\x17\x16\x09\xc4\x17\xee\x78\x00\x00\x00\x00\x49\x45\x4e\x44"
+    "\xae\x42\x60\x82", 120);
+const std::string leaf_png(
+    "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x00\x04\x08\x06\x00\x00\x00"
+    "\xa9\xf1\x9e\x7e\x00\x00\x00\x12\x49\x44\x41\x54\x78\xda\x63\xb0\x59\xa0\xf1\x1f\x19\x33\x90\x2e\x00\x00\x38\x58\x20"
+    "\x31\xd4\x8e\x81\xcc\x00\x00\x00\x00\x49\x45\x4e\x44\xae\x42\x60\x82", 75);
+const std::string opacity_png(
+    "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x00\x04\x08\x00\x00\x00\x00"
+    "\x8c\x9a\xc1\xa2\x00\x00\x00\x0e\x49\x44\x41\x54\x78\xda\x63\x60\xf8\x0f\x84\xa8\x04\x00\x4b\xc8\x07\xf9\x76\xb6\x61"
+    "\x0a\x00\x00\x00\x00\x49\x45\x4e\x44\xae\x42\x60\x82", 71);
+
+TEST(Cli, ExportCarriesThePresetsOwnTextures) {
+  const fs::path dir = scratch() / "own";
+  fs::create_directories(dir);
+  const std::string bark = (dir / "bark.png").string(), leaf = (dir / "leaf.png").string(),
+                    opacity = (dir / "opacity.png").string();
+  std::ofstream(bark, std::ios::binary) << bark_png;
+  std::ofstream(leaf, std::ios::binary) << leaf_png;
+  std::ofstream(opacity, std::ios::binary) << opacity_png;
+  json preset = {{"sylva_preset", 1}, {"generator", "lsystem"}, {"params", {{"derivations", 4}}},
+                 {"render", {{"bark_texture", bark}, {"leaf_texture", leaf}, {"leaf_opacity", opacity}}}};
+  const std::string path = write_scratch("own_textures.json", preset.dump());
+
+  // OBJ: the bark PNG beside it unchanged, the leaf PNG with the opacity map as its alpha.
+  sylva_run r = sylva("export " + path + " -o " + (dir / "tree.obj").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(slurp(dir / "tree_bark_custom.png"), slurp(bark));
+  const std::string written = slurp(dir / "tree_leaves_custom.png");
+  int w = 0, h = 0, ch = 0;
+  stbi_uc* px = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(written.data()), int(written.size()), &w, &h, &ch, 4);
+  ASSERT_TRUE(px);
+  ASSERT_EQ(w, 4);
+  for (int k = 0; k < 16; ++k) {
+    EXPECT_EQ(px[k * 4 + 1], 160);                    // the leaf's own green
+    EXPECT_EQ(px[k * 4 + 3], k % 2 ? 255 : 0) << k;  // the opacity map's columns
+  }
+  stbi_image_free(px);
+  EXPECT_NE(slurp(dir / "tree.mtl").find("newmtl leaves_custom"), std::string::npos);
+  // GLB: the bark PNG's bytes are inside.
+  r = sylva("export " + path + " -o " + (dir / "tree.glb").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir / "tree.glb").find(slurp(bark)), std::string::npos);
+
+  // A missing texture: a warning on stderr, exit 0, the export written with procedural leaves.
+  preset["render"]["leaf_texture"] = (dir / "missing.png").string();
+  preset["render"].erase("leaf_opacity");
+  const std::string missing = write_scratch("missing_texture.json", preset.dump());
+  r = sylva("export " + missing + " -o " + (dir / "fallback.glb").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("missing.png: file not found; using the procedural leaves"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "fallback.glb"));
+  EXPECT_EQ(slurp(dir / "fallback.glb").find("leaves_custom"), std::string::npos);
 }
 
 TEST(Cli, BenchJsonLine) {

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -50,6 +52,30 @@ struct honda_tree {
   }
 };
 
+// Gives the leaves two archetypes, alternately lobed and palmate.
+void two_archetypes(tree_mesh& m) {
+  for (size_t i = 0; i < m.leaves.size(); ++i)
+    m.leaves[i].texture = uint8_t(i % 2 ? leaf_archetype::palmate : leaf_archetype::lobed);
+}
+
+const tinygltf::Material* find_material(const tinygltf::Model& model, const std::string& name) {
+  for (const auto& m : model.materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+// The bytes of an image embedded in a GLB.
+std::string image_bytes(const tinygltf::Model& model, int image) {
+  const tinygltf::BufferView& v = model.bufferViews[size_t(model.images[size_t(image)].bufferView)];
+  const auto& data = model.buffers[size_t(v.buffer)].data;
+  return std::string(data.begin() + std::ptrdiff_t(v.byteOffset), data.begin() + std::ptrdiff_t(v.byteOffset + v.byteLength));
+}
+
+// The image a material's base colour texture shows.
+int base_color_image(const tinygltf::Model& model, const tinygltf::Material& m) {
+  return model.textures[size_t(m.pbrMetallicRoughness.baseColorTexture.index)].source;
+}
+
 size_t leaves_alive(const tree_mesh& m, int step) {
   size_t n = 0;
   for (const leaf_instance& l : m.leaves) n += l.born <= step && step < l.died;
@@ -71,18 +97,48 @@ std::string slurp(const std::string& path) {
 
 }  // namespace
 
+// A user's textures in the test's folder: an 8x4 bark, a 16x16 leaf whose own alpha is all 255
+// and a 16x16 grey opacity map (left half white, right half black).
+namespace {
+
+struct user_pngs {
+  std::string bark, leaf, opacity;
+  std::string bark_bytes, leaf_bytes;
+  explicit user_pngs(const scratch& dir) {
+    bark = dir / "mybark.png", leaf = dir / "myleaf.png", opacity = dir / "myopacity.png";
+    image b{8, 4, 3, std::vector<uint8_t>(8 * 4 * 3)};
+    for (size_t k = 0; k < b.pixels.size(); ++k) b.pixels[k] = uint8_t(k * 7);
+    image l{16, 16, 4, std::vector<uint8_t>(16 * 16 * 4, 255)};
+    for (size_t k = 0; k < 16 * 16; ++k) l.pixels[k * 4 + 1] = uint8_t(k);
+    image o{16, 16, 3, std::vector<uint8_t>(16 * 16 * 3)};
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x)
+        for (int c = 0; c < 3; ++c) o.pixels[size_t(y * 16 + x) * 3 + size_t(c)] = x < 8 ? 255 : 0;
+    EXPECT_EQ(save_png(b, bark), "");
+    EXPECT_EQ(save_png(l, leaf), "");
+    EXPECT_EQ(save_png(o, opacity), "");
+    bark_bytes = slurp(bark), leaf_bytes = slurp(leaf);
+  }
+};
+
+}  // namespace
+
 TEST(Export, GlbReimportsWithMeshCounts) {
   scratch dir;
   honda_tree h(6);
+  two_archetypes(h.m);
+  h.o.alpha_cutoff = 0.3f;
   const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "tree.glb", h.o);
   ASSERT_EQ(r.error, "");
+  EXPECT_EQ(r.warning, "");
   EXPECT_EQ(r.bytes, fs::file_size(dir / "tree.glb"));
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
   std::string err, warn;
   ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, dir / "tree.glb")) << err;
-  EXPECT_EQ(model.materials.size(), size_t(2));
-  EXPECT_EQ(model.images.size(), size_t(3));
+  // Bark (colour, roughness, normal) and one material per leaf archetype present (colour, normal).
+  EXPECT_EQ(model.materials.size(), size_t(3));
+  EXPECT_EQ(model.images.size(), size_t(3 + 2 * 2));
   for (const auto& img : model.images) EXPECT_GE(img.bufferView, 0);  // embedded
   const tinygltf::Mesh* bark = find_mesh(model, "bark");
   const tinygltf::Mesh* leaves = find_mesh(model, "leaves");
@@ -93,15 +149,69 @@ TEST(Export, GlbReimportsWithMeshCounts) {
   EXPECT_EQ(model.accessors[bp.indices].count, h.m.index.size());
   EXPECT_EQ(model.accessors[bp.indices].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   EXPECT_TRUE(bp.attributes.count("TANGENT") && bp.attributes.count("NORMAL") && bp.attributes.count("TEXCOORD_0"));
-  EXPECT_GE(model.materials[bp.material].normalTexture.index, 0);
+  const tinygltf::Material& bm = model.materials[size_t(bp.material)];
+  EXPECT_EQ(bm.name, "bark_furrowed");
+  EXPECT_GE(bm.normalTexture.index, 0);
+  EXPECT_GE(bm.pbrMetallicRoughness.metallicRoughnessTexture.index, 0);
+  EXPECT_EQ(bm.pbrMetallicRoughness.metallicFactor, 0.0);
   // Leaves: the 2^5 tips of step 6 less the one on the trunk's axis (order 0), 4 leaves each,
-  // baked as quads of 4 vertices and 2 triangles.
+  // baked as quads of 4 vertices and 2 triangles, one primitive per archetype.
   EXPECT_EQ(leaves_alive(h.m, 6), size_t(31 * 4));
-  const auto& lp = leaves->primitives[0];
-  EXPECT_EQ(model.accessors[lp.attributes.at("POSITION")].count, 4 * leaves_alive(h.m, 6));
-  EXPECT_EQ(model.accessors[lp.indices].count, 6 * leaves_alive(h.m, 6));
-  EXPECT_EQ(model.materials[lp.material].alphaMode, "MASK");
-  EXPECT_TRUE(model.materials[lp.material].doubleSided);
+  ASSERT_EQ(leaves->primitives.size(), size_t(2));
+  size_t verts = 0, indices = 0;
+  std::set<std::string> names;
+  for (const auto& lp : leaves->primitives) {
+    verts += model.accessors[lp.attributes.at("POSITION")].count;
+    indices += model.accessors[lp.indices].count;
+    EXPECT_TRUE(lp.attributes.count("TANGENT"));  // leaves carry a normal map
+    const tinygltf::Material& lm = model.materials[size_t(lp.material)];
+    names.insert(lm.name);
+    EXPECT_EQ(lm.alphaMode, "MASK");
+    EXPECT_FLOAT_EQ(float(lm.alphaCutoff), 0.3f);
+    EXPECT_TRUE(lm.doubleSided);
+    EXPECT_GE(lm.normalTexture.index, 0);
+    // Each card shows the whole texture: UVs are the corners of the unit square.
+    const tinygltf::Accessor& uv = model.accessors[lp.attributes.at("TEXCOORD_0")];
+    const tinygltf::BufferView& view = model.bufferViews[size_t(uv.bufferView)];
+    const auto* f = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + uv.byteOffset);
+    for (size_t k = 0; k < 2 * uv.count; ++k) ASSERT_TRUE(f[k] == 0.0f || f[k] == 1.0f) << f[k];
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"leaves_lobed", "leaves_palmate"}));
+  EXPECT_EQ(verts, 4 * leaves_alive(h.m, 6));
+  EXPECT_EQ(indices, 6 * leaves_alive(h.m, 6));
+  // Procedural textures are tinted: the leaf colour is the tinted archetype texture, byte for byte.
+  const tinygltf::Material& lobed = *find_material(model, "leaves_lobed");
+  image leaf;
+  ASSERT_EQ(decode_png(image_bytes(model, base_color_image(model, lobed)), leaf), "");
+  const image expect = tinted_texture(leaf_archetype_textures(leaf_archetype::lobed, 64, 1).color, h.o.leaf_color);
+  EXPECT_EQ(leaf.width, 64);
+  EXPECT_EQ(leaf.pixels, expect.pixels);
+}
+
+TEST(Export, InstancedLeavesAreOneCardMeshPerArchetype) {
+  scratch dir;
+  honda_tree h(5);
+  two_archetypes(h.m);
+  h.o.gltf_instancing = true;
+  ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "inst.glb", h.o).error, "");
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, dir / "inst.glb")) << err;
+  size_t instances = 0;
+  for (const char* name : {"leaves_lobed", "leaves_palmate"}) {
+    const tinygltf::Mesh* card = find_mesh(model, name);
+    ASSERT_TRUE(card) << name;
+    ASSERT_EQ(card->primitives.size(), size_t(1));
+    EXPECT_EQ(model.materials[size_t(card->primitives[0].material)].name, name);
+    EXPECT_EQ(model.accessors[card->primitives[0].attributes.at("POSITION")].count, size_t(4));
+    for (const auto& node : model.nodes)
+      if (node.name == name) {
+        const auto& ext = node.extensions.at("EXT_mesh_gpu_instancing");
+        instances += model.accessors[size_t(ext.Get("attributes").Get("TRANSLATION").GetNumberAsInt())].count;
+      }
+  }
+  EXPECT_EQ(instances, leaves_alive(h.m, 5));
 }
 
 TEST(Export, GltfWritesBinAndTexturesNextToIt) {
@@ -109,20 +219,26 @@ TEST(Export, GltfWritesBinAndTexturesNextToIt) {
   honda_tree h(5);
   const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "tree.gltf", h.o);
   ASSERT_EQ(r.error, "");
-  EXPECT_EQ(r.files.size(), size_t(5));
-  for (const char* f : {"tree.gltf", "tree.bin", "tree_bark.png", "tree_bark_normal.png", "tree_leaves.png"})
-    EXPECT_TRUE(fs::exists(dir / f)) << f;
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
   std::string err, warn;
   ASSERT_TRUE(loader.LoadASCIIFromFile(&model, &err, &warn, dir / "tree.gltf")) << err;
+  ASSERT_EQ(model.materials.size(), size_t(2));
+  const std::string leaf = model.materials[1].name;  // leaves_<the archetype of these leaves>
+  EXPECT_EQ(leaf.rfind("leaves_", 0), size_t(0)) << leaf;
+  EXPECT_EQ(r.files.size(), size_t(7));
+  for (const std::string& f : std::vector<std::string>{"tree.gltf", "tree.bin", "tree_bark_furrowed.png", "tree_bark_furrowed_normal.png",
+                              "tree_bark_furrowed_roughness.png", "tree_" + leaf + ".png", "tree_" + leaf + "_normal.png"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  for (const auto& e : fs::directory_iterator(dir.dir))  // no temporary files left behind
+    EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
   const tinygltf::Mesh* bark = find_mesh(model, "bark");
   ASSERT_TRUE(bark);
   EXPECT_EQ(model.accessors[bark->primitives[0].indices].count, h.m.index.size());
   EXPECT_EQ(model.images[0].width, 64);  // the PNG decodes
   image leaves;
-  ASSERT_EQ(load_png(dir / "tree_leaves.png", leaves), "");
-  EXPECT_EQ(leaves.width, 64);  // 2x2 atlas of 32-pixel leaves
+  ASSERT_EQ(load_png(dir / ("tree_" + leaf + ".png"), leaves), "");
+  EXPECT_EQ(leaves.width, 64);  // texture_size: leaves as big as the bark
 }
 
 TEST(Export, StepExportHasTheStepsTree) {
@@ -211,23 +327,27 @@ TEST(Export, GrowthAnimationHasOneStepNodePerStep) {
 TEST(Export, ObjParsesBackWithMatchingCounts) {
   scratch dir;
   honda_tree h(6);
+  two_archetypes(h.m);
   const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "tree.obj", h.o);
   ASSERT_EQ(r.error, "");
   std::istringstream in(slurp(dir / "tree.obj"));
-  std::string line, group;
+  std::string line, group, material;
   size_t v = 0, vt = 0, vn = 0, bark_faces = 0, leaf_faces = 0;
+  std::map<std::string, size_t> faces_by_material;
   bool mtllib = false;
   while (std::getline(in, line)) {
     if (line.rfind("v ", 0) == 0) ++v;
     else if (line.rfind("vt ", 0) == 0) ++vt;
     else if (line.rfind("vn ", 0) == 0) ++vn;
     else if (line.rfind("g ", 0) == 0) group = line.substr(2);
+    else if (line.rfind("usemtl ", 0) == 0) material = line.substr(7);
     else if (line.rfind("mtllib tree.mtl", 0) == 0) mtllib = true;
     else if (line.rfind("f ", 0) == 0) {
       int a = 0, b = 0, c = 0;
       ASSERT_EQ(std::sscanf(line.c_str(), "f %d/%*d/%*d %d/%*d/%*d %d/%*d/%*d", &a, &b, &c), 3) << line;
       EXPECT_TRUE(a >= 1 && b >= 1 && c >= 1 && size_t(std::max({a, b, c})) <= v);
       (group == "bark" ? bark_faces : leaf_faces)++;
+      faces_by_material[material]++;
     }
   }
   const size_t leaves = leaves_alive(h.m, 6);
@@ -237,10 +357,23 @@ TEST(Export, ObjParsesBackWithMatchingCounts) {
   EXPECT_EQ(vn, v);
   EXPECT_EQ(bark_faces, h.m.triangles());
   EXPECT_EQ(leaf_faces, 2 * leaves);
+  // One material per archetype present, plus the bark.
+  ASSERT_EQ(faces_by_material.size(), size_t(3));
+  EXPECT_EQ(faces_by_material["bark_furrowed"], h.m.triangles());
+  EXPECT_EQ(faces_by_material["leaves_lobed"] + faces_by_material["leaves_palmate"], 2 * leaves);
+  EXPECT_GT(faces_by_material["leaves_palmate"], size_t(0));
   const std::string mtl = slurp(dir / "tree.mtl");
-  EXPECT_NE(mtl.find("newmtl bark"), std::string::npos);
-  EXPECT_NE(mtl.find("newmtl leaves"), std::string::npos);
-  EXPECT_TRUE(fs::exists(dir / "tree_leaves.png"));
+  for (const char* want : {"newmtl bark_furrowed\n", "map_Kd tree_bark_furrowed.png\n", "map_Bump -bm 1 tree_bark_furrowed_normal.png\n",
+                           "newmtl leaves_lobed\n", "map_Kd tree_leaves_lobed.png\n", "map_d -imfchan m tree_leaves_lobed.png\n",
+                           "norm tree_leaves_lobed_normal.png\n", "newmtl leaves_palmate\n"})
+    EXPECT_NE(mtl.find(want), std::string::npos) << want << mtl;
+  for (const char* f : {"tree_bark_furrowed.png", "tree_bark_furrowed_normal.png", "tree_leaves_lobed.png",
+                        "tree_leaves_lobed_normal.png", "tree_leaves_palmate.png", "tree_leaves_palmate_normal.png"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_EQ(r.files.size(), size_t(2 + 3 + 4));  // obj, mtl, bark colour/normal/roughness, 2 leaves x 2
+  image leaf;
+  ASSERT_EQ(load_png(dir / "tree_leaves_palmate.png", leaf), "");
+  EXPECT_EQ(leaf.channels, 4);  // the alpha map_d reads
 }
 
 TEST(Export, SkeletonJsonRoundTripsCounts) {
@@ -288,7 +421,7 @@ TEST(Export, KhronosValidatorReportsNoErrorsOrWarnings) {
   auto add = [&](const std::string& name, export_options o) {
     const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / name, o);
     ASSERT_EQ(r.error, "") << name;
-    files.append(1, ' ').append(dir / name);
+    files.append(" '").append(dir / name).append("'");
   };
   add("tree.glb", h.o);
   add("tree.gltf", h.o);
@@ -312,6 +445,19 @@ TEST(Export, KhronosValidatorReportsNoErrorsOrWarnings) {
   const tree_mesh fm = mesh_tree(forest, h.p);
   ASSERT_EQ(export_tree(forest, fm, {"lsystem", 1}, dir / "forest.glb", h.o).error, "");
   files.append(1, ' ').append(dir / "forest.glb");
+  // Two leaf archetypes: a material and a primitive (or an instanced card) each, in every form.
+  two_archetypes(h.m);
+  add("two.glb", h.o);
+  add("two.gltf", h.o);
+  add("two_grow.glb", anim);
+  add("two_instanced.glb", inst);
+  add("two_instanced_grow.gltf", [&] { export_options o = inst; o.growth_animation = true; return o; }());
+  // The user's textures, in a folder whose name needs escaping in a uri.
+  user_pngs user(dir);
+  export_options own = h.o;
+  own.bark_texture = user.bark, own.leaf_texture = user.leaf, own.leaf_opacity = user.opacity;
+  add("own textures.gltf", own);
+  add("own.glb", own);
   const std::string cmd = "node " + src + "/scripts/validate-gltf.js" + files + " > " + (dir / "report.txt") + " 2>&1";
   const int rc = std::system(cmd.c_str());
   EXPECT_EQ(rc, 0) << slurp(dir / "report.txt");
@@ -355,21 +501,123 @@ TEST(Textures, PngRoundTripAndErrors) {
   EXPECT_NE(save_png(leaf, (dir.dir / "no" / "leaf.png").string()), "");
 }
 
-TEST(Export, UserTexturesAreEmbedded) {
+TEST(Export, UserTexturesReachGlbAndObj) {
   scratch dir;
-  honda_tree h(3);
-  image bark{8, 4, 4, std::vector<uint8_t>(8 * 4 * 4, 200)};
-  ASSERT_EQ(save_png(bark, dir / "mybark.png"), "");
-  h.o.bark_texture = dir / "mybark.png";
-  ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "user.glb", h.o).error, "");
+  user_pngs user(dir);
+  honda_tree h(4);
+  two_archetypes(h.m);  // replaced by the one user leaf material
+  render_params rp;
+  rp.bark_texture = user.bark;
+  rp.leaf_texture = user.leaf;
+  rp.leaf_opacity = user.opacity;
+  apply_render_params(h.o, rp);
+  const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "user.glb", h.o);
+  ASSERT_EQ(r.error, "");
+  EXPECT_EQ(r.warning, "");
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
   std::string err, warn;
   ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, dir / "user.glb")) << err;
-  EXPECT_EQ(model.images[0].width, 8);
-  EXPECT_EQ(model.images[0].height, 4);
-  h.o.leaf_texture = dir / "nope.png";
-  const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "user2.glb", h.o);
-  EXPECT_NE(r.error.find("nope.png"), std::string::npos) << r.error;
-  EXPECT_FALSE(fs::exists(dir / "user2.glb"));
+  ASSERT_EQ(model.materials.size(), size_t(2));
+  const tinygltf::Material* bark = find_material(model, "bark_custom");
+  const tinygltf::Material* leaves = find_material(model, "leaves_custom");
+  ASSERT_TRUE(bark && leaves);
+  // The bark PNG is embedded byte for byte; a foreign colour map gets no procedural relief.
+  EXPECT_EQ(image_bytes(model, base_color_image(model, *bark)), user.bark_bytes);
+  EXPECT_EQ(bark->normalTexture.index, -1);
+  EXPECT_FALSE(find_mesh(model, "bark")->primitives[0].attributes.count("TANGENT"));
+  // The leaf: the user's colours, the opacity map's grey as alpha; all leaves in one primitive.
+  EXPECT_EQ(find_mesh(model, "leaves")->primitives.size(), size_t(1));
+  image leaf;
+  ASSERT_EQ(decode_png(image_bytes(model, base_color_image(model, *leaves)), leaf), "");
+  ASSERT_EQ(leaf.width, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const size_t k = size_t(y * 16 + x);
+      ASSERT_EQ(leaf.pixels[k * 4 + 1], uint8_t(k));
+      ASSERT_EQ(leaf.pixels[k * 4 + 3], x < 8 ? 255 : 0) << x << "," << y;
+    }
+
+  // OBJ: the same files beside it.
+  ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "user.obj", h.o).error, "");
+  EXPECT_EQ(slurp(dir / "user_bark_custom.png"), user.bark_bytes);
+  image beside;
+  ASSERT_EQ(load_png(dir / "user_leaves_custom.png", beside), "");
+  EXPECT_EQ(beside.pixels, leaf.pixels);
+  const std::string mtl = slurp(dir / "user.mtl");
+  EXPECT_NE(mtl.find("map_Kd user_leaves_custom.png"), std::string::npos) << mtl;
+  EXPECT_EQ(mtl.find("leaves_lobed"), std::string::npos) << mtl;
+
+  // Without an opacity map the leaf PNG is the user's file, unchanged.
+  h.o.leaf_opacity.clear();
+  ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "plain.obj", h.o).error, "");
+  EXPECT_EQ(slurp(dir / "plain_leaves_custom.png"), user.leaf_bytes);
+}
+
+TEST(Export, UnusableUserTexturesWarnAndFallBack) {
+  scratch dir;
+  user_pngs user(dir);
+  honda_tree h(3);
+  std::ofstream(dir / "corrupt.png", std::ios::binary) << "\x89PNG\r\n\x1a\nnot really";
+  const image wide{9000, 1, 3, std::vector<uint8_t>(9000 * 3, 90)};
+  ASSERT_EQ(save_png(wide, dir / "huge.png"), "");
+  image small{8, 8, 3, std::vector<uint8_t>(8 * 8 * 3, 0)};
+  ASSERT_EQ(save_png(small, dir / "small_opacity.png"), "");
+  struct unusable {
+    std::string export_options::*field;
+    std::string path, why;
+  };
+  const unusable cases[] = {{&export_options::leaf_texture, dir / "nope.png", "file not found"},
+                            {&export_options::bark_texture, dir / "corrupt.png", "not a readable PNG"},
+                            {&export_options::bark_texture, dir / "huge.png", "9000x1 pixels, over the limit of 8192"},
+                            {&export_options::leaf_texture, dir.dir.string(), "not a file"}};
+  for (const unusable& c : cases) {
+    SCOPED_TRACE(c.path);
+    export_options o = h.o;
+    o.*c.field = c.path;
+    const std::string out = dir / "fallback.glb";
+    fs::remove(out);
+    const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, out, o);
+    ASSERT_EQ(r.error, "");
+    EXPECT_NE(r.warning.find(c.path), std::string::npos) << r.warning;
+    EXPECT_NE(r.warning.find(c.why), std::string::npos) << r.warning;
+    EXPECT_NE(r.warning.find("procedural"), std::string::npos) << r.warning;
+    ASSERT_TRUE(fs::exists(out));  // written all the same, with the procedural materials
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, out)) << err;
+    EXPECT_TRUE(find_material(model, "bark_furrowed"));
+    EXPECT_FALSE(find_material(model, "leaves_custom"));
+  }
+  // An opacity map of another size: a warning, and the leaf keeps its own alpha (all 255).
+  export_options o = h.o;
+  o.leaf_texture = user.leaf;
+  o.leaf_opacity = dir / "small_opacity.png";
+  const export_result r = export_tree(h.t, h.m, {"lsystem", 1}, dir / "sizes.obj", o);
+  ASSERT_EQ(r.error, "");
+  EXPECT_NE(r.warning.find("8x8 pixels but the leaf texture is 16x16"), std::string::npos) << r.warning;
+  EXPECT_EQ(slurp(dir / "sizes_leaves_custom.png"), user.leaf_bytes);
+  // An opacity map without a leaf texture of the user's own is ignored, with a word why.
+  o.leaf_texture.clear();
+  EXPECT_NE(export_tree(h.t, h.m, {"lsystem", 1}, dir / "sizes.obj", o).warning.find("no leaf texture"), std::string::npos);
+}
+
+TEST(Export, ApplyRenderParamsCopiesEveryMaterialSetting) {
+  render_params rp;
+  rp.bark = bark_archetype::peeling;
+  rp.bark_color = {0.1f, 0.2f, 0.3f};
+  rp.leaf_color = {0.4f, 0.5f, 0.6f};
+  rp.alpha_cutoff = 0.7f;
+  rp.bark_texture = "b.png", rp.leaf_texture = "l.png", rp.leaf_opacity = "o.png";
+  export_options o;
+  apply_render_params(o, rp);
+  EXPECT_EQ(o.bark, bark_archetype::peeling);
+  EXPECT_EQ(o.bark_color, rp.bark_color);
+  EXPECT_EQ(o.leaf_color, rp.leaf_color);
+  EXPECT_EQ(o.alpha_cutoff, 0.7f);
+  EXPECT_EQ(o.bark_texture, "b.png");
+  EXPECT_EQ(o.leaf_texture, "l.png");
+  EXPECT_EQ(o.leaf_opacity, "o.png");
+  EXPECT_EQ(export_options{}.texture_size, 512);
 }
