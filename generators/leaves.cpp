@@ -61,13 +61,19 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
     return t.parent[i] >= 0 && t.order[i] >= p.min_order && t.died[i] > t.born[i] &&
            (from_tip.empty() || from_tip[i] < p.outer_internodes);
   };
-  // Reserve from the young shoots' total length (one cheap pass) so placement never regrows.
+  // One cheap forward pass: the distance of each node from the root (leaf nodes counted along each
+  // path give the phyllotactic angle without a sequential placement), and the young shoots' total
+  // length to reserve from, so placement never regrows its vector.
+  std::vector<float> arc(n, 0);
   double length = 0;
-  for (size_t i = 0; i < n; ++i)
-    if (carries(i)) length += glm::length(t.position[i] - t.position[t.parent[i]]);
+  for (size_t i = 0; i < n; ++i) {
+    if (t.parent[i] < 0) continue;
+    const float len = glm::length(t.position[i] - t.position[t.parent[i]]);
+    arc[i] = arc[t.parent[i]] + (std::isfinite(len) ? len : 0.0f);
+    if (carries(i)) length += std::isfinite(len) ? len : 0.0f;
+  }
   out.leaves.reserve(std::min(cap, size_t(length / spacing * per_node / cluster) + n / 8 + 16));
 
-  rng r(seed ^ 0xf011a9eull);
   const float spread = glm::radians(std::isfinite(p.spread) ? p.spread : 50.0f);
   const float cs = std::cos(spread), sn = std::sin(spread);
   const float divergence = glm::radians(std::isfinite(p.divergence) ? p.divergence : 137.5f);
@@ -80,17 +86,18 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
   const uint8_t card = p.clusters ? uint8_t(p.cluster_archetype) : uint8_t(255);
   const float step_around = 2 * 3.14159265f / float(per_node);
   const glm::vec3 up(0, 1, 0), down(0, -1, 0);
-  std::vector<float> phase(n, 0);   // phyllotactic angle carried along each axis
   float taper_pow[9];
   for (int k = 0; k < 9; ++k) taper_pow[k] = std::pow(1 - taper, float(k));
 
-  for (size_t i = 0; i < n && !out.capped; ++i) {
+  // Newest nodes first: when the cap is reached it is the oldest history that goes, never the final
+  // crown. Each node draws from its own stream, so the result does not depend on the order.
+  for (size_t i = n; i-- > 0 && !out.capped;) {
     const int32_t par = t.parent[i];
     if (par < 0) continue;
     glm::vec3 d = t.position[i] - t.position[par];
     const float len = glm::length(d);
-    phase[i] = phase[par];
     if (!carries(i) || !(len > 1e-6f)) continue;
+    rng r(seed ^ (uint64_t(i) * 0x9E3779B97F4A7C15ull + 0xf011a9eull));
     d /= len;
     // Leaf nodes along the internode; the fraction gives one more with its probability.
     const float want = len / spacing / float(cluster);
@@ -104,7 +111,7 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
     const uint16_t died = retention_end(t.born[i], p.retention, t.died[i]);
     const int above = std::clamp(int(t.order[i]) - p.min_order, 0, 8);
     const float size = base_size * taper_pow[above] * card_scale;
-    float az = phase[i];
+    float az = divergence * std::floor(arc[par] / (spacing * float(cluster)));
     for (int k = 0; k < nodes; ++k) {
       const float along = (float(k) + 0.5f + 0.3f * r.uniform(-1, 1)) / float(nodes);
       const glm::vec3 at = t.position[par] + d * (len * along);
@@ -129,7 +136,6 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
       }
       az += divergence;
     }
-    phase[i] = std::fmod(az, 2 * 3.14159265f);
   }
   return out;
 }

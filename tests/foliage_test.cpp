@@ -139,6 +139,13 @@ TEST(Foliage, CapStopsPlacementAndTheMeshSaysSo) {
   EXPECT_TRUE(f.capped);
   EXPECT_EQ(f.leaves.size(), size_t(1000));
   EXPECT_LE(f.leaves.capacity(), size_t(1016)) << "reserved no more than the cap allows";
+  // The cap drops the oldest history, never the final crown: the newest nodes keep their leaves.
+  int32_t oldest_kept = int32_t(t.size());
+  for (const leaf& l : f.leaves) oldest_kept = std::min(oldest_kept, l.node);
+  EXPECT_GE(oldest_kept, int32_t(t.size()) - 6) << "1000 leaves at 200 a metre fill the newest 5 internodes";
+  size_t on_newest = 0;
+  for (const leaf& l : f.leaves) on_newest += l.node == int32_t(t.size()) - 1;
+  EXPECT_EQ(on_newest, size_t(200));
   mesh_params mp;
   mp.leaves = p;
   const tree_mesh m = mesh_tree(t, mp);
