@@ -1,0 +1,158 @@
+// `sylva textures`: writes the archetype texture sets (render/textures.h) for people to look at,
+// composes the contact sheet docs/archetypes.png, and times their generation.
+#include "app/cli_textures.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "render/textures.h"
+
+namespace sylva {
+namespace {
+
+// Box-filtered copy of `src` scaled down by an integer factor (sRGB bytes averaged: a preview).
+image shrink(const image& src, int factor) {
+  factor = std::max(factor, 1);
+  image out{src.width / factor, src.height / factor, src.channels, {}};
+  out.pixels.assign(size_t(out.width) * out.height * out.channels, 0);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < src.channels; ++c) {
+        int sum = 0;
+        for (int j = 0; j < factor; ++j)
+          for (int i = 0; i < factor; ++i)
+            sum += src.pixels[(size_t(y * factor + j) * src.width + size_t(x * factor + i)) * src.channels + c];
+        out.pixels[(size_t(y) * out.width + x) * out.channels + c] = uint8_t(sum / (factor * factor));
+      }
+  return out;
+}
+
+// Draws `tile` (RGB or RGBA, composited over what is there) into `sheet` (RGB) at (ox, oy).
+void paste(image& sheet, const image& tile, int ox, int oy) {
+  for (int y = 0; y < tile.height; ++y)
+    for (int x = 0; x < tile.width; ++x) {
+      const uint8_t* s = &tile.pixels[(size_t(y) * tile.width + x) * tile.channels];
+      uint8_t* d = &sheet.pixels[(size_t(oy + y) * sheet.width + size_t(ox + x)) * 3];
+      const int a = tile.channels == 4 ? s[3] : 255;
+      for (int c = 0; c < 3; ++c) d[c] = uint8_t((s[c] * a + d[c] * (255 - a) + 127) / 255);
+    }
+}
+
+// Species tints (linear RGB) used on the sheet, one per archetype.
+const glm::vec3 leaf_tints[leaf_archetype_count] = {
+    {0.26f, 0.50f, 0.14f},  // ovate: birch
+    {0.18f, 0.36f, 0.10f},  // lobed: oak
+    {0.28f, 0.52f, 0.12f},  // palmate: maple
+    {0.24f, 0.46f, 0.14f},  // pinnate: ash
+    {0.14f, 0.30f, 0.16f},  // needles: Scots pine
+    {0.10f, 0.26f, 0.12f},  // flat spray: fir
+    {0.20f, 0.38f, 0.12f},  // scale spray: cypress
+    {0.30f, 0.48f, 0.13f},  // palm frond
+    {0.24f, 0.48f, 0.14f},  // twig cluster
+};
+const glm::vec3 bark_tints[bark_archetype_count] = {
+    {0.34f, 0.30f, 0.26f},  // furrowed: oak
+    {0.46f, 0.30f, 0.22f},  // plated: Scots pine
+    {0.82f, 0.82f, 0.80f},  // smooth: birch (white)
+    {0.42f, 0.28f, 0.22f},  // peeling: western red cedar
+    {0.44f, 0.40f, 0.34f},  // ringed: palm
+};
+
+image contact_sheet(int size) {
+  const int cell = 256, pad = 12, cols = 5;
+  const int factor = std::max(size / cell, 1);
+  const int w = cols * cell + (cols + 1) * pad, h = 3 * cell + 4 * pad;
+  image sheet{w, h, 3, std::vector<uint8_t>(size_t(w) * h * 3, 118)};  // neutral grey
+  for (int i = 0; i < leaf_archetype_count; ++i) {
+    const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), size);
+    paste(sheet, shrink(tinted_texture(t.color, leaf_tints[i]), factor), pad + (i % cols) * (cell + pad),
+          pad + (i / cols) * (cell + pad));
+  }
+  // The empty slot after the leaves: the smooth bark once more, tinted grey as beech.
+  paste(sheet, shrink(tinted_texture(bark_archetype_textures(bark_archetype::smooth, size).color, {0.42f, 0.42f, 0.40f}), factor),
+        pad + 4 * (cell + pad), pad + (cell + pad));
+  for (int i = 0; i < bark_archetype_count; ++i) {
+    const bark_texture_set& t = bark_archetype_textures(bark_archetype(i), size);
+    paste(sheet, shrink(tinted_texture(t.color, bark_tints[i]), factor), pad + i * (cell + pad), pad + 2 * (cell + pad));
+  }
+  return sheet;
+}
+
+std::string write_sets(const std::string& dir, int size) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return dir + ": " + ec.message();
+  for (int i = 0; i < leaf_archetype_count; ++i) {
+    const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), size);
+    const std::string base = dir + "/leaf_" + leaf_archetype_names[i];
+    for (auto [img, suffix] : {std::pair{&t.color, "_color.png"}, {&t.normal, "_normal.png"}, {&t.thickness, "_thickness.png"}})
+      if (std::string e = save_png(*img, base + suffix); !e.empty()) return e;
+  }
+  for (int i = 0; i < bark_archetype_count; ++i) {
+    const bark_texture_set& t = bark_archetype_textures(bark_archetype(i), size);
+    const std::string base = dir + "/bark_" + bark_archetype_names[i];
+    for (auto [img, suffix] : {std::pair{&t.color, "_color.png"}, {&t.normal, "_normal.png"}, {&t.roughness, "_roughness.png"}})
+      if (std::string e = save_png(*img, base + suffix); !e.empty()) return e;
+  }
+  return "";
+}
+
+}  // namespace
+
+int run_textures_cli(int argc, char** argv) {
+  CLI::App app{"Archetype textures: the 9 leaf cards and 5 barks species choose from", "sylva textures"};
+  std::string sheet, dir;
+  int size = 512, repeat = 9, threads = 2;
+  bool bench = false;
+  app.add_option("--sheet", sheet, "Write a contact sheet PNG: leaf cards (species tints) and barks");
+  app.add_option("--dir", dir, "Write every map of every set as PNGs into this folder");
+  app.add_option("--size", size, "Texture size in pixels")->check(CLI::Range(8, 4096));
+  app.add_flag("--bench", bench, "Time making all 14 sets afresh; prints the median");
+  app.add_option("--repeat", repeat, "--bench: runs")->check(CLI::Range(1, 1000));
+  app.add_option("--threads", threads, "--bench: threads")->check(CLI::Range(1, 64));
+  try {
+    app.parse(argc - 1, argv + 1);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "sylva textures: %s (see sylva textures --help)\n", e.what());
+    return 2;
+  }
+  if (sheet.empty() && dir.empty() && !bench) {
+    std::fprintf(stderr, "sylva textures: give --sheet, --dir or --bench (see sylva textures --help)\n");
+    return 2;
+  }
+  if (bench) {
+    std::vector<double> ms;
+    size_t bytes = 0;
+    for (int i = 0; i < repeat; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      bytes = make_all_archetype_textures(size, 1, threads);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::vector<double> sorted = ms;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = repeat % 2 ? sorted[size_t(repeat / 2)] : 0.5 * (sorted[size_t(repeat / 2 - 1)] + sorted[size_t(repeat / 2)]);
+    std::printf("all 9 leaf + 5 bark sets at %d px on %d threads: median %.1f ms over %d runs (min %.1f, max %.1f), %.1f MB\n",
+                size, threads, median, repeat, sorted.front(), sorted.back(), double(bytes) / 1048576.0);
+  }
+  if (!dir.empty() || !sheet.empty()) prepare_archetype_textures(size, 1, threads);
+  if (!dir.empty())
+    if (std::string e = write_sets(dir, size); !e.empty()) {
+      std::fprintf(stderr, "sylva textures: %s\n", e.c_str());
+      return 1;
+    }
+  if (!sheet.empty())
+    if (std::string e = save_png(contact_sheet(size), sheet); !e.empty()) {
+      std::fprintf(stderr, "sylva textures: %s\n", e.c_str());
+      return 1;
+    }
+  return 0;
+}
+
+}  // namespace sylva
