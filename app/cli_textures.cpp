@@ -44,25 +44,26 @@ void paste(image& sheet, const image& tile, int ox, int oy) {
     }
 }
 
-// Species tints (linear RGB) used on the sheet, one per archetype.
+// Species tints (linear RGB) used on the sheet, one per archetype: the species presets' colours.
 const glm::vec3 leaf_tints[leaf_archetype_count] = {
-    {0.26f, 0.50f, 0.14f},  // ovate: birch
-    {0.18f, 0.36f, 0.10f},  // lobed: oak
-    {0.28f, 0.52f, 0.12f},  // palmate: maple
-    {0.24f, 0.46f, 0.14f},  // pinnate: ash
-    {0.14f, 0.30f, 0.16f},  // needles: Scots pine
-    {0.10f, 0.26f, 0.12f},  // flat spray: fir
-    {0.20f, 0.38f, 0.12f},  // scale spray: cypress
-    {0.30f, 0.48f, 0.13f},  // palm frond
-    {0.24f, 0.48f, 0.14f},  // twig cluster
+    {0.32f, 0.55f, 0.16f},  // ovate: birch
+    {0.22f, 0.42f, 0.12f},  // lobed: oak
+    {0.26f, 0.50f, 0.12f},  // palmate: maple
+    {0.24f, 0.46f, 0.12f},  // pinnate: ash
+    {0.10f, 0.26f, 0.12f},  // needles: Scots pine
+    {0.08f, 0.22f, 0.12f},  // flat spray: spruce
+    {0.12f, 0.30f, 0.12f},  // scale spray: cedar
+    {0.26f, 0.45f, 0.14f},  // palm frond
+    {0.26f, 0.50f, 0.12f},  // twig cluster: maple cluster cards
 };
 const glm::vec3 bark_tints[bark_archetype_count] = {
-    {0.34f, 0.30f, 0.26f},  // furrowed: oak
-    {0.46f, 0.30f, 0.22f},  // plated: Scots pine
-    {0.82f, 0.82f, 0.80f},  // smooth: birch (white)
-    {0.42f, 0.28f, 0.22f},  // peeling: western red cedar
-    {0.44f, 0.40f, 0.34f},  // ringed: palm
+    {0.36f, 0.31f, 0.26f},  // furrowed: oak
+    {0.40f, 0.28f, 0.20f},  // plated: Scots pine
+    {0.82f, 0.80f, 0.76f},  // smooth: birch (white)
+    {0.50f, 0.32f, 0.24f},  // peeling: cedar
+    {0.50f, 0.44f, 0.36f},  // ringed: palm
 };
+const glm::vec3 beech_tint{0.52f, 0.52f, 0.50f};  // smooth again, grey
 
 image contact_sheet(int size) {
   const int cell = 256, pad = 12, cols = 5;
@@ -75,7 +76,7 @@ image contact_sheet(int size) {
           pad + (i / cols) * (cell + pad));
   }
   // The empty slot after the leaves: the smooth bark once more, tinted grey as beech.
-  paste(sheet, shrink(tinted_texture(bark_archetype_textures(bark_archetype::smooth, size).color, {0.42f, 0.42f, 0.40f}), factor),
+  paste(sheet, shrink(tinted_texture(bark_archetype_textures(bark_archetype::smooth, size).color, beech_tint), factor),
         pad + 4 * (cell + pad), pad + (cell + pad));
   for (int i = 0; i < bark_archetype_count; ++i) {
     const bark_texture_set& t = bark_archetype_textures(bark_archetype(i), size);

@@ -542,16 +542,18 @@ struct leaf_look {
   vec3 blade, vein;  // sRGB bytes
 };
 // Near a mid green (the tint sets the hue); each archetype keeps a little of its own character.
+// A pale, low-chroma green around the tint's reference level (linear 0.5, sRGB 188), so that the
+// tint sets the hue and is about the leaf's mean albedo; each archetype keeps a little character.
 const leaf_look leaf_looks[leaf_archetype_count] = {
-    {{150, 184, 112}, {196, 210, 140}},  // ovate: fresh, slightly yellow
-    {{134, 168, 108}, {180, 196, 132}},  // lobed: deeper
-    {{148, 182, 106}, {200, 206, 130}},  // palmate
-    {{142, 176, 114}, {188, 204, 140}},  // pinnate
-    {{126, 164, 136}, {168, 196, 160}},  // needles: blue-green
-    {{122, 160, 124}, {170, 196, 150}},  // flat spray: dark, bluish
-    {{142, 174, 112}, {178, 196, 128}},  // scale spray: yellow-green
-    {{156, 182, 108}, {204, 204, 128}},  // palm frond: yellowish
-    {{148, 182, 114}, {196, 206, 140}},  // twig cluster
+    {{178, 194, 156}, {206, 208, 160}},  // ovate: fresh, slightly yellow
+    {{170, 188, 156}, {196, 202, 156}},  // lobed: deeper
+    {{178, 194, 152}, {210, 208, 152}},  // palmate
+    {{174, 192, 158}, {202, 206, 162}},  // pinnate
+    {{164, 186, 172}, {190, 202, 176}},  // needles: blue-green
+    {{162, 184, 166}, {188, 200, 172}},  // flat spray: bluish
+    {{176, 190, 152}, {198, 202, 152}},  // scale spray: yellow-green
+    {{182, 194, 150}, {212, 208, 150}},  // palm frond: yellowish
+    {{178, 194, 156}, {206, 208, 160}},  // twig cluster
 };
 
 leaf_texture_set finish_leaf(const leaf_canvas& c, const leaf_look& look, uint64_t seed) {
@@ -696,7 +698,7 @@ void bark_smooth(bark_field& f, uint64_t seed) {
     if (unit(cell * 5) < 0.15f) continue;  // some cells are empty
     dashes[c] = {unit(cell * 5 + 1), unit(cell * 5 + 2), 1 / (0.1f + 0.3f * unit(cell * 5 + 3)), 1 / (0.05f + 0.05f * unit(cell * 5 + 4))};
   }
-  const vec3 light = srgb_color(222, 220, 214), dark = srgb_color(70, 66, 62);
+  const vec3 light = srgb_color(200, 198, 192), dark = srgb_color(64, 60, 56);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
