@@ -263,7 +263,10 @@ void blade(leaf_canvas& c, vec2 base, float degrees, float len, float width, Pro
     float vein = std::max(0.0f, 1 - dv / vw) * smooth(mw, 2 * mw, as) * (1 - smooth(0.8f, 0.97f, u)) * (q > 0.3f ? 1.0f : 0.0f);
     vein *= 0.9f;
     const float edge_fade = clamp01(edge / (4 * px));
-    s.height = 0.10f * width * (1 - u * u) + 1.3f * px * mid - 0.5f * px * vein;
+    // The dome follows the distance from the midrib, not the outline, so lobes and teeth add no
+    // ripples of their own.
+    const float across = std::min(as / width, 1.0f);
+    s.height = 0.10f * width * (1 - across * across) + 1.3f * px * mid - 0.5f * px * vein;
     s.shade = (1 + 0.10f * mid + 0.07f * vein) * (1 - st.edge_dark + st.edge_dark * edge_fade);
     s.warm = std::min(1.0f, 0.7f * mid + 0.45f * vein);
     s.thin = 0.95f - 0.6f * mid - 0.3f * vein;
@@ -542,8 +545,8 @@ struct leaf_look {
   vec3 blade, vein;  // sRGB bytes
 };
 // Near a mid green (the tint sets the hue); each archetype keeps a little of its own character.
-// A pale, low-chroma green around the tint's reference level (linear 0.5, sRGB 188), so that the
-// tint sets the hue and is about the leaf's mean albedo; each archetype keeps a little character.
+// A pale, low-chroma mid green (linear ~0.45), so that the tint sets the hue and the leaf's albedo
+// is a little under half the tint; each archetype keeps a little character of its own.
 const leaf_look leaf_looks[leaf_archetype_count] = {
     {{178, 194, 156}, {206, 208, 160}},  // ovate: fresh, slightly yellow
     {{170, 188, 156}, {196, 202, 156}},  // lobed: deeper
@@ -637,7 +640,7 @@ void bark_furrowed(bark_field& f, uint64_t seed) {
   // cracks break the ridges into long blocks, and fine fibres run along them.
   const cells ridges(10, 2, seed + 1, 0.95f), blocks(16, 4, seed + 2, 0.9f);
   const lattice warp(4, 3, seed + 3), fibre(72, 6, seed + 4), tone(6, 4, seed + 5), lump(20, 8, seed + 6);
-  const vec3 ridge_col = srgb_color(184, 174, 158), furrow_col = srgb_color(54, 44, 36), warm_col = srgb_color(160, 138, 114);
+  const vec3 ridge_col = srgb_color(230, 222, 206), furrow_col = srgb_color(66, 54, 44), warm_col = srgb_color(206, 182, 154);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -663,7 +666,7 @@ void bark_plated(bark_field& f, uint64_t seed) {
   // plates reddish with flaky layers; a finer cell pattern breaks the plates up.
   const cells plates(6, 3, seed + 1, 0.9f), flakes(14, 8, seed + 2, 0.9f);
   const lattice warp(5, 5, seed + 3), layer(22, 12, seed + 4), grain(96, 24, seed + 5);
-  const vec3 red = srgb_color(190, 122, 92), grey = srgb_color(152, 130, 114), fissure = srgb_color(42, 32, 26);
+  const vec3 red = srgb_color(238, 164, 126), grey = srgb_color(206, 184, 166), fissure = srgb_color(52, 40, 32);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -698,7 +701,7 @@ void bark_smooth(bark_field& f, uint64_t seed) {
     if (unit(cell * 5) < 0.15f) continue;  // some cells are empty
     dashes[c] = {unit(cell * 5 + 1), unit(cell * 5 + 2), 1 / (0.1f + 0.3f * unit(cell * 5 + 3)), 1 / (0.05f + 0.05f * unit(cell * 5 + 4))};
   }
-  const vec3 light = srgb_color(200, 198, 192), dark = srgb_color(64, 60, 56);
+  const vec3 light = srgb_color(240, 239, 236), dark = srgb_color(78, 74, 70);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -732,7 +735,7 @@ void bark_peeling(bark_field& f, uint64_t seed) {
   // trunk into pieces of its own tone, reddish fresh bark and greyed weathered strips.
   const int strips = 16;
   const lattice warp(3, 2, seed + 1), warp2(7, 3, seed + 2), fibre(110, 5, seed + 3), tone(4, 4, seed + 4);
-  const vec3 fresh = srgb_color(176, 112, 84), weathered = srgb_color(150, 140, 130), gap_col = srgb_color(52, 36, 28);
+  const vec3 fresh = srgb_color(228, 158, 124), weathered = srgb_color(204, 194, 182), gap_col = srgb_color(64, 46, 36);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -761,7 +764,7 @@ void bark_ringed(bark_field& f, uint64_t seed) {
   // along its lower edge), fibrous stem between them.
   const int rings = 6;
   const lattice wave(3, 3, seed + 1), fibre(90, 6, seed + 2), tone(4, 6, seed + 3), scar_len(5, rings, seed + 4);
-  const vec3 body = srgb_color(176, 164, 140), band_col = srgb_color(196, 186, 164), scar = srgb_color(64, 54, 44);
+  const vec3 body = srgb_color(214, 202, 178), band_col = srgb_color(238, 230, 212), scar = srgb_color(76, 64, 52);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -906,7 +909,7 @@ size_t make_all_archetype_textures(int size, uint64_t seed, int threads) {
   return bytes;
 }
 
-// albedo = min(1, texture_tint_gain * tint * linear(texel)), written back as sRGB bytes.
+// albedo = min(1, texture_tint_gain * tint * linear(texel)), written back as sRGB bytes (textures.h).
 image tinted_texture(const image& color, const glm::vec3& tint) {
   image out = color;
   const auto& lin = srgb().to_linear;

@@ -73,11 +73,13 @@ size_t make_all_archetype_textures(int size = 512, uint64_t seed = 1, int thread
 //
 //   albedo_linear = min(1, texture_tint_gain * tint_linear * srgb_to_linear(texel))   per channel
 //
-// written back as sRGB bytes (alpha untouched). A texel of linear 0.5 (sRGB 188) shows the tint
-// itself, so the tint is about the material's mean albedo; the procedural textures sit near that
-// level (leaves: a mid green, so the tint sets the hue; bark: the pattern's light and dark).
-// In GLSL, with the texture sampled from an sRGB format: min(vec3(1.0), 2.0 * tint * tex.rgb).
-inline constexpr float texture_tint_gain = 2.0f;
+// with texture_tint_gain = 1: a plain multiply, written back as sRGB bytes (alpha untouched). A
+// white texel shows the tint itself. The procedural leaves are a pale, low-chroma mid green
+// (linear ~0.45), so the tint sets the hue and a leaf's albedo is a little under half its tint;
+// the procedural barks are light where the bark is lit and dark in its furrows and scars.
+// In GLSL, with the texture sampled from an sRGB format: min(vec3(1.0), TINT_GAIN * tint * tex.rgb)
+// (render/gl/renderer.cpp defines TINT_GAIN from this constant).
+inline constexpr float texture_tint_gain = 1.0f;
 image tinted_texture(const image& color, const glm::vec3& tint_linear);
 
 // A user's texture file for the renderer: PNG (or another format stb reads), checked before it is

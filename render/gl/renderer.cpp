@@ -90,8 +90,8 @@ void main() {
   m.y = -m.y;   // the map's +Y points up the image, against increasing v
   vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
   if (dot(n, n0) < 0.2) n = n0;
-  // tinted_texture's formula (render/textures.h): albedo = min(1, 2 * tint * texel), texel linear.
-  vec3 albedo = min(vec3(1.0), 2.0 * u_bark_color * texture(u_bark, v_uv).rgb);
+  // tinted_texture's formula (render/textures.h): albedo = min(1, gain * tint * texel), texel linear.
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_bark_color * texture(u_bark, v_uv).rgb);
   float sh = shadow_at(v_world, n);
   float ndl = max(dot(n, u_sun_dir), 0.0);
   // A mild dielectric highlight (F0 = 0.04) from the roughness map: Blinn-Phong with the exponent
@@ -154,7 +154,7 @@ void main() {
   if (!gl_FrontFacing) { n = -n; n0 = -n0; }   // two-sided: light the side we see
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
   // tinted_texture's formula (render/textures.h), then the per-leaf variation.
-  vec3 albedo = min(vec3(1.0), 2.0 * u_leaf_color * t.rgb) * v_tint;
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_leaf_color * t.rgb) * v_tint;
   float sh = shadow_at(v_world, ndl0 >= 0.0 ? n0 : -n0);
   // Transmission: sunlight arriving on the far side glows through the blade, tinted by it, more
   // where the blade is thin (thickness map: white = thin) than through veins and stems.
@@ -290,7 +290,11 @@ uniform vec3 u_color; out vec4 o_color;
 void main() { o_color = vec4(u_color, 1.0); }
 )";
 
-std::string lit_source(const char* body) { return std::string("#version 330 core\n") + lighting_glsl + body; }
+std::string lit_source(const char* body) {
+  // TINT_GAIN: tinted_texture's gain (render/textures.h), so shaders and exports share the formula.
+  return std::string("#version 330 core\nconst float TINT_GAIN = ") + std::to_string(texture_tint_gain) + ";\n" +
+         lighting_glsl + body;
+}
 std::string sky_source(const char* body) { return std::string("#version 330 core\n") + sky_glsl + body; }
 
 // ---------------------------------------------------------------- helpers
