@@ -634,29 +634,47 @@ struct cells {
   }
 };
 
+// Distance (in line spacings) from u to the nearest of `lines` wandering lengthwise lines; line i
+// sits at (i + 0.5 + swing * (noise - 0.5)) / lines, so neighbours approach, touch and part again.
+float wandering_lines(const lattice& swing_noise, const lattice& jitter, int lines, float swing, float u, float v) {
+  const float fu = u * float(lines);
+  const int i0 = int(ffloor(fu));
+  float best = 1e9f;
+  for (int i = i0 - 2; i <= i0 + 2; ++i) {
+    const float at = (float(wrap(i, lines)) + 0.5f) / float(lines);
+    const float centre = float(i) + 0.5f + swing * (0.86f * swing_noise(at, v) + 0.14f * jitter(at, v) - 0.5f);
+    best = std::min(best, std::abs(fu - centre));
+  }
+  return best;
+}
+
 void bark_furrowed(bark_field& f, uint64_t seed) {
-  // Quercus: corky ridges between deep furrows. The furrows are the borders of cells stretched
-  // along the trunk, so they run mostly lengthwise, split and rejoin (interlace); a few cross
-  // cracks break the ridges into long blocks, and fine fibres run along them.
-  const cells ridges(10, 2, seed + 1, 0.95f), blocks(16, 4, seed + 2, 0.9f);
-  const lattice warp(4, 3, seed + 3), fibre(72, 6, seed + 4), tone(6, 4, seed + 5), lump(20, 8, seed + 6);
+  // Quercus: corky ridges between deep furrows that run along the trunk and wander, so that
+  // neighbouring furrows meet and part (they interlace); shallower furrows split the wide ridges,
+  // a few cross cracks break them into long blocks, and fine fibres run along them.
+  const int deep = 9, shallow = 17;
+  const lattice swing_a(deep, 8, seed + 1), swing_b(shallow, 10, seed + 2), jitter_a(deep, 40, seed + 3), jitter_b(shallow, 40, seed + 8),
+      fibre(72, 6, seed + 4), tone(6, 4, seed + 5), lump(20, 8, seed + 6);
+  const cells blocks(12, 5, seed + 7, 0.9f);
   const vec3 ridge_col = srgb_color(230, 222, 206), furrow_col = srgb_color(66, 54, 44), warm_col = srgb_color(206, 182, 154);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       const float u = (float(x) + 0.5f) / float(n), v = (float(y) + 0.5f) / float(n);
-      const float uw = u + 0.05f * (warp(u, v) - 0.5f);
-      float f1, f2, g1, g2;
-      int id, bid;
-      ridges.query(uw, v, f1, f2, id);
-      blocks.query(uw, v, g1, g2, bid);
-      const float ridge = smooth(0.0f, 0.3f, f2 - f1);          // 0 at the bottom of a furrow
-      const float crack = 1 - smooth(0.0f, 0.06f, g2 - g1);      // shallow splits inside the ridges
-      const float fb = fibre(uw, v), lm = lump(uw, v);
+      const float da = wandering_lines(swing_a, jitter_a, deep, 2.2f, u, v);
+      const float db = wandering_lines(swing_b, jitter_b, shallow, 1.6f, u, v);
+      float g1, g2;
+      int bid;
+      blocks.query(u, v, g1, g2, bid);
+      const float ridge = smooth(0.02f, 0.24f, da);                  // 0 at the bottom of a deep furrow
+      const float split = 1 - smooth(0.02f, 0.2f, db);               // a shallow furrow
+      const float crack = (1 - smooth(0.0f, 0.04f, g2 - g1)) * 0.35f;  // cross cracks
+      const float fb = fibre(u, v), lm = lump(u, v);
+      const float top_h = 1 - 0.35f * split - 0.25f * crack;
       const size_t k = size_t(y) * n + x;
-      f.height[k] = 0.85f * std::sqrt(ridge) - 0.18f * crack * ridge + 0.1f * fb + 0.08f * lm;
+      f.height[k] = 0.85f * std::sqrt(ridge) * top_h + 0.1f * fb + 0.08f * lm;
       const vec3 top = mix3(ridge_col, warm_col, tone(u, v)) * (0.85f + 0.2f * lm);
-      f.color[k] = mix3(furrow_col, top, ridge * (1 - 0.45f * crack)) * (0.88f + 0.22f * fb);
+      f.color[k] = mix3(furrow_col, top, ridge * (1 - 0.45f * split) * (1 - 0.4f * crack)) * (0.88f + 0.22f * fb);
       f.rough[k] = 0.97f - 0.1f * ridge;
     }
 }
@@ -760,29 +778,34 @@ void bark_peeling(bark_field& f, uint64_t seed) {
 }
 
 void bark_ringed(bark_field& f, uint64_t seed) {
-  // Palm stem: horizontal rings of leaf-base scars (a raised band with a dark crescent scar line
-  // along its lower edge), fibrous stem between them.
-  const int rings = 6;
-  const lattice wave(3, 3, seed + 1), fibre(90, 6, seed + 2), tone(4, 6, seed + 3), scar_len(5, rings, seed + 4);
-  const vec3 body = srgb_color(214, 202, 178), band_col = srgb_color(238, 230, 212), scar = srgb_color(76, 64, 52);
+  // Palm stem: rings of leaf-base scars. Each ring holds a few leaf bases side by side; each base
+  // left a raised band whose lower edge sags in a crescent, with a dark scar line along it and a
+  // notch where one base meets the next. Between the rings the stem is fibrous and greyer.
+  const int rings = 6, bases = 3;
+  const lattice wave(3, 3, seed + 1), fibre(90, 6, seed + 2), tone(4, 6, seed + 3);
+  const vec3 body = srgb_color(200, 190, 168), band_col = srgb_color(238, 230, 212), scar = srgb_color(70, 58, 46);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       const float u = (float(x) + 0.5f) / float(n), v = (float(y) + 0.5f) / float(n);
-      const float r = v * float(rings) + 0.35f * (wave(u, v) - 0.5f);
-      const float l = r - ffloor(r);  // 0..1 within a ring interval
-      const float band = smooth(0.0f, 0.06f, l) * (1 - smooth(0.3f, 0.38f, l));
-      // The scar line under the band, interrupted where one leaf base ends and the next begins.
-      const float gap = scar_len(u, ffloor(r) / float(rings) + 0.5f / float(rings));
-      const float scar_line = (1 - smooth(0.015f, 0.045f, std::abs(l - 0.37f))) * smooth(0.25f, 0.4f, gap);
+      const float r = v * float(rings) + 0.25f * (wave(u, v) - 0.5f);
+      const float rf = ffloor(r), l = r - rf;  // l: 0..1 down the ring interval
+      const int ring = wrap(int(rf), rings);
+      const float a = u * float(bases) + unit(seed * 97 + uint64_t(ring));
+      const float along = a - ffloor(a);  // 0..1 across one leaf base
+      const float sag = 0.2f + 0.16f * std::sin(pi * along);
+      const float band = smooth(0.0f, 0.05f, l) * (1 - smooth(sag - 0.03f, sag, l));
+      const float scar_line = 1 - smooth(0.012f, 0.04f, std::abs(l - sag - 0.01f));
+      const float notch = (1 - smooth(0.0f, 0.035f, std::min(along, 1 - along))) * (l < sag + 0.02f ? 1.0f : 0.0f);
       const float bulge = std::sin(pi * l);
       const float fb = fibre(u, v);
       const size_t k = size_t(y) * n + x;
-      f.height[k] = 0.35f * bulge + 0.35f * band - 0.45f * scar_line + 0.15f * fb;
-      vec3 c = mix3(body, band_col, band) * (0.85f + 0.25f * fb) * (0.9f + 0.2f * tone(u, v));
-      c = mix3(c, scar, 0.9f * scar_line);
+      f.height[k] = 0.3f * bulge + 0.45f * band * (1 - 0.5f * l / std::max(sag, 1e-3f)) - 0.45f * scar_line - 0.3f * notch +
+                    0.15f * fb * (1 - band);
+      vec3 c = mix3(body * (0.78f + 0.35f * fb), band_col * (0.95f + 0.08f * fb), band) * (0.9f + 0.2f * tone(u, v));
+      c = mix3(c, scar, std::max(0.9f * scar_line, 0.8f * notch));
       f.color[k] = c;
-      f.rough[k] = 0.88f + 0.1f * scar_line;
+      f.rough[k] = 0.88f + 0.1f * scar_line - 0.1f * band;
     }
 }
 
