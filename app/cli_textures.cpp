@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -129,18 +131,28 @@ int run_textures_cli(int argc, char** argv) {
     return 2;
   }
   if (bench) {
-    std::vector<double> ms;
+    // Wall time, and the process's CPU time (all threads) which a machine shared with other
+    // work inflates less.
+    std::vector<double> wall, cpu;
     size_t bytes = 0;
     for (int i = 0; i < repeat; ++i) {
       const auto t0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
       bytes = make_all_archetype_textures(size, 1, threads);
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      cpu.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+      wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
-    std::vector<double> sorted = ms;
-    std::sort(sorted.begin(), sorted.end());
-    const double median = repeat % 2 ? sorted[size_t(repeat / 2)] : 0.5 * (sorted[size_t(repeat / 2 - 1)] + sorted[size_t(repeat / 2)]);
-    std::printf("all 9 leaf + 5 bark sets at %d px on %d threads: median %.1f ms over %d runs (min %.1f, max %.1f), %.1f MB\n",
-                size, threads, median, repeat, sorted.front(), sorted.back(), double(bytes) / 1048576.0);
+    auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      const size_t n = v.size();
+      return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    };
+    double load[3] = {0, 0, 0};
+    if (getloadavg(load, 3) != 3) load[0] = load[1] = load[2] = -1;
+    std::printf("all 9 leaf + 5 bark sets at %d px on %d threads, %d runs: median %.1f ms wall (min %.1f, max %.1f), "
+                "median %.1f ms CPU; %.1f MB; load average %.2f %.2f %.2f\n",
+                size, threads, repeat, median(wall), *std::min_element(wall.begin(), wall.end()),
+                *std::max_element(wall.begin(), wall.end()), median(cpu), double(bytes) / 1048576.0, load[0], load[1], load[2]);
   }
   if (!dir.empty() || !sheet.empty()) prepare_archetype_textures(size, 1, threads);
   if (!dir.empty())
