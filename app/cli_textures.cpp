@@ -67,23 +67,66 @@ const glm::vec3 bark_tints[bark_archetype_count] = {
 };
 const glm::vec3 beech_tint{0.52f, 0.52f, 0.50f};  // smooth again, grey
 
+// A 5x7 pixel font for the sheet's labels: each glyph is 7 rows of 5 bits, most significant left.
+struct glyph { char c; uint8_t rows[7]; };
+const glyph font[] = {
+    {'a', {0x00, 0x00, 0x0E, 0x01, 0x0F, 0x11, 0x0F}}, {'b', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x1E}},
+    {'c', {0x00, 0x00, 0x0E, 0x10, 0x10, 0x11, 0x0E}}, {'d', {0x01, 0x01, 0x0D, 0x13, 0x11, 0x11, 0x0F}},
+    {'e', {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E}}, {'f', {0x06, 0x09, 0x08, 0x1C, 0x08, 0x08, 0x08}},
+    {'g', {0x00, 0x0F, 0x11, 0x11, 0x0F, 0x01, 0x0E}}, {'h', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x11}},
+    {'i', {0x04, 0x00, 0x0C, 0x04, 0x04, 0x04, 0x0E}}, {'k', {0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12}},
+    {'l', {0x0C, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}}, {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11}},
+    {'n', {0x00, 0x00, 0x16, 0x19, 0x11, 0x11, 0x11}}, {'o', {0x00, 0x00, 0x0E, 0x11, 0x11, 0x11, 0x0E}},
+    {'p', {0x00, 0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10}}, {'r', {0x00, 0x00, 0x16, 0x19, 0x10, 0x10, 0x10}},
+    {'s', {0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E}}, {'t', {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06}},
+    {'u', {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D}}, {'v', {0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04}},
+    {'w', {0x00, 0x00, 0x11, 0x11, 0x15, 0x15, 0x0A}}, {'y', {0x00, 0x11, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
+    {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}}, {'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
+    {')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}},
+};
+
+// Writes `text` at (x, y) in `sheet` (RGB), each font pixel a scale x scale block, in grey `shade`.
+void label(image& sheet, const std::string& text, int x, int y, int scale, uint8_t shade) {
+  for (char ch : text) {
+    for (const glyph& g : font) {
+      if (g.c != ch) continue;
+      for (int row = 0; row < 7; ++row)
+        for (int col = 0; col < 5; ++col) {
+          if (!(g.rows[row] & (0x10 >> col))) continue;
+          for (int j = 0; j < scale; ++j)
+            for (int i = 0; i < scale; ++i) {
+              const int px = x + col * scale + i, py = y + row * scale + j;
+              if (px < 0 || py < 0 || px >= sheet.width || py >= sheet.height) continue;
+              std::fill_n(&sheet.pixels[(size_t(py) * sheet.width + px) * 3], 3, shade);
+            }
+        }
+    }
+    x += 6 * scale;  // unknown characters leave a space
+  }
+}
+
+const char* leaf_labels[leaf_archetype_count] = {"ovate (birch)",       "lobed (oak)",         "palmate (maple)",
+                                                 "pinnate (ash)",       "needles (pine)",      "flat_spray (spruce)",
+                                                 "scale_spray (cedar)", "palm_frond (palm)",   "twig_cluster (maple)"};
+const char* bark_labels[bark_archetype_count] = {"furrowed (oak)", "plated (pine)", "smooth (birch)", "peeling (cedar)",
+                                                 "ringed (palm)"};
+
 image contact_sheet(int size) {
-  const int cell = 256, pad = 12, cols = 5;
+  const int cell = 256, pad = 12, text = 26, cols = 5;
   const int factor = std::max(size / cell, 1);
-  const int w = cols * cell + (cols + 1) * pad, h = 3 * cell + 4 * pad;
+  const int w = cols * cell + (cols + 1) * pad, h = 3 * (cell + text) + 4 * pad;
   image sheet{w, h, 3, std::vector<uint8_t>(size_t(w) * h * 3, 118)};  // neutral grey
-  for (int i = 0; i < leaf_archetype_count; ++i) {
-    const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), size);
-    paste(sheet, shrink(tinted_texture(t.color, leaf_tints[i]), factor), pad + (i % cols) * (cell + pad),
-          pad + (i / cols) * (cell + pad));
-  }
+  auto place = [&](const image& tile, const std::string& name, int col, int row) {
+    const int x = pad + col * (cell + pad), y = pad + row * (cell + text + pad);
+    paste(sheet, shrink(tile, factor), x, y);
+    label(sheet, name, x + 2, y + cell + 6, 2, 240);
+  };
+  for (int i = 0; i < leaf_archetype_count; ++i)
+    place(tinted_texture(leaf_archetype_textures(leaf_archetype(i), size).color, leaf_tints[i]), leaf_labels[i], i % cols, i / cols);
   // The empty slot after the leaves: the smooth bark once more, tinted grey as beech.
-  paste(sheet, shrink(tinted_texture(bark_archetype_textures(bark_archetype::smooth, size).color, beech_tint), factor),
-        pad + 4 * (cell + pad), pad + (cell + pad));
-  for (int i = 0; i < bark_archetype_count; ++i) {
-    const bark_texture_set& t = bark_archetype_textures(bark_archetype(i), size);
-    paste(sheet, shrink(tinted_texture(t.color, bark_tints[i]), factor), pad + i * (cell + pad), pad + 2 * (cell + pad));
-  }
+  place(tinted_texture(bark_archetype_textures(bark_archetype::smooth, size).color, beech_tint), "smooth (beech)", 4, 1);
+  for (int i = 0; i < bark_archetype_count; ++i)
+    place(tinted_texture(bark_archetype_textures(bark_archetype(i), size).color, bark_tints[i]), bark_labels[i], i, 2);
   return sheet;
 }
 
