@@ -607,68 +607,81 @@ struct bark_field {
 vec3 mix3(vec3 a, vec3 b, float t) { return a + (b - a) * t; }
 
 // Periodic jittered-grid cellular noise (Worley 1996): distances to the nearest two feature points
-// and the nearest one's cell id; cells are cx * cy, metric stretched by the cell aspect.
+// and the nearest one's cell id, on an n * n grid of cells (square, so that the 3 x 3 neighbourhood
+// holds the nearest points).
 struct cells {
   int cx, cy;
   std::vector<vec2> points;  // inside each cell, 0..1
-  cells(int cx_, int cy_, uint64_t seed, float jitter) : cx(cx_), cy(cy_), points(size_t(cx_) * cy_) {
+  cells(int n, uint64_t seed, float jitter) : cx(n), cy(n), points(size_t(n) * n) {
     for (size_t i = 0; i < points.size(); ++i)
       points[i] = vec2(0.5f + jitter * (unit(seed * 77 + 2 * i) - 0.5f), 0.5f + jitter * (unit(seed * 77 + 2 * i + 1) - 0.5f));
   }
-  // f1, f2 measured in cell units, so cells keep the grid's aspect (taller cells: longer plates).
-  void query(float u, float v, float& f1, float& f2, int& id) const {
+  // edge: distance to the bisector of the two nearest points, (F2^2 - F1^2) / (2 |p2 - p1|), which
+  // (unlike F2 - F1) stays narrow where two points lie close together; id: the nearest's cell.
+  void query(float u, float v, float& edge, int& id) const {
     const float fx = u * float(cx), fy = v * float(cy);
     const int ix = int(ffloor(fx)), iy = int(ffloor(fy));
-    f1 = f2 = 1e9f;
+    float f1 = 1e9f, f2 = 1e9f;
+    vec2 p1(0), p2(0);
     id = 0;
     for (int j = -1; j <= 1; ++j)
       for (int i = -1; i <= 1; ++i) {
         const int wx = wrap(ix + i, cx), wy = wrap(iy + j, cy);
         const vec2 p = points[size_t(wy) * cx + wx];
-        const float dx = float(ix + i) + p.x - fx, dy = float(iy + j) + p.y - fy;
-        const float d = dx * dx + dy * dy;
-        if (d < f1) f2 = f1, f1 = d, id = wy * cx + wx;
-        else if (d < f2) f2 = d;
+        const vec2 d(float(ix + i) + p.x - fx, float(iy + j) + p.y - fy);
+        const float dd = glm::dot(d, d);
+        if (dd < f1) f2 = f1, p2 = p1, f1 = dd, p1 = d, id = wy * cx + wx;
+        else if (dd < f2) f2 = dd, p2 = d;
       }
-    f1 = std::sqrt(f1), f2 = std::sqrt(f2);
+    edge = (f2 - f1) / (2 * std::max(glm::length(p2 - p1), 1e-6f));
   }
 };
 
-// Distance (in line spacings) from u to the nearest of `lines` wandering lengthwise lines; line i
-// sits at (i + 0.5 + swing * (noise - 0.5)) / lines, so neighbours approach, touch and part again.
-float wandering_lines(const lattice& swing_noise, const lattice& jitter, int lines, float swing, float u, float v) {
-  const float fu = u * float(lines);
-  const int i0 = int(ffloor(fu));
-  float best = 1e9f;
-  for (int i = i0 - 2; i <= i0 + 2; ++i) {
-    const float at = (float(wrap(i, lines)) + 0.5f) / float(lines);
-    const float centre = float(i) + 0.5f + swing * (0.86f * swing_noise(at, v) + 0.14f * jitter(at, v) - 0.5f);
-    best = std::min(best, std::abs(fu - centre));
+// Lengthwise lines that wander: line i of `count` sits at (i + 0.5 + offset_i(v)) / count, with
+// offset_i = swing * (noise - 0.5), so neighbours approach, touch and part again. The offsets depend
+// on the row only, so they are computed once per row.
+struct wandering_lines {
+  int count;
+  float swing;
+  lattice slow, fast;
+  std::vector<float> offset;  // this row's
+  wandering_lines(int count_, float swing_, int cells_along, uint64_t seed)
+      : count(count_), swing(swing_), slow(count_, cells_along, seed), fast(count_, 40, seed + 1), offset(size_t(count_)) {}
+  void row(float v) {
+    for (int i = 0; i < count; ++i) {
+      const float at = (float(i) + 0.5f) / float(count);
+      offset[size_t(i)] = swing * (0.86f * slow(at, v) + 0.14f * fast(at, v) - 0.5f);
+    }
   }
-  return best;
-}
+  float distance(float u) const {  // to the nearest line, in line spacings
+    const float fu = u * float(count);
+    const int i0 = int(ffloor(fu));
+    float best = 1e9f;
+    for (int i = i0 - 2; i <= i0 + 2; ++i) best = std::min(best, std::abs(fu - (float(i) + 0.5f + offset[size_t(wrap(i, count))])));
+    return best;
+  }
+};
 
 void bark_furrowed(bark_field& f, uint64_t seed) {
   // Quercus: corky ridges between deep furrows that run along the trunk and wander, so that
   // neighbouring furrows meet and part (they interlace); shallower furrows split the wide ridges,
   // a few cross cracks break them into long blocks, and fine fibres run along them.
-  const int deep = 9, shallow = 17;
-  const lattice swing_a(deep, 8, seed + 1), swing_b(shallow, 10, seed + 2), jitter_a(deep, 40, seed + 3), jitter_b(shallow, 40, seed + 8),
-      fibre(72, 6, seed + 4), tone(6, 4, seed + 5), lump(20, 8, seed + 6);
-  const cells blocks(12, 5, seed + 7, 0.9f);
+  wandering_lines deep(9, 2.2f, 8, seed + 1), shallow(17, 1.6f, 10, seed + 3);
+  const lattice fibre(72, 6, seed + 4), tone(6, 4, seed + 5), lump(20, 8, seed + 6);
+  const cells blocks(12, seed + 7, 0.9f);
   const vec3 ridge_col = srgb_color(230, 222, 206), furrow_col = srgb_color(66, 54, 44), warm_col = srgb_color(206, 182, 154);
   const int n = f.n;
-  for (int y = 0; y < n; ++y)
+  for (int y = 0; y < n; ++y) {
+    const float v = (float(y) + 0.5f) / float(n);
+    deep.row(v), shallow.row(v);
     for (int x = 0; x < n; ++x) {
-      const float u = (float(x) + 0.5f) / float(n), v = (float(y) + 0.5f) / float(n);
-      const float da = wandering_lines(swing_a, jitter_a, deep, 2.2f, u, v);
-      const float db = wandering_lines(swing_b, jitter_b, shallow, 1.6f, u, v);
-      float g1, g2;
+      const float u = (float(x) + 0.5f) / float(n);
+      float edge;
       int bid;
-      blocks.query(u, v, g1, g2, bid);
-      const float ridge = smooth(0.02f, 0.24f, da);                  // 0 at the bottom of a deep furrow
-      const float split = 1 - smooth(0.02f, 0.2f, db);               // a shallow furrow
-      const float crack = (1 - smooth(0.0f, 0.04f, g2 - g1)) * 0.35f;  // cross cracks
+      blocks.query(u, v, edge, bid);
+      const float ridge = smooth(0.02f, 0.24f, deep.distance(u));        // 0 at the bottom of a deep furrow
+      const float split = 1 - smooth(0.02f, 0.2f, shallow.distance(u));  // a shallow furrow
+      const float crack = (1 - smooth(0.0f, 0.02f, edge)) * 0.35f;       // cross cracks
       const float fb = fibre(u, v), lm = lump(u, v);
       const float top_h = 1 - 0.35f * split - 0.25f * crack;
       const size_t k = size_t(y) * n + x;
@@ -677,30 +690,33 @@ void bark_furrowed(bark_field& f, uint64_t seed) {
       f.color[k] = mix3(furrow_col, top, ridge * (1 - 0.45f * split) * (1 - 0.4f * crack)) * (0.88f + 0.22f * fb);
       f.rough[k] = 0.97f - 0.1f * ridge;
     }
+  }
 }
 
 void bark_plated(bark_field& f, uint64_t seed) {
-  // Pinus: irregular flat plates (cells elongated along the trunk) separated by dark fissures;
-  // plates reddish with flaky layers; a finer cell pattern breaks the plates up.
-  const cells plates(6, 3, seed + 1, 0.9f), flakes(14, 8, seed + 2, 0.9f);
-  const lattice warp(5, 5, seed + 3), layer(22, 12, seed + 4), grain(96, 24, seed + 5);
+  // Pinus: irregular flat plates separated by dark fissures; plates reddish with flaky layers; a
+  // finer cell pattern breaks the plates up.
+  const cells plates(6, seed + 1, 0.9f), flakes(14, seed + 2, 0.9f);
+  const lattice warp(7, 6, seed + 3), jag(40, 30, seed + 6), layer(22, 12, seed + 4), grain(96, 24, seed + 5);
   const vec3 red = srgb_color(238, 164, 126), grey = srgb_color(206, 184, 166), fissure = srgb_color(52, 40, 32);
   const int n = f.n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       const float u = (float(x) + 0.5f) / float(n), v = (float(y) + 0.5f) / float(n);
-      const float wu = u + 0.03f * (warp(u, v) - 0.5f), wv = v + 0.03f * (warp(v, u) - 0.5f);
-      float f1, f2, g1, g2;
+      // A broad warp bends the plates' outlines, a fine one makes their edges ragged.
+      const float wu = u + 0.035f * (warp(u, v) - 0.5f) + 0.008f * (jag(u, v) - 0.5f);
+      const float wv = v + 0.035f * (warp(v, u) - 0.5f) + 0.008f * (jag(v, u) - 0.5f);
+      float e1, e2;
       int id, fid;
-      plates.query(wu, wv, f1, f2, id);
-      flakes.query(wu, wv, g1, g2, fid);
-      const float gap = smooth(0.03f, 0.15f, f2 - f1);       // 0 in a fissure
-      const float fine = smooth(0.02f, 0.09f, g2 - g1);
+      plates.query(wu, wv, e1, id);
+      flakes.query(wu, wv, e2, fid);
+      const float gap = smooth(0.03f, 0.1f, e1);         // 0 in a fissure
+      const float fine = smooth(0.0f, 0.03f, e2);
       const float level = unit(seed * 131 + uint64_t(id)), flevel = unit(seed * 171 + uint64_t(fid));
       const float lay = layer(wu, wv);
       const size_t k = size_t(y) * n + x;
       f.height[k] = gap * (0.55f + 0.2f * level + 0.12f * flevel * fine + 0.1f * lay) - 0.08f * (1 - fine);
-      vec3 plate = mix3(red, grey, 0.65f * level * level) * (0.85f + 0.25f * lay) * (0.9f + 0.1f * fine);
+      vec3 plate = mix3(red, grey, 0.8f * level * level) * (0.8f + 0.3f * lay) * (0.93f + 0.07f * fine);
       plate *= 0.92f + 0.16f * grain(wu, wv);
       f.color[k] = mix3(fissure, plate, gap);
       f.rough[k] = 0.95f - 0.12f * gap;
