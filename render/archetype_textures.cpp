@@ -129,6 +129,39 @@ image normal_from_height(const std::vector<float>& h, int n, bool periodic, cons
   return img;
 }
 
+// Float work buffers reused from one set to the next (fresh pages cost a fault each): a small
+// pool any thread may take from.
+struct scratch {
+  std::vector<float> layer[6];
+};
+struct scratch_lease {
+  std::unique_ptr<scratch> s;
+  static std::mutex& mu() {
+    static std::mutex m;
+    return m;
+  }
+  static std::vector<std::unique_ptr<scratch>>& pool() {
+    static std::vector<std::unique_ptr<scratch>> p;
+    return p;
+  }
+  scratch_lease() {
+    std::lock_guard lock(mu());
+    if (pool().empty()) {
+      s = std::make_unique<scratch>();
+    } else {
+      s = std::move(pool().back());
+      pool().pop_back();
+    }
+  }
+  ~scratch_lease() {
+    std::lock_guard lock(mu());
+    pool().push_back(std::move(s));
+  }
+  scratch_lease(const scratch_lease&) = delete;
+  scratch_lease& operator=(const scratch_lease&) = delete;
+  std::vector<float>& operator[](int i) { return s->layer[i]; }
+};
+
 // ================================================================ leaf cards
 // Card coordinates: x right, y up, both 0..1; the petiole enters at (0.5, 0).
 
@@ -143,10 +176,13 @@ struct sample {
 struct leaf_canvas {
   int n;
   float px;  // one texel in card units
-  std::vector<float> alpha, height, shade, warm, thin;
-  explicit leaf_canvas(int n_)
-      : n(n_), px(1.0f / float(n_)), alpha(size_t(n_) * n_, 0.0f), height(alpha.size(), 0.0f),
-        shade(alpha.size(), 1.0f), warm(alpha.size(), 0.0f), thin(alpha.size(), 0.9f) {}
+  std::vector<float>&alpha, &height, &shade, &warm, &thin;  // in a scratch lease
+  leaf_canvas(int n_, scratch_lease& s)
+      : n(n_), px(1.0f / float(n_)), alpha(s[0]), height(s[1]), shade(s[2]), warm(s[3]), thin(s[4]) {
+    const size_t count = size_t(n_) * size_t(n_);
+    alpha.assign(count, 0.0f), height.assign(count, 0.0f), shade.assign(count, 1.0f), warm.assign(count, 0.0f);
+    thin.assign(count, 0.9f);
+  }
   // Painter's order: a later primitive covers an earlier one by its coverage.
   void put(size_t k, const sample& s) {
     const float c = s.cover, o = 1 - c;
@@ -559,7 +595,7 @@ const leaf_look leaf_looks[leaf_archetype_count] = {
     {{178, 194, 156}, {206, 208, 160}},  // twig cluster
 };
 
-leaf_texture_set finish_leaf(const leaf_canvas& c, const leaf_look& look, uint64_t seed) {
+leaf_texture_set finish_leaf(const leaf_canvas& c, std::vector<float>& h, const leaf_look& look, uint64_t seed) {
   const int n = c.n;
   const size_t count = size_t(n) * n;
   const vec3 base = srgb_color(int(look.blade.x), int(look.blade.y), int(look.blade.z));
@@ -568,7 +604,7 @@ leaf_texture_set finish_leaf(const leaf_canvas& c, const leaf_look& look, uint64
   leaf_texture_set out;
   out.color = image{n, n, 4, std::vector<uint8_t>(count * 4)};
   out.thickness = image{n, n, 3, std::vector<uint8_t>(count * 3)};
-  std::vector<float> h(count);
+  h.resize(count);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       const size_t k = size_t(y) * n + x;
@@ -596,12 +632,24 @@ leaf_texture_set finish_leaf(const leaf_canvas& c, const leaf_look& look, uint64
 // ================================================================ bark
 // Tile coordinates u (around the branch) and v (along it, image rows), both periodic in [0, 1).
 
+// The fill functions write each texel's height (scratch, for the normal map) and its colour
+// (linear) and roughness straight into the output bytes.
 struct bark_field {
   int n;
-  std::vector<float> height;  // texel units after scaling
-  std::vector<vec3> color;    // linear
-  std::vector<float> rough;
-  explicit bark_field(int n_) : n(n_), height(size_t(n_) * n_), color(height.size()), rough(height.size()) {}
+  std::vector<float>& height;
+  bark_texture_set out;
+  bark_field(int n_, scratch_lease& s) : n(n_), height(s[0]) {
+    const size_t count = size_t(n_) * size_t(n_);
+    height.assign(count, 0.0f);
+    out.color = image{n_, n_, 3, std::vector<uint8_t>(count * 3)};
+    out.roughness = image{n_, n_, 3, std::vector<uint8_t>(count * 3)};
+  }
+  void paint(size_t k, const vec3& linear, float roughness) {
+    uint8_t* c = &out.color.pixels[k * 3];
+    c[0] = linear_byte(linear.x), c[1] = linear_byte(linear.y), c[2] = linear_byte(linear.z);
+    uint8_t* r = &out.roughness.pixels[k * 3];
+    r[0] = r[1] = unit_byte(roughness), r[2] = 0;  // glTF: G roughness, B metalness
+  }
 };
 
 vec3 mix3(vec3 a, vec3 b, float t) { return a + (b - a) * t; }
@@ -687,8 +735,7 @@ void bark_furrowed(bark_field& f, uint64_t seed) {
       const size_t k = size_t(y) * n + x;
       f.height[k] = 0.85f * std::sqrt(ridge) * top_h + 0.1f * fb + 0.08f * lm;
       const vec3 top = mix3(ridge_col, warm_col, tone(u, v)) * (0.85f + 0.2f * lm);
-      f.color[k] = mix3(furrow_col, top, ridge * (1 - 0.45f * split) * (1 - 0.4f * crack)) * (0.88f + 0.22f * fb);
-      f.rough[k] = 0.97f - 0.1f * ridge;
+      f.paint(k, mix3(furrow_col, top, ridge * (1 - 0.45f * split) * (1 - 0.4f * crack)) * (0.88f + 0.22f * fb), 0.97f - 0.1f * ridge);
     }
   }
 }
@@ -718,8 +765,7 @@ void bark_plated(bark_field& f, uint64_t seed) {
       f.height[k] = gap * (0.55f + 0.2f * level + 0.12f * flevel * fine + 0.1f * lay) - 0.08f * (1 - fine);
       vec3 plate = mix3(red, grey, 0.8f * level * level) * (0.8f + 0.3f * lay) * (0.93f + 0.07f * fine);
       plate *= 0.92f + 0.16f * grain(wu, wv);
-      f.color[k] = mix3(fissure, plate, gap);
-      f.rough[k] = 0.95f - 0.12f * gap;
+      f.paint(k, mix3(fissure, plate, gap), 0.95f - 0.12f * gap);
     }
 }
 
@@ -759,8 +805,7 @@ void bark_smooth(bark_field& f, uint64_t seed) {
       vec3 c = light * (0.93f + 0.1f * b + 0.05f * fn);
       c = mix3(c, dark * (0.9f + 0.2f * fn), 0.8f * spot);
       c = mix3(c, dark * 0.7f, 0.85f * lent);
-      f.color[k] = c;
-      f.rough[k] = 0.5f + 0.3f * spot + 0.35f * lent;
+      f.paint(k, c, 0.5f + 0.3f * spot + 0.35f * lent);
     }
 }
 
@@ -788,8 +833,7 @@ void bark_peeling(bark_field& f, uint64_t seed) {
       const size_t k = size_t(y) * n + x;
       f.height[k] = profile * (0.5f + 0.35f * lift) + 0.25f * fb;
       const vec3 c = mix3(fresh, weathered, smooth(0.35f, 0.85f, 0.6f * lift + 0.4f * tone(u, v)));
-      f.color[k] = mix3(gap_col, c * (0.78f + 0.35f * fb), gap);
-      f.rough[k] = 0.92f - 0.05f * fb;
+      f.paint(k, mix3(gap_col, c * (0.78f + 0.35f * fb), gap), 0.92f - 0.05f * fb);
     }
 }
 
@@ -820,29 +864,16 @@ void bark_ringed(bark_field& f, uint64_t seed) {
                     0.15f * fb * (1 - band);
       vec3 c = mix3(body * (0.78f + 0.35f * fb), band_col * (0.95f + 0.08f * fb), band) * (0.9f + 0.2f * tone(u, v));
       c = mix3(c, scar, std::max(0.9f * scar_line, 0.8f * notch));
-      f.color[k] = c;
-      f.rough[k] = 0.88f + 0.1f * scar_line - 0.1f * band;
+      f.paint(k, c, 0.88f + 0.1f * scar_line - 0.1f * band);
     }
 }
 
 bark_texture_set finish_bark(bark_field& f, float relief) {
-  const int n = f.n;
-  const size_t count = size_t(n) * n;
-  bark_texture_set out;
-  out.color = image{n, n, 3, std::vector<uint8_t>(count * 3)};
-  out.roughness = image{n, n, 3, std::vector<uint8_t>(count * 3)};
   // relief: height units per tile width; scaled to per-texel slope for the normal map.
-  const float scale = relief * float(n) / 512.0f;
-  for (size_t k = 0; k < count; ++k) {
-    out.color.pixels[k * 3 + 0] = linear_byte(f.color[k].x);
-    out.color.pixels[k * 3 + 1] = linear_byte(f.color[k].y);
-    out.color.pixels[k * 3 + 2] = linear_byte(f.color[k].z);
-    const uint8_t r = unit_byte(f.rough[k]);
-    out.roughness.pixels[k * 3 + 0] = r, out.roughness.pixels[k * 3 + 1] = r, out.roughness.pixels[k * 3 + 2] = 0;
-    f.height[k] *= scale;
-  }
-  out.normal = normal_from_height(f.height, n, true, nullptr);
-  return out;
+  const float scale = relief * float(f.n) / 512.0f;
+  for (float& h : f.height) h *= scale;
+  f.out.normal = normal_from_height(f.height, f.n, true, nullptr);
+  return std::move(f.out);
 }
 
 int clamp_size(int size) { return std::clamp(size, 8, 4096); }
@@ -874,20 +905,22 @@ const Set& cached(std::map<cache_key, std::unique_ptr<cache_entry<Set>>>& cache,
 leaf_texture_set make_leaf_archetype_textures(leaf_archetype a, int size, uint64_t seed) {
   const int n = clamp_size(size);
   const int i = std::clamp(int(a), 0, leaf_archetype_count - 1);
-  leaf_canvas c(n);
+  scratch_lease lease;
+  leaf_canvas c(n, lease);
   rng g{mix64(seed * 1315423911ull + uint64_t(i))};
   using draw_fn = void (*)(leaf_canvas&, rng&);
   static const draw_fn draw[leaf_archetype_count] = {draw_ovate,      draw_lobed,       draw_palmate,
                                                       draw_pinnate,    draw_needles,     draw_flat_spray,
                                                       draw_scale_spray, draw_palm_frond, draw_twig_cluster};
   draw[i](c, g);
-  return finish_leaf(c, leaf_looks[i], mix64(seed + uint64_t(i) * 101));
+  return finish_leaf(c, lease[5], leaf_looks[i], mix64(seed + uint64_t(i) * 101));
 }
 
 bark_texture_set make_bark_archetype_textures(bark_archetype a, int size, uint64_t seed) {
   const int n = clamp_size(size);
   const int i = std::clamp(int(a), 0, bark_archetype_count - 1);
-  bark_field f(n);
+  scratch_lease lease;
+  bark_field f(n, lease);
   const uint64_t s = mix64(seed * 2654435761ull + uint64_t(i));
   using fill_fn = void (*)(bark_field&, uint64_t);
   static const fill_fn fill[bark_archetype_count] = {bark_furrowed, bark_plated, bark_smooth, bark_peeling, bark_ringed};
