@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/textures.h"
+#include "tests/run_sylva.h"
 
 using namespace sylva;
 
@@ -337,4 +338,29 @@ TEST(UserTextures, BadFilesAreRejectedWithAReasonAndGoodOnesLoad) {
   EXPECT_EQ(out.height, 5);
   EXPECT_EQ(out.channels, 4);
   for (const std::string& f : {corrupt, wide, huge, npot}) std::filesystem::remove(f);
+}
+
+TEST(TexturesCli, SheetDirAndBenchWriteWhatTheySay) {
+  const std::string dir = temp_file("cli_dir"), sheet = temp_file("sheet.png");
+  std::filesystem::remove_all(dir);
+  sylva_run r = run_sylva("env", "textures --size 64 --sheet '" + sheet + "' --dir '" + dir + "' --bench --repeat 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("all 9 leaf + 5 bark sets at 64 px"), std::string::npos) << r.out;
+  image img;
+  ASSERT_EQ(load_png(sheet, img), "");
+  EXPECT_GT(img.width, 5 * 256);
+  EXPECT_GT(img.height, 3 * 256);
+  size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.path().extension() == ".png";
+  EXPECT_EQ(files, size_t(3 * (leaf_archetype_count + bark_archetype_count)));
+  ASSERT_EQ(load_png(dir + "/leaf_needles_color.png", img), "");
+  EXPECT_EQ(img.width, 64);
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove(sheet);
+
+  r = run_sylva("env", "textures");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--sheet"), std::string::npos) << r.err;
+  r = run_sylva("env", "textures --size 3 --bench");
+  EXPECT_EQ(r.code, 2) << r.err;
 }
