@@ -258,6 +258,7 @@ struct blade_style {
   float bend = 0;         // the axis curves sideways by bend * len * t^2
   float midrib = 1;       // midrib strength
   float edge_dark = 0.28f;
+  float dome = 0.10f;     // height of the blade's curvature, as a share of its width
 };
 
 // A blade: half-width width * profile(t, side) along an axis from base (t = 0) to tip (t = 1).
@@ -302,7 +303,7 @@ void blade(leaf_canvas& c, vec2 base, float degrees, float len, float width, Pro
     // The dome follows the distance from the midrib, not the outline, so lobes and teeth add no
     // ripples of their own.
     const float across = std::min(as / width, 1.0f);
-    s.height = 0.10f * width * (1 - across * across) + 1.3f * px * mid - 0.5f * px * vein;
+    s.height = st.dome * width * (1 - across * across) + 1.3f * px * mid - 0.5f * px * vein;
     s.shade = (1 + 0.10f * mid + 0.07f * vein) * (1 - st.edge_dark + st.edge_dark * edge_fade);
     s.warm = std::min(1.0f, 0.7f * mid + 0.45f * vein);
     s.thin = 0.95f - 0.6f * mid - 0.3f * vein;
@@ -385,11 +386,39 @@ void draw_lobed(leaf_canvas& c, rng&) {
   }, st);
 }
 
+// Darkens the card's outline as a whole and rounds the blade up from it: for shapes drawn as
+// overlapping parts (a maple's lobes), whose own edges would show inside the union. Distance to the
+// nearest cut-away texel by a 3-4 chamfer transform (Borgefors 1986), two passes, in texels (x 3).
+void darken_silhouette(leaf_canvas& c, float amount, float width_px, float dome) {
+  const int n = c.n;
+  const float far = 3 * std::max(width_px + 2, 0.08f * float(n) + 2);
+  std::vector<float> d(size_t(n) * n);
+  for (size_t k = 0; k < d.size(); ++k) d[k] = c.alpha[k] < 0.5f ? 0.0f : far;
+  auto at = [&](int x, int y) { return x < 0 || y < 0 || x >= n || y >= n ? 0.0f : d[size_t(y) * n + x]; };
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      float& v = d[size_t(y) * n + x];
+      v = std::min({v, at(x - 1, y) + 3, at(x, y - 1) + 3, at(x - 1, y - 1) + 4, at(x + 1, y - 1) + 4});
+    }
+  for (int y = n - 1; y >= 0; --y)
+    for (int x = n - 1; x >= 0; --x) {
+      float& v = d[size_t(y) * n + x];
+      v = std::min({v, at(x + 1, y) + 3, at(x, y + 1) + 3, at(x + 1, y + 1) + 4, at(x - 1, y + 1) + 4});
+    }
+  const float dome_px = 0.08f * float(n);  // the dome rises over this distance from the outline
+  for (size_t k = 0; k < d.size(); ++k)
+    if (c.alpha[k] > 0) {
+      c.shade[k] *= 1 - amount + amount * clamp01((d[k] / 3 - 0.5f) / width_px);
+      const float t = std::min(d[k] / 3 / dome_px, 1.0f);
+      c.height[k] += dome * t * (2 - t);
+    }
+}
+
 void draw_palmate(leaf_canvas& c, rng&) {
   const vec2 centre{0.5f, 0.31f};
   stroke(c, {0.5f, 0.0f}, centre + vec2(0, 0.01f), 0.0065f, 0.006f, petiole_style);
   blade_style st;
-  st.vein_angle = 50, st.veins = 6, st.serration = 0.0f;
+  st.vein_angle = 50, st.veins = 6, st.serration = 0.0f, st.edge_dark = 0, st.midrib = 0, st.dome = 0;
   // Acer platanoides: five pointed lobes with a few large teeth; palmate venation from the centre.
   auto lobe = [](float t, int) {
     const float body = std::pow(1 - t, 0.9f) * (0.5f + 0.5f * smooth(0.0f, 0.3f, t));
@@ -405,6 +434,11 @@ void draw_palmate(leaf_canvas& c, rng&) {
     st.bend = k == 0 ? -0.05f : k == 4 ? 0.05f : 0.0f;
     blade(c, centre, angles[k], fit(centre, heading(angles[k]), lengths[k]), widths[k], lobe, st);
   }
+  // The main veins all leave the petiole's tip, drawn over the joined lobes.
+  const stroke_style vein{1.08f, 0.9f, 0.35f, 0};
+  for (int k = 0; k < 5; ++k)
+    stroke(c, centre, centre + heading(angles[k]) * (0.85f * fit(centre, heading(angles[k]), lengths[k])), 0.0032f, 0.001f, vein);
+  darken_silhouette(c, 0.28f, 4, 0.012f);
 }
 
 void draw_pinnate(leaf_canvas& c, rng& g) {
