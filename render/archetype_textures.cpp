@@ -689,12 +689,13 @@ struct bark_field {
 vec3 mix3(vec3 a, vec3 b, float t) { return a + (b - a) * t; }
 
 // Periodic jittered-grid cellular noise (Worley 1996): distances to the nearest two feature points
-// and the nearest one's cell id, on an n * n grid of cells (square, so that the 3 x 3 neighbourhood
-// holds the nearest points).
+// and the nearest one's cell id, on a cx * cy grid. Distances are measured in cell units (a cell is
+// a unit square, so the 3 x 3 neighbourhood holds the nearest points): cells taller than wide make
+// plates longer along the trunk.
 struct cells {
   int cx, cy;
   std::vector<vec2> points;  // inside each cell, 0..1
-  cells(int n, uint64_t seed, float jitter) : cx(n), cy(n), points(size_t(n) * n) {
+  cells(int cx_, int cy_, uint64_t seed, float jitter) : cx(cx_), cy(cy_), points(size_t(cx_) * size_t(cy_)) {
     for (size_t i = 0; i < points.size(); ++i)
       points[i] = vec2(0.5f + jitter * (unit(seed * 77 + 2 * i) - 0.5f), 0.5f + jitter * (unit(seed * 77 + 2 * i + 1) - 0.5f));
   }
@@ -750,7 +751,7 @@ void bark_furrowed(bark_field& f, uint64_t seed) {
   // a few cross cracks break them into long blocks, and fine fibres run along them.
   wandering_lines deep(9, 2.2f, 8, seed + 1), shallow(17, 1.6f, 10, seed + 3);
   const lattice fibre(72, 6, seed + 4), tone(6, 4, seed + 5), lump(20, 8, seed + 6);
-  const cells blocks(12, seed + 7, 0.9f);
+  const cells blocks(12, 12, seed + 7, 0.9f);
   const vec3 ridge_col = srgb_color(230, 222, 206), furrow_col = srgb_color(66, 54, 44), warm_col = srgb_color(206, 182, 154);
   const int n = f.n;
   for (int y = 0; y < n; ++y) {
@@ -775,9 +776,9 @@ void bark_furrowed(bark_field& f, uint64_t seed) {
 }
 
 void bark_plated(bark_field& f, uint64_t seed) {
-  // Pinus: irregular flat plates separated by dark fissures; plates reddish with flaky layers; a
-  // finer cell pattern breaks the plates up.
-  const cells plates(6, seed + 1, 0.9f), flakes(14, seed + 2, 0.9f);
+  // Pinus: irregular flat plates, longer along the trunk than across, separated by dark fissures;
+  // plates reddish with flaky layers; a finer cell pattern breaks the plates up.
+  const cells plates(5, 3, seed + 1, 0.9f), flakes(14, 10, seed + 2, 0.9f);
   const lattice warp(7, 6, seed + 3), jag(40, 30, seed + 6), layer(22, 12, seed + 4), grain(96, 24, seed + 5);
   const vec3 red = srgb_color(238, 164, 126), grey = srgb_color(206, 184, 166), fissure = srgb_color(52, 40, 32);
   const int n = f.n;
@@ -791,7 +792,7 @@ void bark_plated(bark_field& f, uint64_t seed) {
       int id, fid;
       plates.query(wu, wv, e1, id);
       flakes.query(wu, wv, e2, fid);
-      const float gap = smooth(0.03f, 0.1f, e1);         // 0 in a fissure
+      const float gap = smooth(0.018f, 0.06f, e1);       // 0 in a fissure
       const float fine = smooth(0.0f, 0.03f, e2);
       const float level = unit(seed * 131 + uint64_t(id)), flevel = unit(seed * 171 + uint64_t(fid));
       const float lay = layer(wu, wv);
