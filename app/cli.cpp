@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/cli_textures.h"
 #include "app/headless.h"
 #include "render/export.h"
 #include "render/files.h"
@@ -614,10 +615,12 @@ if (std::string why = display_missing("rendering"); !why.empty()) return fail(cm
 }  // namespace
 
 bool is_cli_command(const char* arg) {
-  return !std::strcmp(arg, "params") || !std::strcmp(arg, "export") || !std::strcmp(arg, "bench");
+  return !std::strcmp(arg, "params") || !std::strcmp(arg, "export") || !std::strcmp(arg, "bench") ||
+         !std::strcmp(arg, "textures");
 }
 
 int run_cli(int argc, char** argv) {
+  if (argc >= 2 && !std::strcmp(argv[1], "textures")) return run_textures_cli(argc, argv);  // app/cli_textures.cpp
   CLI::App app{"Sylva: a tree designer. Without a command, `sylva [PRESET.json]` opens the editor.", "sylva"};
   app.require_subcommand(1);
 

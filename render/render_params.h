@@ -73,7 +73,7 @@ void visit_params(P& p, V&& v) {
   v(p.alpha_cutoff, param_info{"alpha_cutoff", "Leaf alpha cutoff", "", 0.05f, 0.95f, "Leaf texels below this opacity are cut away"});
   v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Random per-leaf variation of the tint"});
   v(p.bark_texture, param_info{"bark_texture", "Bark texture", "", 0, 0, "Your own bark colour PNG (tiles: x around the branch, y along it); empty: procedural", param_path, "Textures"});
-  v(p.leaf_texture, param_info{"leaf_texture", "Leaf texture", "", 0, 0, "Your own leaf colour PNG (petiole at the bottom edge; alpha is the outline unless an opacity map is given); empty: four procedural leaves", param_path});
+  v(p.leaf_texture, param_info{"leaf_texture", "Leaf texture", "", 0, 0, "Your own leaf colour PNG (petiole at the bottom edge; alpha is the outline unless an opacity map is given; it replaces every leaf archetype); empty: the procedural archetype cards", param_path});
   v(p.leaf_opacity, param_info{"leaf_opacity", "Leaf opacity", "", 0, 0, "Optional greyscale PNG, same size as the leaf texture: white is leaf, black is cut away", param_path});
   v(p.shadows, param_info{"shadows", "Shadows", "", 0, 1, "Sun shadow map (orthographic, fitted to the tree)", 0, "Shadows"});
   v(p.shadow_resolution, param_info{"shadow_resolution", "Resolution", "", 1024, 8192, "Shadow map size in texels", param_log | param_on_release});

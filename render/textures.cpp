@@ -3,10 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <tuple>
+#include <filesystem>
+#include <string>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -164,54 +162,6 @@ std::array<float, 4> leaf_atlas_cell(int k) {
   return {u0, v0, u0 + 0.5f, v0 + 0.5f};
 }
 
-// ---- Archetypes (stubs: the generic bark and the four broad leaves until the real sets land)
-namespace {
-image flat_normal(int n) {
-  image img{n, n, 3, std::vector<uint8_t>(size_t(n) * n * 3)};
-  for (size_t k = 0; k < size_t(n) * n; ++k) img.pixels[k * 3] = 128, img.pixels[k * 3 + 1] = 128, img.pixels[k * 3 + 2] = 255;
-  return img;
-}
-image grey(int n, uint8_t v) { return image{n, n, 3, std::vector<uint8_t>(size_t(n) * n * 3, v)}; }
-}  // namespace
-
-const leaf_texture_set& leaf_archetype_textures(leaf_archetype a, int size, uint64_t seed) {
-  static std::mutex mu;
-  static std::map<std::tuple<int, int, uint64_t>, std::unique_ptr<leaf_texture_set>> cache;
-  std::lock_guard lock(mu);
-  auto& slot = cache[{int(a), size, seed}];
-  if (!slot) {
-    slot = std::make_unique<leaf_texture_set>();
-    slot->color = make_leaf_texture(size, int(a) % 4, seed);
-    slot->normal = flat_normal(slot->color.width);
-    slot->thickness = grey(slot->color.width, 200);
-  }
-  return *slot;
-}
-
-const bark_texture_set& bark_archetype_textures(bark_archetype a, int size, uint64_t seed) {
-  static std::mutex mu;
-  static std::map<std::tuple<int, int, uint64_t>, std::unique_ptr<bark_texture_set>> cache;
-  std::lock_guard lock(mu);
-  auto& slot = cache[{int(a), size, seed}];
-  if (!slot) {
-    slot = std::make_unique<bark_texture_set>();
-    slot->color = make_bark_color(size, seed);
-    slot->normal = make_bark_normal(size, seed);
-    slot->roughness = grey(slot->color.width, 230);
-  }
-  return *slot;
-}
-
-image tinted_texture(const image& color, const glm::vec3& tint) {
-  image out = color;
-  for (size_t k = 0; k < size_t(out.width) * out.height; ++k)
-    for (int c = 0; c < 3; ++c) {
-      uint8_t& v = out.pixels[k * size_t(out.channels) + size_t(c)];
-      v = to_byte(float(v) / 255.0f * tint[c] * 2.0f);
-    }
-  return out;
-}
-
 std::string encode_png(const image& img, std::string& out) {
   out.clear();
   if (img.width <= 0 || img.height <= 0 || (img.channels != 3 && img.channels != 4) ||
@@ -236,6 +186,26 @@ std::string decode_png(std::string_view bytes, image& out) {
 std::string load_png(const std::string& path, image& out) {
   std::string bytes;
   if (std::string err = read_file(path, bytes); !err.empty()) return err;
+  const std::string err = decode_png(bytes, out);
+  return err.empty() ? "" : path + ": " + err;
+}
+
+std::string load_user_texture(const std::string& path, image& out) {
+  std::error_code ec;
+  const auto bytes_on_disk = std::filesystem::file_size(path, ec);
+  if (ec) return path + ": cannot read (" + ec.message() + ")";
+  if (bytes_on_disk > max_texture_file_bytes)
+    return path + ": file is " + std::to_string(bytes_on_disk >> 20) + " MB, over the " +
+           std::to_string(max_texture_file_bytes >> 20) + " MB limit for textures";
+  std::string bytes;
+  if (std::string err = read_file(path, bytes); !err.empty()) return err;
+  int w = 0, h = 0, ch = 0;
+  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch))
+    return path + ": not an image stb can read (" + (stbi_failure_reason() ? stbi_failure_reason() : "unknown") + ")";
+  if (w > max_texture_pixels || h > max_texture_pixels)
+    return path + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
+           std::to_string(max_texture_pixels) + " px on a side";
+  if (w < 1 || h < 1) return path + ": empty image";
   const std::string err = decode_png(bytes, out);
   return err.empty() ? "" : path + ": " + err;
 }

@@ -70,7 +70,8 @@ void main() {
 
 const char* bark_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive;
-uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform vec3 u_bark_color; uniform int u_user_texture;
+uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform sampler2D u_bark_rough; uniform vec3 u_bark_color;
+uniform vec3 u_eye;
 out vec4 o_color;
 // Tangent frame from screen-space derivatives (Schüler 2006), so the mesh needs no tangents.
 mat3 cotangent_frame(vec3 n, vec3 p, vec2 uv) {
@@ -89,12 +90,19 @@ void main() {
   m.y = -m.y;   // the map's +Y points up the image, against increasing v
   vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
   if (dot(n, n0) < 0.2) n = n0;
-  // The tint sets the colour; the texture's luminance (around 0.1 in linear terms) the detail.
-  vec3 tex = texture(u_bark, v_uv).rgb;
-  vec3 albedo = u_user_texture != 0 ? tex * u_bark_color * 2.2   // the user's colours, tinted
-                                    : u_bark_color * dot(tex, vec3(0.2126, 0.7152, 0.0722)) * 5.0;
+  // tinted_texture's formula (render/textures.h): albedo = min(1, gain * tint * texel), texel linear.
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_bark_color * texture(u_bark, v_uv).rgb);
   float sh = shadow_at(v_world, n);
-  vec3 c = albedo * (u_sun_light * max(dot(n, u_sun_dir), 0.0) * sh + ambient_light(n));
+  float ndl = max(dot(n, u_sun_dir), 0.0);
+  // A mild dielectric highlight (F0 = 0.04) from the roughness map: Blinn-Phong with the exponent
+  // that matches a Beckmann lobe of width a = roughness^2, 2 / a^2 - 2 (Walter et al. 2007, §5.2),
+  // normalised by (s + 8) / (8 pi) (Akenine-Moller et al., Real-Time Rendering, 3rd ed., §7.6).
+  float rough = clamp(texture(u_bark_rough, v_uv).g, 0.05, 1.0);
+  float a2 = rough * rough * rough * rough;
+  float s = max(2.0 / a2 - 2.0, 1.0);
+  vec3 h = normalize(normalize(u_eye - v_world) + u_sun_dir);
+  float spec = 0.04 * (s + 8.0) / 25.1327 * pow(max(dot(n, h), 0.0), s) * ndl;
+  vec3 c = albedo * (u_sun_light * ndl * sh + ambient_light(n)) + u_sun_light * sh * spec;
   o_color = vec4(c, 1.0);
 }
 )";
@@ -109,7 +117,8 @@ layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers;
-out vec3 v_world; out vec3 v_normal; out vec2 v_uv; flat out float v_layer; flat out vec3 v_tint;
+out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
+flat out vec3 v_tint;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
 void main() {
@@ -118,6 +127,9 @@ void main() {
   vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * i_size;
   v_world = i_position + rotate(i_rotation, local);
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
+  // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
+  v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
+  v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(i_texture) % u_layers);
   float h = hash(i_position);
@@ -127,28 +139,34 @@ void main() {
 )";
 
 const char* leaf_fs_body = R"(
-in vec3 v_world; in vec3 v_normal; in vec2 v_uv; flat in float v_layer; flat in vec3 v_tint;
-uniform sampler2DArray u_leaf; uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
-uniform int u_user_texture;
+in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
+flat in vec3 v_tint;
+uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
+uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
 void main() {
-  vec4 t = texture(u_leaf, vec3(v_uv, v_layer));
+  vec3 uvl = vec3(v_uv, v_layer);
+  vec4 t = texture(u_leaf, uvl);
   if (t.a < u_cutoff) discard;
-  vec3 n = normalize(v_normal);
-  if (!gl_FrontFacing) n = -n;   // two-sided: light the side we see
-  float ndl = dot(n, u_sun_dir);
-  vec3 albedo = (u_user_texture != 0 ? t.rgb * u_leaf_color * 3.0
-                                     : u_leaf_color * mix(vec3(dot(t.rgb, vec3(0.2126, 0.7152, 0.0722)) * 4.0), t.rgb * 2.5, 0.3)) * v_tint;
-  float sh = shadow_at(v_world, ndl >= 0.0 ? n : -n);
-  // Transmission: sunlight arriving on the far side glows through the blade, tinted by it.
-  vec3 transmitted = u_translucency * max(-ndl, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
+  vec3 m = texture(u_leaf_normal, uvl).xyz * 2.0 - 1.0;
+  vec3 n0 = normalize(v_normal);
+  vec3 n = normalize(mat3(normalize(v_tangent), normalize(v_bitangent), n0) * m);
+  if (!gl_FrontFacing) { n = -n; n0 = -n0; }   // two-sided: light the side we see
+  float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
+  // tinted_texture's formula (render/textures.h), then the per-leaf variation.
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_leaf_color * t.rgb) * v_tint;
+  float sh = shadow_at(v_world, ndl0 >= 0.0 ? n0 : -n0);
+  // Transmission: sunlight arriving on the far side glows through the blade, tinted by it, more
+  // where the blade is thin (thickness map: white = thin) than through veins and stems.
+  float thin = texture(u_leaf_thickness, uvl).r;
+  vec3 transmitted = u_translucency * thin * max(-ndl0, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
   vec3 c = albedo * (u_sun_light * max(ndl, 0.0) * sh + ambient_light(n)) + u_sun_light * sh * transmitted;
   o_color = vec4(c, 1.0);
 }
 )";
 
 const char* leaf_depth_fs = R"(#version 330 core
-in vec3 v_world; in vec3 v_normal; in vec2 v_uv; flat in float v_layer; flat in vec3 v_tint;
+in vec2 v_uv; flat in float v_layer;
 uniform sampler2DArray u_leaf; uniform float u_cutoff;
 void main() { if (texture(u_leaf, vec3(v_uv, v_layer)).a < u_cutoff) discard; }
 )";
@@ -272,7 +290,11 @@ uniform vec3 u_color; out vec4 o_color;
 void main() { o_color = vec4(u_color, 1.0); }
 )";
 
-std::string lit_source(const char* body) { return std::string("#version 330 core\n") + lighting_glsl + body; }
+std::string lit_source(const char* body) {
+  // TINT_GAIN: tinted_texture's gain (render/textures.h), so shaders and exports share the formula.
+  return std::string("#version 330 core\nconst float TINT_GAIN = ") + std::to_string(texture_tint_gain) + ";\n" +
+         lighting_glsl + body;
+}
 std::string sky_source(const char* body) { return std::string("#version 330 core\n") + sky_glsl + body; }
 
 // ---------------------------------------------------------------- helpers
@@ -334,76 +356,187 @@ void upload_2d(gl_texture& t, const image& img, GLenum internal_format) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
-void upload_bark_textures(renderer_state& r, const image& color, const image& normal) {
+void upload_bark_textures(renderer_state& r, const image& color, const image& normal, const image& rough) {
   upload_2d(r.bark_tex, color, GL_SRGB8_ALPHA8);
   upload_2d(r.bark_normal_tex, normal, GL_RGB8);
-  r.uploads_total += 2;
+  upload_2d(r.bark_rough_tex, rough, GL_RGB8);
+  r.uploads_total += 3;
 }
 
-// All leaf variants share one array texture, so every leaf is drawn in one instanced call.
-void upload_leaf_textures(renderer_state& r, const std::vector<image>& leaves) {
-  if (leaves.empty()) return;
-  const int w = leaves[0].width, h = leaves[0].height;
-  std::vector<uint8_t> layers;
-  for (const image& l : leaves)
-    if (l.width == w && l.height == h && l.channels == 4) layers.insert(layers.end(), l.pixels.begin(), l.pixels.end());
-  const int count = int(layers.size() / (size_t(w) * h * 4));
-  if (!count) return;
-  if (!r.leaf_tex.id) glGenTextures(1, &r.leaf_tex.id);
+// 2x2 box filter of an RGBA image (odd sizes keep their last row/column).
+image half_size(const image& src) {
+  const int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
+  image out{w, h, 4, std::vector<uint8_t>(size_t(w) * h * 4)};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c) {
+        int sum = 0;
+        for (int j = 0; j < 2; ++j)
+          for (int i = 0; i < 2; ++i) {
+            const int sx = std::min(2 * x + i, src.width - 1), sy = std::min(2 * y + j, src.height - 1);
+            sum += src.pixels[(size_t(sy) * src.width + sx) * 4 + c];
+          }
+        out.pixels[(size_t(y) * w + x) * 4 + c] = uint8_t((sum + 2) / 4);
+      }
+  return out;
+}
+
+double alpha_coverage(const image& img, float cutoff, float scale) {
+  size_t n = 0;
+  const float limit = cutoff * 255.0f;
+  for (size_t k = 0; k < size_t(img.width) * img.height; ++k) n += float(img.pixels[k * 4 + 3]) * scale >= limit;
+  return double(n) / double(size_t(img.width) * img.height);
+}
+
+// Mip chain for an alpha-tested RGBA image that keeps the share of texels passing the cutoff the
+// same at every level, so thin needles and leaflets do not thin out with distance: each level's
+// alpha is scaled by the factor (found by bisection) that restores the full-size coverage
+// (Castaño 2010, "Computing alpha mipmaps").
+std::vector<image> coverage_mips(const image& level0, float cutoff) {
+  std::vector<image> chain{level0};
+  const double target = alpha_coverage(level0, cutoff, 1.0f);
+  while (chain.back().width > 1 || chain.back().height > 1) {
+    image next = half_size(chain.back());
+    float lo = 0.0f, hi = 8.0f;
+    for (int it = 0; it < 14; ++it) {
+      const float mid = 0.5f * (lo + hi);
+      (alpha_coverage(next, cutoff, mid) < target ? lo : hi) = mid;
+    }
+    for (size_t k = 0; k < size_t(next.width) * next.height; ++k)
+      next.pixels[k * 4 + 3] = uint8_t(std::min(255.0f, float(next.pixels[k * 4 + 3]) * hi + 0.5f));
+    chain.push_back(std::move(next));
+  }
+  return chain;
+}
+
+// One array texture from equally sized layers (internal format `internal`, data `format`).
+// Mipmaps: given per level in `levels` (layers' chains of equal length), or made by GL.
+int upload_array(gl_texture& t, const std::vector<const image*>& layers, GLenum internal, GLenum format,
+                 const std::vector<std::vector<image>>* levels = nullptr) {
+  if (layers.empty()) return 0;
+  const int w = layers[0]->width, h = layers[0]->height, ch = layers[0]->channels;
+  for (const image* l : layers)
+    if (l->width != w || l->height != h || l->channels != ch) return 0;
+  if (!t.id) glGenTextures(1, &t.id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, w, h, count, 0, GL_RGBA, GL_UNSIGNED_BYTE, layers.data());
-  ++r.uploads_total;
-  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, t.id);
+  const int count = int(layers.size());
+  std::vector<uint8_t> data;
+  const size_t mip_count = levels ? (*levels)[0].size() : 1;
+  for (size_t level = 0; level < mip_count; ++level) {
+    data.clear();
+    int lw = w, lh = h;
+    for (int i = 0; i < count; ++i) {
+      const image& img = levels ? (*levels)[size_t(i)][level] : *layers[size_t(i)];
+      lw = img.width, lh = img.height;
+      data.insert(data.end(), img.pixels.begin(), img.pixels.end());
+    }
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, GLint(level), GLint(internal), lw, lh, count, 0, format, GL_UNSIGNED_BYTE, data.data());
+  }
+  if (!levels) glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, levels ? GLint(mip_count) - 1 : 1000);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  r.leaf_layers = count;
+  return count;
 }
 
-// Loads the user's PNGs when their paths change; a failure keeps the procedural textures.
+// All leaf layers share one array texture per map, so every leaf is drawn in one instanced call;
+// layer k is leaf archetype k (leaf_instance::texture). Colour mips keep their alpha coverage.
+void upload_leaf_textures(renderer_state& r, const std::vector<const image*>& color, const std::vector<const image*>& normal,
+                          const std::vector<const image*>& thickness) {
+  std::vector<std::vector<image>> mips;
+  for (const image* c : color) mips.push_back(coverage_mips(*c, 0.5f));
+  const int layers = upload_array(r.leaf_tex, color, GL_SRGB8_ALPHA8, GL_RGBA, &mips);
+  upload_array(r.leaf_normal_tex, normal, GL_RGB8, GL_RGB);
+  upload_array(r.leaf_thickness_tex, thickness, GL_R8, GL_RGB);
+  r.uploads_total += 3;
+  if (layers) r.leaf_layers = layers;
+}
+
+void upload_procedural_leaves(renderer_state& r) {
+  std::vector<const image*> color, normal, thickness;
+  for (int i = 0; i < leaf_archetype_count; ++i) {
+    const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), 512);
+    color.push_back(&t.color), normal.push_back(&t.normal), thickness.push_back(&t.thickness);
+  }
+  upload_leaf_textures(r, color, normal, thickness);
+}
+
+void upload_procedural_bark(renderer_state& r, bark_archetype a) {
+  const bark_texture_set& t = bark_archetype_textures(a, 512);
+  upload_bark_textures(r, t.color, t.normal, t.roughness);
+  r.bark_shown = int(a);
+}
+
+// A user's texture through load_user_texture's checks, and within this GL's size limit.
+std::string load_checked(const std::string& path, image& out) {
+  if (std::string err = load_user_texture(path, out); !err.empty()) return err;
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  if (out.width > max_size || out.height > max_size)
+    return path + ": " + std::to_string(out.width) + "x" + std::to_string(out.height) + " is larger than this GPU's " +
+           std::to_string(max_size) + " px limit";
+  return "";
+}
+
+// Loads the user's PNGs when their paths change (a failure says why in texture_message and keeps
+// the procedural textures), and uploads the procedural bark archetype when it changes.
 void update_user_textures(renderer_state& r, const render_params& rp) {
-  if (rp.bark_texture == r.bark_texture_path && rp.leaf_texture == r.leaf_texture_path &&
-      rp.leaf_opacity == r.leaf_opacity_path)
-    return;
-  r.bark_texture_path = rp.bark_texture;
-  r.leaf_texture_path = rp.leaf_texture;
-  r.leaf_opacity_path = rp.leaf_opacity;
-  r.texture_message.clear();
-  const texture_set tex = make_textures(256, 128, 1);
-  r.user_bark = r.user_leaf = false;
-  image bark;
-  if (!rp.bark_texture.empty()) {
-    if (std::string err = load_png(rp.bark_texture, bark); !err.empty()) r.texture_message = err;
-    else r.user_bark = true;
-  }
-  if (r.user_bark) {
-    const image flat{1, 1, 3, {128, 128, 255}};   // a foreign colour map gets no procedural relief
-    upload_bark_textures(r, bark, flat);
-  } else {
-    upload_bark_textures(r, tex.bark_color, tex.bark_normal);
-  }
-  image leaf;
-  if (!rp.leaf_texture.empty()) {
-    if (std::string err = load_png(rp.leaf_texture, leaf); !err.empty()) {
-      r.texture_message = err;
-    } else {
-      r.user_leaf = true;
-      image opacity;
-      if (!rp.leaf_opacity.empty()) {
-        if (std::string err2 = load_png(rp.leaf_opacity, opacity); !err2.empty()) r.texture_message = err2;
-        else if (opacity.width != leaf.width || opacity.height != leaf.height)
-          r.texture_message = "leaf opacity map must be the size of the leaf texture";
-        else
-          for (size_t i = 0; i < size_t(leaf.width) * leaf.height; ++i) leaf.pixels[i * 4 + 3] = opacity.pixels[i * 4];
+  const bool paths_changed = rp.bark_texture != r.bark_texture_path || rp.leaf_texture != r.leaf_texture_path ||
+                             rp.leaf_opacity != r.leaf_opacity_path;
+  if (paths_changed) {
+    r.bark_texture_path = rp.bark_texture;
+    r.leaf_texture_path = rp.leaf_texture;
+    r.leaf_opacity_path = rp.leaf_opacity;
+    r.texture_message.clear();
+    auto say = [&](const std::string& what, const std::string& err) {
+      r.texture_message += (r.texture_message.empty() ? "" : "; ") + what + ": " + err + "; using the procedural one";
+    };
+    const bool had_user_bark = r.user_bark;
+    r.user_bark = r.user_leaf = false;
+    image bark;
+    if (!rp.bark_texture.empty()) {
+      if (std::string err = load_checked(rp.bark_texture, bark); !err.empty()) say("bark texture", err);
+      else r.user_bark = true;
+    }
+    if (r.user_bark) {
+      const image flat{1, 1, 3, {128, 128, 255}};   // a foreign colour map gets no procedural relief
+      const image rough{1, 1, 3, {230, 230, 0}};
+      upload_bark_textures(r, bark, flat, rough);
+      r.bark_shown = -1;
+    } else if (had_user_bark) {
+      r.bark_shown = -1;   // the procedural bark goes back up below
+    }
+    image leaf;
+    if (!rp.leaf_texture.empty()) {
+      if (std::string err = load_checked(rp.leaf_texture, leaf); !err.empty()) {
+        say("leaf texture", err);
+      } else {
+        r.user_leaf = true;
+        image opacity;
+        if (!rp.leaf_opacity.empty()) {
+          if (std::string err2 = load_checked(rp.leaf_opacity, opacity); !err2.empty())
+            r.texture_message += (r.texture_message.empty() ? "" : "; ") + ("leaf opacity: " + err2 + "; using the texture's alpha");
+          else if (opacity.width != leaf.width || opacity.height != leaf.height)
+            r.texture_message += (r.texture_message.empty() ? "" : "; ") +
+                                 std::string("leaf opacity map must be the size of the leaf texture; using the texture's alpha");
+          else
+            for (size_t i = 0; i < size_t(leaf.width) * leaf.height; ++i) leaf.pixels[i * 4 + 3] = opacity.pixels[i * 4];
+        }
       }
     }
+    if (r.user_leaf) {   // one layer: the shader's layer index wraps, so every archetype shows it
+      const image flat{1, 1, 3, {128, 128, 255}}, thin{1, 1, 3, {200, 200, 200}};
+      upload_leaf_textures(r, {&leaf}, {&flat}, {&thin});
+    } else if (r.leaf_layers != leaf_archetype_count) {
+      upload_procedural_leaves(r);
+    }
   }
-  if (r.user_leaf) upload_leaf_textures(r, {leaf});
-  else upload_leaf_textures(r, {tex.leaf.begin(), tex.leaf.end()});
-  check_gl("user textures");
+  if (!r.user_bark && r.bark_shown != int(rp.bark)) upload_procedural_bark(r, rp.bark);
+  if (paths_changed) check_gl("user textures");
 }
 
 void resize_targets(renderer_state& r, int w, int h, int samples) {
@@ -511,6 +644,12 @@ void bind_tree_textures(const renderer_state& r) {
   glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
   glActiveTexture(GL_TEXTURE4);
   glBindTexture(GL_TEXTURE_2D, r.bark_normal_tex.id);
+  glActiveTexture(GL_TEXTURE5);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_normal_tex.id);
+  glActiveTexture(GL_TEXTURE6);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_thickness_tex.id);
+  glActiveTexture(GL_TEXTURE7);
+  glBindTexture(GL_TEXTURE_2D, r.bark_rough_tex.id);
   glActiveTexture(GL_TEXTURE0);
 }
 
@@ -652,10 +791,11 @@ bool init_renderer(renderer_state& r) {
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, r.node_radius.id);
 
-  // Procedural textures (render/textures.h): the app needs no asset files.
-  const texture_set tex = make_textures(256, 128, 1);
-  upload_bark_textures(r, tex.bark_color, tex.bark_normal);
-  upload_leaf_textures(r, {tex.leaf.begin(), tex.leaf.end()});
+  // Procedural textures (render/textures.h): the app needs no asset files. All archetype sets are
+  // made once per process, on two threads.
+  prepare_archetype_textures(512, 1, 2);
+  upload_procedural_bark(r, bark_archetype::furrowed);
+  upload_procedural_leaves(r);
 
   resize_shadow(r, 2048);
   check_gl("init renderer");
@@ -671,13 +811,17 @@ void destroy_renderer(renderer_state& r) {
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
                        &r.leaf_instances, &r.node_radius})
     delete_gl(*b);
-  for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.leaf_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth,
-                        &r.occlusion_tex, &r.rays_tex})
+  for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.bark_rough_tex, &r.leaf_tex, &r.leaf_normal_tex,
+                        &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex})
     delete_gl(*t);
   for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.msaa_fbo}) delete_gl(*f);
   delete_gl(r.msaa_color);
   delete_gl(r.msaa_depth);
   r.width = r.height = r.shadow_size = r.samples = 0;
+  r.bark_shown = -1;
+  r.leaf_layers = 1;
+  r.user_bark = r.user_leaf = false;
+  r.bark_texture_path.clear(), r.leaf_texture_path.clear(), r.leaf_opacity_path.clear();
   r.ok = false;
 }
 
@@ -855,7 +999,8 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.bark, "u_radius", 2);
       set_uniform(r.bark, "u_bark", 0);
       set_uniform(r.bark, "u_bark_normal", 4);
-      set_uniform(r.bark, "u_user_texture", r.user_bark ? 1 : 0);
+      set_uniform(r.bark, "u_bark_rough", 7);
+      set_uniform(r.bark, "u_eye", eye);
       set_uniform(r.bark, "u_bark_color", rp.bark_color);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
@@ -866,7 +1011,8 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
       set_uniform(r.leaf, "u_leaf", 3);
       set_uniform(r.leaf, "u_layers", r.leaf_layers);
-      set_uniform(r.leaf, "u_user_texture", r.user_leaf ? 1 : 0);
+      set_uniform(r.leaf, "u_leaf_normal", 5);
+      set_uniform(r.leaf, "u_leaf_thickness", 6);
       set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);

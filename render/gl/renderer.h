@@ -49,13 +49,15 @@ struct renderer_state {
   gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, composite, fallback;
   gl_vertex_array bark_vao, leaf_vao, empty_vao;
   gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius;
-  gl_texture node_radius_tex, bark_tex, bark_normal_tex, leaf_tex, shadow_tex, hdr_color, hdr_depth, occlusion_tex, rays_tex;
+  gl_texture node_radius_tex, bark_tex, bark_normal_tex, bark_rough_tex, leaf_tex, leaf_normal_tex, leaf_thickness_tex, shadow_tex,
+      hdr_color, hdr_depth, occlusion_tex, rays_tex;
   gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, msaa_fbo;
   gl_renderbuffer msaa_color, msaa_depth;   // multisampled lit pass, resolved into hdr_color/hdr_depth
   int shadow_size = 0, width = 0, height = 0, samples = 0, leaf_layers = 1;
   // Textures: the user's PNG paths as last loaded, and why a load failed ("" when none).
   std::string bark_texture_path, leaf_texture_path, leaf_opacity_path, texture_message;
   bool user_bark = false, user_leaf = false;
+  int bark_shown = -1;                // the bark archetype uploaded; -1 none or the user's texture
   // The uploaded tree.
   std::vector<uint32_t> index_end, leaf_end;
   std::vector<float> final_radius;
