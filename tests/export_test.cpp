@@ -463,32 +463,9 @@ TEST(Export, KhronosValidatorReportsNoErrorsOrWarnings) {
   EXPECT_EQ(rc, 0) << slurp(dir / "report.txt");
 }
 
-TEST(Textures, DeterministicTilingAndLeafOutlines) {
-  const texture_set a = make_textures(32, 32, 5), b = make_textures(32, 32, 5);
-  EXPECT_EQ(a.bark_color.pixels, b.bark_color.pixels);
-  EXPECT_EQ(a.bark_normal.pixels, b.bark_normal.pixels);
-  EXPECT_NE(make_bark_color(32, 6).pixels, a.bark_color.pixels);
-  ASSERT_EQ(a.bark_color.pixels.size(), size_t(32 * 32 * 3));
-  // Normals point out of the surface: blue (z) above the 0.5 midpoint everywhere.
-  for (size_t k = 2; k < a.bark_normal.pixels.size(); k += 3) ASSERT_GT(a.bark_normal.pixels[k], 128);
-  for (int v = 0; v < 4; ++v) {
-    const image& l = a.leaf[v];
-    ASSERT_EQ(l.channels, 4);
-    auto alpha = [&](int x, int y) { return l.pixels[(size_t(y) * l.width + x) * 4 + 3]; };
-    EXPECT_EQ(alpha(16, 12), 255) << "blade centre, variant " << v;  // midrib, mid-blade
-    EXPECT_EQ(alpha(0, 0), 0) << "corner, variant " << v;
-    EXPECT_EQ(alpha(31, 31), 0);
-  }
-  // The atlas keeps cell k at (k % 2, k / 2).
-  const image atlas = make_leaf_atlas(a.leaf);
-  ASSERT_EQ(atlas.width, 64);
-  EXPECT_EQ(atlas.pixels[(size_t(32 + 12) * 64 + 32 + 16) * 4 + 1], a.leaf[3].pixels[(size_t(12) * 32 + 16) * 4 + 1]);
-  EXPECT_EQ(leaf_atlas_cell(3), (std::array<float, 4>{0.5f, 0.5f, 1.0f, 1.0f}));
-}
-
 TEST(Textures, PngRoundTripAndErrors) {
   scratch dir;
-  const image leaf = make_leaf_texture(16, 2, 1);
+  const image leaf = leaf_archetype_textures(leaf_archetype::palmate, 16).color;
   ASSERT_EQ(save_png(leaf, dir / "leaf.png"), "");
   image back;
   ASSERT_EQ(load_png(dir / "leaf.png", back), "");
