@@ -2,6 +2,7 @@
 #include "render/files.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -11,11 +12,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -465,7 +464,7 @@ load_result load_preset_json(std::string_view text, preset& out) {
 
 load_result load_preset_file(const std::string& path, preset& out) {
   std::string text;
-  if (std::string e = read_file(path, text); !e.empty()) {
+  if (std::string e = read_file(path, text, max_preset_bytes); !e.empty()) {
     load_result r;
     r.error = e;
     return r;
@@ -606,15 +605,54 @@ std::string write_file_atomic(const std::string& path, std::string_view bytes) {
   return "";
 }
 
-std::string read_file(const std::string& path, std::string& out) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return "cannot read " + path + ": it is a folder";
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return "cannot read " + path + ": " + std::strerror(errno);
-  std::ostringstream s;
-  s << f.rdbuf();
-  if (f.bad()) return "cannot read " + path + ": read error";
-  out = std::move(s).str();
+std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes) {
+  auto fail = [&](const std::string& why) { return "cannot read " + path + ": " + why; };
+  // O_NONBLOCK: opening a FIFO with no writer must not hang before the type check below refuses it.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+  if (fd < 0) return fail(std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return fail(std::strerror(err));
+  }
+  // Only regular files: a device (/dev/zero), FIFO or socket may never end, and a folder has no bytes.
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return fail(S_ISDIR(st.st_mode) ? "it is a folder" : "not a regular file (a device, FIFO or socket)");
+  }
+  auto too_big = [&] {
+    return fail("larger than the " + std::to_string(max_bytes >> 20) + " MB limit for this kind of file");
+  };
+  if (uint64_t(st.st_size) > max_bytes) {
+    ::close(fd);
+    return too_big();
+  }
+  std::string text;
+  text.resize(size_t(st.st_size));
+  size_t got = 0;
+  for (;;) {  // also reads past st_size if the file grows meanwhile, up to the limit
+    if (got == text.size()) {
+      if (got > max_bytes) {
+        ::close(fd);
+        return too_big();
+      }
+      text.resize(std::min<uint64_t>(max_bytes + 1, std::max<uint64_t>(got * 2, 4096)));
+    }
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      return fail(std::strerror(err));
+    }
+    if (n == 0) break;
+    got += size_t(n);
+  }
+  ::close(fd);
+  if (got > max_bytes) return too_big();
+  text.resize(got);
+  out = std::move(text);
   return "";
 }
 

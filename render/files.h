@@ -1,6 +1,7 @@
 // Presets (DESIGN §6) and safe file writing. Core I/O returns errors as values, never throws.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +13,10 @@
 namespace sylva {
 
 inline constexpr int preset_version = 1;
+
+// Input limits (docs/DESIGN-NOTES.md): a preset is a page of text; a texture or mesh may be large.
+inline constexpr uint64_t max_preset_bytes = 64ull << 20;
+inline constexpr uint64_t max_asset_bytes = 256ull << 20;
 
 struct preset {
   std::string name = "Untitled";
@@ -50,6 +55,8 @@ preset default_preset();
 // Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
 // Returns "" or a message naming the path and the reason.
 std::string write_file_atomic(const std::string& path, std::string_view bytes);
-std::string read_file(const std::string& path, std::string& out);
+// Reads a whole regular file of at most `max_bytes`. Devices, FIFOs, sockets and folders are refused
+// at once, and so is a file over the limit (docs/DESIGN-NOTES.md, "Input limits").
+std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes = max_asset_bytes);
 
 }  // namespace sylva
