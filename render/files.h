@@ -1,6 +1,7 @@
 // Presets (DESIGN §6) and safe file writing. Core I/O returns errors as values, never throws.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -17,6 +18,14 @@ inline constexpr int preset_version = 1;
 // Input limits (docs/DESIGN-NOTES.md): a preset is a page of text; a texture or mesh may be large.
 inline constexpr uint64_t max_preset_bytes = 64ull << 20;
 inline constexpr uint64_t max_asset_bytes = 256ull << 20;
+// What one preset may hold, so a small file cannot expand into gigabytes once parsed.
+inline constexpr size_t max_preset_values = 1000000;     // JSON values in the whole document
+inline constexpr size_t max_preset_tags = 1000;
+inline constexpr size_t max_preset_list = 100000;        // entries of a list parameter (positions, schedules)
+inline constexpr size_t max_preset_text_bytes = 1 << 20;  // one string: a name, a tag, an L-system text
+
+// True when `s` is well-formed UTF-8 (RFC 3629: no overlong forms, no surrogates, <= U+10FFFF).
+bool valid_utf8(std::string_view s);
 
 struct preset {
   std::string name = "Untitled";
@@ -38,6 +47,8 @@ struct load_result {
 // clamped with a warning, wrong types and malformed JSON are errors.
 load_result load_preset_json(std::string_view text, preset& out);
 load_result load_preset_file(const std::string& path, preset& out);
+// Never throws: strings that are not UTF-8 (they cannot enter through the loaders or --set, but
+// an editor document might hold one) are written with U+FFFD in place of the bad bytes.
 std::string save_preset_json(const preset& p);
 // Writes through a temporary file and a rename; returns "" or the error.
 std::string save_preset_file(const preset& p, const std::string& path);

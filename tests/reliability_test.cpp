@@ -49,6 +49,49 @@ fs::path scratch_dir(const std::string& name) {
 
 }  // namespace
 
+// ---------------------------------------------------------------- item 2: UTF-8
+
+TEST(Utf8, ValidatorFollowsRfc3629) {
+  EXPECT_TRUE(valid_utf8(""));
+  EXPECT_TRUE(valid_utf8("plain ASCII"));
+  EXPECT_TRUE(valid_utf8("λ σ — 木 \xF0\x9F\x8C\xB3"));  // 2-, 3- and 4-byte forms
+  EXPECT_FALSE(valid_utf8("\xFF"));
+  EXPECT_FALSE(valid_utf8("\xC0\xAF"));          // overlong '/'
+  EXPECT_FALSE(valid_utf8("\xE0\x80\xAF"));      // overlong, 3 bytes
+  EXPECT_FALSE(valid_utf8("\xED\xA0\x80"));      // a UTF-16 surrogate
+  EXPECT_FALSE(valid_utf8("\xF4\x90\x80\x80"));  // above U+10FFFF
+  EXPECT_FALSE(valid_utf8("\xE6\x9C"));          // truncated
+  EXPECT_FALSE(valid_utf8("a\x80z"));            // a lone continuation byte
+}
+
+TEST(Utf8, SetRefusesBadBytesAndSaveNeverThrows) {
+  preset p = default_preset();
+  const preset before = p;
+  const std::string e = set_preset_param(p, std::string("source=F\xFF"));
+  EXPECT_NE(e.find("UTF-8"), std::string::npos) << e;
+  EXPECT_EQ(p, before);
+
+  // A document holding bad bytes anyway (the editor's text fields) still saves, and loads back.
+  std::get<lsystem_params>(p.spec.params).source = "F\xFF";
+  p.name = "bad \xC3";
+  p.tags = {"\xFE"};
+  std::string text;
+  EXPECT_NO_THROW(text = save_preset_json(p));
+  preset q;
+  const load_result r = load_preset_json(text, q);
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(valid_utf8(q.name));
+  EXPECT_EQ(q.name, "bad \xEF\xBF\xBD");
+  EXPECT_EQ(save_preset_file(p, (scratch_dir("utf8") / "p.json").string()), "");
+}
+
+TEST(Utf8, LoaderRejectsBadBytesWithAClearError) {
+  preset p;
+  const load_result r = load_preset_json(std::string("{\"sylva_preset\": 1, \"name\": \"a\xFF\"}"), p);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("UTF-8"), std::string::npos) << r.error;
+}
+
 // ---------------------------------------------------------------- item 4: bounded reads
 
 TEST(InputFiles, DevicesAndFifosAreRefusedAtOnce) {
@@ -112,5 +155,54 @@ TEST(InputFiles, EnvelopeObjParsesFromText) {
   EXPECT_NE(check_envelope_obj("v 0 0 0\nf 1 2 3\n"), "");
   EXPECT_NE(check_envelope_obj("v -3e38 0 0\nv 3e38 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"),
             "");  // an extent beyond float's range is refused, not divided by
+}
+
+// ---------------------------------------------------------------- items 7, 8: versions and caps
+
+TEST(PresetLimits, HugeVersionIsReportedAsItIs) {
+  preset p;
+  load_result r = load_preset_json(R"({"sylva_preset": 18446744073709551615, "generator": "lsystem"})", p);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("18446744073709551615"), std::string::npos) << r.warnings[0];
+  r = load_preset_json(R"({"sylva_preset": -1})", p);
+  EXPECT_NE(r.error.find("-1 is not valid"), std::string::npos) << r.error;
+}
+
+TEST(PresetLimits, TagsListsAndTextAreCapped) {
+  auto load = [](const nlohmann::json& doc) {
+    preset p;
+    return load_preset_json(doc.dump(), p);
+  };
+  nlohmann::json doc = {{"sylva_preset", 1}, {"generator", "self_organizing"}};
+  doc["tags"] = std::vector<std::string>(max_preset_tags + 1, "t");
+  load_result r = load(doc);
+  EXPECT_NE(r.error.find("tags: 1001 tags"), std::string::npos) << r.error;
+  doc["tags"] = std::vector<std::string>(max_preset_tags, "t");
+  EXPECT_TRUE(load(doc).ok);
+
+  doc["params"]["positions"] = std::vector<std::vector<float>>(max_preset_list + 1, {0.f, 0.f, 0.f});
+  r = load(doc);
+  EXPECT_NE(r.error.find("params.positions"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("limit"), std::string::npos) << r.error;
+  doc["params"].erase("positions");
+
+  doc["name"] = std::string(max_preset_text_bytes + 1, 'x');
+  r = load(doc);
+  EXPECT_NE(r.error.find("1 MB limit"), std::string::npos) << r.error;
+  doc["name"] = "ok";
+
+  // Many small values: refused before the document is built.
+  std::string many = R"({"sylva_preset": 1, "x": [)";
+  for (size_t i = 0; i <= max_preset_values; ++i) many += "0,";
+  many += "0]}";
+  preset p;
+  r = load_preset_json(many, p);
+  EXPECT_NE(r.error.find("more than 1000000 values"), std::string::npos) << r.error;
+  r = load_preset_json(std::string(100, '[') + std::string(100, ']'), p);
+  EXPECT_NE(r.error.find("nested deeper"), std::string::npos) << r.error;
+
+  preset q = default_preset();
+  EXPECT_NE(set_preset_param(q, "source=" + std::string(max_preset_text_bytes + 1, 'F')), "");
 }
 
