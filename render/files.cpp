@@ -636,6 +636,7 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
   });
   if (!found.empty()) return found;
   if (!numeric || parts.size() != 3) {  // a plain value (strings such as L-system text may hold ':')
+    if (std::string e = set_preset_param(copy, assignment); !e.empty()) return e;
     out.emplace_back(assignment);
     return "";
   }
@@ -644,6 +645,7 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
       n != std::floor(n) || n < 1 || n > 100000)
     return std::string(key) + ": a sweep is from:to:count with a whole count >= 1, got \"" + std::string(text) + "\"";
   const int count = int(n);
+  std::vector<std::string> values;
   for (int i = 0; i < count; ++i) {
     const double t = count == 1 ? 0.0 : double(i) / double(count - 1);
     double v = double(a) + (double(b) - double(a)) * t;
@@ -654,8 +656,13 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
       auto r = std::to_chars(buf, buf + sizeof buf - 1, float(v));
       *r.ptr = 0;
     }
-    out.push_back(std::string(key) + "=" + buf);
+    std::string value = std::string(key) + "=" + buf;
+    // Checked now, so that a sweep whose last value is out of range is refused before the first grows.
+    if (std::string e = set_preset_param(copy, value); !e.empty())
+      return e + " (value " + std::to_string(i + 1) + " of the sweep " + quote_text(text) + ")";
+    values.push_back(std::move(value));
   }
+  out.insert(out.end(), std::make_move_iterator(values.begin()), std::make_move_iterator(values.end()));
   return "";
 }
 

@@ -57,7 +57,8 @@ std::string save_preset_file(const preset& p, const std::string& path);
 // Returns "" or the error.
 std::string set_preset_param(preset& p, std::string_view assignment);
 // CLI `--set key=a:b:n` for a numeric parameter: appends n assignments from a to b, evenly spaced
-// (rounded for integers); any other assignment is appended unchanged. Returns "" or the error.
+// (rounded for integers); any other assignment is appended unchanged. Every value is checked as
+// set_preset_param would, so a sweep is refused whole before anything is grown. Returns "" or the error.
 std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out);
 
 // The tree `sylva` shows when started without a preset: Honda's tree a (lsystem_params defaults).

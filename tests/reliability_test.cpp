@@ -157,6 +157,32 @@ TEST(InputFiles, EnvelopeObjParsesFromText) {
             "");  // an extent beyond float's range is refused, not divided by
 }
 
+// ---------------------------------------------------------------- item 5: sweeps checked whole
+
+TEST(Sweep, OutOfRangeValueRefusesTheWholeSweep) {
+  preset p = default_preset();
+  std::vector<std::string> out;
+  const std::string e = expand_param_sweep(p, "derivations=0:30:4", out);
+  EXPECT_NE(e.find("value 4 of the sweep"), std::string::npos) << e;
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(expand_param_sweep(p, "derivations=2:4:3", out), "");
+  EXPECT_EQ(out.size(), 3u);
+  out.clear();
+  EXPECT_NE(expand_param_sweep(p, std::string("source=F\xFF"), out), "");  // plain values are checked too
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(Sweep, CliWritesNothingWhenAnyValueIsBad) {
+  const fs::path dir = scratch_dir("sweep");
+  const std::string preset_path = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  const sylva_run r = run_sylva("", "export '" + preset_path + "' -o '" + (dir / "t.json").string() +
+                                        "' --set derivations=0:30:4");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("derivations"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
 // ---------------------------------------------------------------- items 7, 8: versions and caps
 
 TEST(PresetLimits, HugeVersionIsReportedAsItIs) {
