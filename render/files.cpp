@@ -678,16 +678,38 @@ preset default_preset() {
 std::string write_file_atomic(const std::string& path, std::string_view bytes) {
   namespace fs = std::filesystem;
   if (path.empty()) return "cannot write: empty path";
-  const fs::path target(path);
+  // Through symlinks (as editors do): renaming over the link itself would turn it into a copy.
+  fs::path target(path);
+  for (int hops = 0;; ++hops) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(target, ec)) || ec) break;
+    if (hops == 40) return "cannot write " + path + ": too many levels of symbolic links";
+    const fs::path link = fs::read_symlink(target, ec);
+    if (ec) return "cannot write " + path + ": cannot read the symbolic link: " + ec.message();
+    target = link.is_absolute() ? link : target.parent_path() / link;
+  }
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // An existing file keeps its permissions (a 0600 file must not come back 0644) and, where the
+  // user may, its owner; a new file gets 0666 less the umask, as open() would give it.
+  struct stat old_st {};
+  const bool existed = ::stat(target.c_str(), &old_st) == 0 && S_ISREG(old_st.st_mode);
   static std::atomic<unsigned> counter{0};
   const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                                std::to_string(counter.fetch_add(1)));
   auto fail = [&](const char* what, int err) {
     return "cannot write " + path + ": " + what + ": " + std::strerror(err);
   };
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, existed ? 0600 : 0666);
   if (fd < 0) return fail("cannot create a file in its folder", errno);
+  if (existed) {
+    if (::fchown(fd, old_st.st_uid, old_st.st_gid) != 0) {}  // only root may give a file away; not an error
+    if (::fchmod(fd, old_st.st_mode & 07777) != 0) {
+      const int err = errno;
+      ::close(fd);
+      ::unlink(temp.c_str());
+      return fail("cannot keep the file's permissions", err);
+    }
+  }
   size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);

@@ -65,7 +65,9 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
 preset default_preset();
 
 // Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-// Returns "" or a message naming the path and the reason.
+// A symlink is written through: its target is replaced and the link stays. An existing file keeps
+// its permission bits (and its owner, where allowed). Returns "" or a message naming the path and
+// the reason.
 std::string write_file_atomic(const std::string& path, std::string_view bytes);
 // Reads a whole regular file of at most `max_bytes`. Devices, FIFOs, sockets and folders are refused
 // at once, and so is a file over the limit (docs/DESIGN-NOTES.md, "Input limits").

@@ -183,6 +183,45 @@ TEST(Sweep, CliWritesNothingWhenAnyValueIsBad) {
   fs::remove_all(dir);
 }
 
+// ---------------------------------------------------------------- item 6: symlinks and permissions
+
+TEST(AtomicWrite, KeepsPermissionsAndWritesThroughSymlinks) {
+  const fs::path dir = scratch_dir("links");
+  const fs::path file = dir / "private.obj";
+  write_text(file, "old");
+  ASSERT_EQ(::chmod(file.c_str(), 0600), 0);
+  ASSERT_EQ(write_file_atomic(file.string(), "new"), "");
+  struct stat st {};
+  ASSERT_EQ(::stat(file.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_EQ(read_text(file), "new");
+
+  // A relative link in another folder, to a link, to the file: both links stay links.
+  fs::create_directories(dir / "sub");
+  fs::create_symlink("../private.obj", dir / "sub" / "near.obj");
+  fs::create_symlink("sub/near.obj", dir / "far.obj");
+  ASSERT_EQ(write_file_atomic((dir / "far.obj").string(), "through"), "");
+  EXPECT_TRUE(fs::is_symlink(dir / "far.obj"));
+  EXPECT_TRUE(fs::is_symlink(dir / "sub" / "near.obj"));
+  EXPECT_EQ(read_text(file), "through");
+  ASSERT_EQ(::stat(file.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+
+  // A dangling link creates its target; a loop is an error, not a hang.
+  fs::create_symlink("made.obj", dir / "dangling.obj");
+  ASSERT_EQ(write_file_atomic((dir / "dangling.obj").string(), "made"), "");
+  EXPECT_TRUE(fs::is_symlink(dir / "dangling.obj"));
+  EXPECT_EQ(read_text(dir / "made.obj"), "made");
+  fs::create_symlink("loop_b", dir / "loop_a");
+  fs::create_symlink("loop_a", dir / "loop_b");
+  EXPECT_NE(write_file_atomic((dir / "loop_a").string(), "x"), "");
+  size_t temporaries = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    temporaries += e.path().filename().string().find(".tmp-") != std::string::npos;
+  EXPECT_EQ(temporaries, 0u);
+  fs::remove_all(dir);
+}
+
 // ---------------------------------------------------------------- items 7, 8: versions and caps
 
 TEST(PresetLimits, HugeVersionIsReportedAsItIs) {
