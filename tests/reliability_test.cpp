@@ -271,3 +271,32 @@ TEST(PresetLimits, TagsListsAndTextAreCapped) {
   EXPECT_NE(set_preset_param(q, "source=" + std::string(max_preset_text_bytes + 1, 'F')), "");
 }
 
+// ---------------------------------------------------------------- item 3: bench and bad names
+
+TEST(BenchCli, NonUtf8FileNameIsReportedAndTheRunGoesOn) {
+  const fs::path dir = scratch_dir("bench");
+  const std::string source = read_text(fs::path(SYLVA_SOURCE_DIR) / "presets" / "lsystem_honda_a.json");
+  const fs::path bad = dir / "tree_\xFF\xFE.json", good = dir / "tree_good.json";
+  write_text(bad, source);
+  write_text(good, source);
+  const sylva_run r =
+      run_sylva("", "bench --json --repeat 1 " + shell_quote(bad.string()) + " " + shell_quote(good.string()));
+  EXPECT_EQ(r.code, 0) << r.err;
+  std::vector<nlohmann::json> lines;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    ASSERT_TRUE(nlohmann::json::accept(line)) << line;
+    lines.push_back(nlohmann::json::parse(line));
+  }
+  ASSERT_EQ(lines.size(), 2u) << r.out << r.err;
+  EXPECT_EQ(lines[0]["preset"], "tree_\xEF\xBF\xBD\xEF\xBF\xBD");
+  EXPECT_EQ(lines[1]["preset"], "tree_good");
+  EXPECT_GT(lines[1]["nodes"].get<int>(), 0);
+  fs::remove_all(dir);
+}
+
+TEST(BenchCli, MissingFileMessageNamesTheProgram) {
+  const sylva_run r = run_sylva("", "bench --json --repeat 1 /nonexistent-sylva/\xFF.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err.rfind("sylva bench: ", 0), 0u) << r.err;
+}
