@@ -79,7 +79,7 @@ std::vector<tree_spec> stress_specs() {
 
 TEST(GrowthWorker, StressManyRequestsPollingReaderAndStops) {
   const std::vector<tree_spec> specs = stress_specs();
-  for (int round = 0; round < 3; ++round) {
+  for (int round = 0; round < 5; ++round) {
     worker_state w;
     start_worker(w);
     std::atomic<bool> done{false};
@@ -102,12 +102,12 @@ TEST(GrowthWorker, StressManyRequestsPollingReaderAndStops) {
     });
     mesh_params m;
     uint32_t last = 0;
-    for (int i = 0; i < 60; ++i) {
+    for (int i = 0; i < 120; ++i) {
       m.radial_segments = 5 + i % 4;   // some requests only change the mesh
       last = post_request(w, specs[size_t(i / 2) % specs.size()], m);
       std::this_thread::sleep_for(std::chrono::milliseconds(i % 7));
     }
-    if (round < 2) {
+    if (round < 4) {
       // The last round waits for the final result; the others stop mid-growth.
       std::this_thread::sleep_for(std::chrono::milliseconds(5 * round));
     } else {
@@ -115,6 +115,8 @@ TEST(GrowthWorker, StressManyRequestsPollingReaderAndStops) {
       ASSERT_TRUE(r);
       EXPECT_EQ(r->generation, last);
       EXPECT_GT(r->skeleton->size(), 1u);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));   // the reader sees it too
+      EXPECT_GT(seen_results.load(), 0);
     }
     stop_worker(w);
     done = true;
