@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: run test bench deps build clean sanitize
+.PHONY: run test bench deps build clean sanitize tsan
 
 deps:
 	@bash scripts/install-deps.sh
@@ -32,6 +32,12 @@ sanitize: deps
 	@cmake --build build-asan -j $(JOBS)
 	ASAN_OPTIONS=alloc_dealloc_mismatch=0 bash scripts/run-tests.sh build-asan -E '$(GL_TESTS)'
 	ASAN_OPTIONS=alloc_dealloc_mismatch=0:detect_leaks=0 bash scripts/run-tests.sh build-asan -R '$(GL_TESTS)'
+
+# ThreadSanitizer over the core, the mesher and the growth worker: the worker tests and a stress test.
+tsan: deps
+	@cmake -S . -B build-tsan -DSYLVA_TSAN=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	@cmake --build build-tsan -j $(JOBS) --target sylva_worker_tests
+	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ./build-tsan/tests/sylva_worker_tests
 
 clean:
 	rm -rf $(BUILD)

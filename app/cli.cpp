@@ -399,6 +399,8 @@ bench_result measure_isolated(const preset& p, int repeat, bool with_export, boo
   return r;
 }
 
+int bench_one(const std::string& path, int repeat, bool as_json, bool with_export);
+
 int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool with_export) {
   const char* cmd = "bench";
   if (paths.empty()) {
@@ -414,12 +416,29 @@ int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool wit
                 "grow_ms", "mesh_ms", "grow_MB", "peak_MB", with_export ? "  glb_ms     glb_MB" : "");
   int failures = 0;
   for (const std::string& path : paths) {
+    try {   // one preset's failure is reported and the rest are still measured
+      failures += bench_one(path, repeat, as_json, with_export);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.what());
+      ++failures;
+    }
+    std::fflush(stdout);
+  }
+  if (!as_json)
+    std::printf("medians over %d runs; peak_MB is each preset's own peak RSS (measured in a child process), grow_MB "
+                "that peak right after the first grow, before meshing\n",
+                repeat);
+  return failures ? 1 : 0;
+}
+
+// One preset of `sylva bench`: 0 when measured, 1 when it failed (reported on stderr).
+int bench_one(const std::string& path, int repeat, bool as_json, bool with_export) {
+  {
     preset p;
     load_result loaded = load_preset_file(path, p);
     if (!loaded.ok) {
       std::fprintf(stderr, "sylva bench: %s\n", loaded.error.c_str());
-      ++failures;
-      continue;
+      return 1;
     }
     for (const std::string& w : loaded.warnings) warn(path, w);
     bool isolated = false;
@@ -427,8 +446,7 @@ int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool wit
     if (r.message[0]) {
       if (r.error) {
         std::fprintf(stderr, "sylva bench: %s: %s\n", path.c_str(), r.message);
-        ++failures;
-        continue;
+        return 1;
       }
       warn(path, r.message);
     }
@@ -452,7 +470,8 @@ int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool wit
         j["export_ms"] = r.export_ms;
         j["glb_bytes"] = r.glb_bytes;
       }
-      std::printf("%s\n", j.dump().c_str());
+      // A file name need not be UTF-8; its bad bytes print as U+FFFD instead of throwing.
+      std::printf("%s\n", j.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
     } else {
       std::printf("%-36s %-18s %9llu %9llu %10llu %9.2f %9.2f %8.1f %8.1f", name.c_str(), generator_name(p.spec),
                   (unsigned long long)r.nodes, (unsigned long long)r.leaves, (unsigned long long)r.triangles,
@@ -460,13 +479,8 @@ int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool wit
       if (with_export) std::printf(" %8.1f %10.2f", r.export_ms, double(r.glb_bytes) / (1024.0 * 1024.0));
       std::printf("%s\n", isolated ? "" : "  (peak of the whole process)");
     }
-    std::fflush(stdout);
   }
-  if (!as_json)
-    std::printf("medians over %d runs; peak_MB is each preset's own peak RSS (measured in a child process), grow_MB "
-                "that peak right after the first grow, before meshing\n",
-                repeat);
-  return failures ? 1 : 0;
+  return 0;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -681,7 +695,10 @@ int run_cli(int argc, char** argv) {
     }
     if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export);
   } catch (const std::exception& e) {  // last resort: a library threw; still one line and exit 1
-    return fail("", e.what());
+    for (CLI::App* sub : {params, exp, bench})
+      if (sub->parsed()) return fail(sub->get_name(), e.what());
+    std::fprintf(stderr, "sylva: %s\n", e.what());
+    return 1;
   }
   return 2;
 }

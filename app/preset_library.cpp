@@ -58,7 +58,7 @@ std::vector<preset_entry> scan_preset_folder(const std::string& dir, int thumbna
     e.path = f.string();
     e.name = f.stem().string();
     std::string text;
-    if (std::string err = read_file(e.path, text); !err.empty()) {
+    if (std::string err = read_file(e.path, text, max_preset_bytes); !err.empty()) {
       e.error = err;
     } else {
       e.thumbnail_key = thumbnail_key(text, thumbnail_size);

@@ -485,6 +485,19 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
       for (size_t i = 0; i < n; ++i)
         if (tree_node[i] < 0 && in_volume(p, g.point[i])) candidates.push_back(int32_t(i));
       if (candidates.empty()) {
+        // A volume smaller than the point spacing can fall between vertices: it then stands for
+        // the vertex nearest its centre, so every published volume size grows a tree.
+        int32_t best = -1;
+        float best_d2 = 0;
+        for (size_t i = 0; i < n; ++i) {
+          const glm::vec3 d = g.point[i] - p.volume_offset;
+          const float d2 = glm::dot(d, d);
+          if (tree_node[i] < 0 && (best < 0 || d2 < best_d2)) best = int32_t(i), best_d2 = d2;
+        }
+        const float reach = p.volume_outer * std::max({p.volume_scale.x, p.volume_scale.y, p.volume_scale.z});
+        if (best >= 0 && std::sqrt(best_d2) <= reach + 2 * p.spacing) candidates.push_back(best);
+      }
+      if (candidates.empty()) {
         rep.error = true;
         rep.message = "guiding vectors: the endpoint volume contains no graph vertex; move it inside the domain or enlarge it";
         rep.stop_reason = "empty endpoint volume";

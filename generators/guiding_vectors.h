@@ -61,9 +61,9 @@ void visit_params(P& p, V&& v) {
   v(p.t_end, param_info{"t_end", "Ramp end angle", "t_end", -45, 45, "hop_ramp: the turn angle reached after ramp_hops hops", param_degrees});
   v(p.ramp_hops, param_info{"ramp_hops", "Ramp length", "", 1, 1000, "hop_ramp: hops from the source over which t goes from the step's t to t_end"});
   v(p.radial_T, param_info{"radial_T", "Radial flip distance", "T", 0, 50, "radial: distance from the trunk axis beyond which t changes sign (metres)"});
-  v(p.spacing, param_info{"spacing", "Point spacing", "r", 0.01f, 2, "Minimum distance between Poisson-disc graph vertices (metres); smaller gives smoother, costlier trees", param_log | param_on_release, "Graph"});
-  v(p.candidates, param_info{"candidates", "Candidates per point", "k", 1, 100, "Poisson-disc candidates tried around each accepted point; more leaves fewer holes", param_on_release | param_advanced});
-  v(p.domain_size, param_info{"domain_size", "Domain size", "", 0.1f, 100, "Extent of the point box (metres): centred on the trunk in x and z, from the ground up in y", param_on_release});
+  v(p.spacing, param_info{"spacing", "Point spacing", "r", 0.05f, 2, "Minimum distance between Poisson-disc graph vertices (metres); smaller gives smoother, costlier trees", param_log | param_on_release, "Graph"});
+  v(p.candidates, param_info{"candidates", "Candidates per point", "k", 2, 100, "Poisson-disc candidates tried around each accepted point; more leaves fewer holes", param_on_release | param_advanced});
+  v(p.domain_size, param_info{"domain_size", "Domain size", "", 0.1f, 20, "Extent of the point box (metres): centred on the trunk in x and z, from the ground up in y", param_on_release});
   v(p.volume, param_info{"volume", "Endpoint volume", "", 0, 3, "Shape that step 1 samples endpoints from (sphere, annulus = torus between inner and outer radius, box, cone)", 0, "Endpoint volume", gv_volume_names});
   v(p.volume_offset, param_info{"volume_offset", "Volume centre", "", -50, 50, "Centre of the endpoint volume (metres)"});
   v(p.volume_scale, param_info{"volume_scale", "Volume stretch", "", 0.01f, 50, "Per-axis stretch of the endpoint volume"});

@@ -276,7 +276,10 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   };
 
   colonization_state s;
-  init_state(s, pts, d_i, p.kill_distance);
+  // Runions 2007 §3 needs d_k < d_i: a point must be able to attract before a node kills it. A
+  // larger d_k (its range reaches past d_i's default) is used as 0.9·d_i, and the report says so.
+  const float d_k = std::min(p.kill_distance, 0.9f * d_i);
+  init_state(s, pts, d_i, d_k);
   add(glm::vec3(0), -1, 0);
   visit_new_node(s, t.position[0], 0, 0);
   float top = -1e30f;  // highest point: above it + d_i the trunk can never reach the cloud
@@ -375,8 +378,9 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
                   "; raise node_cap or lower the point count";
   else if (pts.empty())
     rep.message = "no attraction points: only the trunk grew; raise the point count N";
-  else if (!rep.error && p.kill_distance >= d_i)
-    rep.message = "kill distance ≥ influence radius: points die before they can attract; lower dₖ below dᵢ";
+  else if (!rep.error && p.kill_distance > d_k)
+    rep.message = "kill distance dₖ ≥ influence radius dᵢ: points would die before they could attract, so dₖ = 0.9·dᵢ = " +
+                  std::to_string(d_k) + " m was used; lower dₖ below dᵢ";
 
   // Widths: pipe model r^n = Σ rᵢ^n, tips at W (seed 003's Da Vinci rule; Shinozaki 1964), capped at
   // max_width·W. While the cap does not bind, the radii stay time-varying pipe radii

@@ -1,7 +1,9 @@
 // Space colonization (Runions, Lane & Prusinkiewicz 2007) with the envelopes, widths and spiral leaves of seed 003.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -86,6 +88,14 @@ struct envelope_sample {
   std::string error;               // "" unless the envelope is unusable (missing or open OBJ mesh)
 };
 envelope_sample sample_envelope(const space_colonization_params& p, uint64_t seed, bool want_outline = false);
+
+// The largest envelope OBJ file read (docs/DESIGN-NOTES.md, "Input limits"; the same as textures).
+inline constexpr uint64_t max_envelope_mesh_bytes = 256ull << 20;
+// The OBJ reader behind envelope_mesh, on text (for tests and the fuzz harness). Returns "" or the
+// error; with `inside`, (*inside)[i] says whether queries[i], in the mesh's normalised [-1,1]^3
+// box, lies inside it.
+std::string check_envelope_obj(std::string_view text, const std::vector<glm::vec3>& queries = {},
+                               std::vector<bool>* inside = nullptr);
 
 // One influence step: for each point, the index of its nearest node closer than d_i (ties: the lower
 // index), or -1. Uses the same incremental grid as the generator.

@@ -1,6 +1,7 @@
 // Envelopes for space colonization: analytic shapes and closed OBJ meshes, seeded uniform sampling, outlines.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -23,17 +24,42 @@ struct envelope_mesh_data {
   std::vector<int> bin_begin, bin_tri;
 };
 
-// Reads positions and faces; welds equal positions so that UV seams do not look like holes.
-std::string load_envelope_mesh(const std::string& path, envelope_mesh_data& m) {
-  if (path.empty()) return "envelope is 'mesh' but envelope_mesh (an OBJ path) is empty";
-  std::ifstream in(path);
+// Reads a regular file of at most max_envelope_mesh_bytes: a device such as /dev/zero or a FIFO
+// would otherwise be read until memory runs out. The type is checked before opening, so a FIFO
+// without a writer cannot block; the read itself also stops at the limit.
+std::string read_envelope_text(const std::string& path, std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) return "cannot open envelope mesh '" + path + "'";
+  const std::string limit = std::to_string(max_envelope_mesh_bytes >> 20) + " MB limit";
+  if (!fs::is_regular_file(st))
+    return "envelope mesh '" + path + "' is not a regular file (a folder, device, FIFO or socket)";
+  if (fs::file_size(path, ec) > max_envelope_mesh_bytes && !ec)
+    return "envelope mesh '" + path + "' is larger than the " + limit;
+  std::ifstream in(path, std::ios::binary);
   if (!in) return "cannot open envelope mesh '" + path + "'";
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf), in.gcount() > 0) {
+    text.append(buf, size_t(in.gcount()));
+    if (text.size() > max_envelope_mesh_bytes) return "envelope mesh '" + path + "' is larger than the " + limit;
+  }
+  if (in.bad()) return "cannot read envelope mesh '" + path + "'";
+  return "";
+}
+
+// Reads positions and faces; welds equal positions so that UV seams do not look like holes.
+// `what` names the source in messages ("envelope mesh 'path'").
+std::string parse_envelope_obj(std::string_view text, const std::string& what, envelope_mesh_data& m) {
   std::vector<glm::vec3> raw;
   std::vector<int> weld;
   std::map<std::tuple<float, float, float>, int> seen;
-  std::string line;
   int line_no = 0;
-  while (std::getline(in, line)) {
+  for (size_t pos = 0; pos < text.size();) {
+    size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    const std::string line(text.substr(pos, eol - pos));
+    pos = eol + 1;
     ++line_no;
     std::istringstream ls(line);
     std::string tag;
@@ -41,7 +67,7 @@ std::string load_envelope_mesh(const std::string& path, envelope_mesh_data& m) {
     if (tag == "v") {
       glm::vec3 q;
       if (!(ls >> q.x >> q.y >> q.z) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-        return "envelope mesh '" + path + "' line " + std::to_string(line_no) + ": bad vertex";
+        return what + " line " + std::to_string(line_no) + ": bad vertex";
       raw.push_back(q);
       auto [it, fresh] = seen.emplace(std::make_tuple(q.x, q.y, q.z), int(m.v.size()));
       if (fresh) m.v.push_back(q);
@@ -53,14 +79,14 @@ std::string load_envelope_mesh(const std::string& path, envelope_mesh_data& m) {
         long idx = std::strtol(tok.c_str(), nullptr, 10);  // "7/2/5" -> 7
         if (idx < 0) idx += long(raw.size()) + 1;           // OBJ relative indices
         if (idx < 1 || idx > long(raw.size()))
-          return "envelope mesh '" + path + "' line " + std::to_string(line_no) + ": face index out of range";
+          return what + " line " + std::to_string(line_no) + ": face index out of range";
         f.push_back(weld[size_t(idx - 1)]);
       }
-      if (f.size() < 3) return "envelope mesh '" + path + "' line " + std::to_string(line_no) + ": face with < 3 vertices";
+      if (f.size() < 3) return what + " line " + std::to_string(line_no) + ": face with < 3 vertices";
       for (size_t k = 1; k + 1 < f.size(); ++k) m.tri.push_back({f[0], f[k], f[k + 1]});
     }
   }
-  if (m.tri.empty()) return "envelope mesh '" + path + "' has no faces";
+  if (m.tri.empty()) return what + " has no faces";
   // Closed (watertight) means every edge is shared by exactly two triangles; the parity inside test
   // below is only meaningful then.
   std::map<std::pair<int, int>, int> count;
@@ -72,7 +98,7 @@ std::string load_envelope_mesh(const std::string& path, envelope_mesh_data& m) {
     }
   for (const auto& [e, c] : count)
     if (c != 2)
-      return "envelope mesh '" + path + "' is not closed: edge " + std::to_string(e.first + 1) + "-" +
+      return what + " is not closed: edge " + std::to_string(e.first + 1) + "-" +
              std::to_string(e.second + 1) + " is shared by " + std::to_string(c) +
              " face(s), not 2; the inside test needs a watertight mesh";
   for (const auto& [e, c] : count) m.edges.push_back(e);
@@ -80,7 +106,9 @@ std::string load_envelope_mesh(const std::string& path, envelope_mesh_data& m) {
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (const glm::vec3& q : m.v) lo = glm::min(lo, q), hi = glm::max(hi, q);
   const glm::vec3 ext = hi - lo;
-  if (!(ext.x > 0 && ext.y > 0 && ext.z > 0)) return "envelope mesh '" + path + "' is flat: it encloses no volume";
+  if (!(ext.x > 0 && ext.y > 0 && ext.z > 0)) return what + " is flat: it encloses no volume";
+  if (!std::isfinite(ext.x) || !std::isfinite(ext.y) || !std::isfinite(ext.z))
+    return what + " spans more than a float can hold";
   for (glm::vec3& q : m.v) q = (q - lo) / ext * 2.0f - 1.0f;
   // Bin triangles by their (y,z) bounds, padded for the ray's slight tilt.
   m.bins = std::clamp(int(std::sqrt(float(m.tri.size()))), 1, 128);
@@ -210,6 +238,17 @@ std::vector<glm::vec3> outline_shape(envelope_shape s, const envelope_mesh_data*
 
 }  // namespace
 
+std::string check_envelope_obj(std::string_view text, const std::vector<glm::vec3>& queries,
+                               std::vector<bool>* inside) {
+  envelope_mesh_data mesh;
+  if (std::string e = parse_envelope_obj(text, "envelope mesh", mesh); !e.empty()) return e;
+  if (inside) {
+    inside->clear();
+    for (const glm::vec3& q : queries) inside->push_back(inside_mesh(mesh, q));
+  }
+  return "";
+}
+
 envelope_sample sample_envelope(const space_colonization_params& p_in, uint64_t seed, bool want_outline) {
   space_colonization_params p = p_in;
   clamp_all_params(p);
@@ -217,7 +256,13 @@ envelope_sample sample_envelope(const space_colonization_params& p_in, uint64_t 
   envelope_mesh_data mesh;
   const bool is_mesh = p.envelope == envelope_shape::mesh;
   if (is_mesh) {
-    out.error = load_envelope_mesh(p.envelope_mesh, mesh);
+    if (p.envelope_mesh.empty()) {
+      out.error = "envelope is 'mesh' but envelope_mesh (an OBJ path) is empty";
+      return out;
+    }
+    std::string text;
+    out.error = read_envelope_text(p.envelope_mesh, text);
+    if (out.error.empty()) out.error = parse_envelope_obj(text, "envelope mesh '" + p.envelope_mesh + "'", mesh);
     if (!out.error.empty()) return out;
   }
   const glm::vec3 h = half_extent(p);

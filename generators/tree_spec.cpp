@@ -1,7 +1,9 @@
 // Generator dispatch over the tree spec.
 #include "generators/tree_spec.h"
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 
 namespace sylva {
 
@@ -43,6 +45,18 @@ tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* re
         else return grow_lsystem(p, opt, report, debug);
       },
       spec.params);
+  // Some values inside the published ranges leave nothing to grow (no endpoints, no resource for
+  // any bud): say so rather than show a bare root without a word.
+  const int wanted = o.steps >= 0 ? o.steps : default_steps(spec.params);
+  if (report && !report->error && !report->cancelled && report->message.empty() && wanted > 0 &&
+      t.size() <= size_t(std::max(1, t.tree_count))) {
+    static const char* const why[] = {
+        "no bud received enough resource to grow (check alpha, the upkeep bm and be, and the shadow settings)",
+        "no attraction point came within reach of the trunk (check the envelope, its offset and d_i)",
+        "no step found an endpoint to grow to (check the endpoints per step and the endpoint volume)",
+        "the axiom and productions drew no internode"};
+    report->message = std::string("nothing grew beyond the seedling: ") + why[spec.params.index()];
+  }
   return t;
 }
 

@@ -2,6 +2,7 @@
 #include "render/files.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -11,11 +12,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -67,6 +66,66 @@ const char* json_type_name(const json& j) {
   if (j.is_null()) return "null";
   return "an unsupported value";
 }
+
+// ---------------------------------------------------------------------------------------------
+// Limits on what a value may hold (files.h), shared by the preset loader and --set.
+
+std::string mb_text(size_t bytes) {
+  return bytes >= (1u << 20) ? std::to_string(bytes >> 20) + " MB" : std::to_string(bytes >> 10) + " KB";
+}
+
+std::string check_text(std::string_view s) {
+  if (s.size() > max_preset_text_bytes) return "text longer than the " + mb_text(max_preset_text_bytes) + " limit";
+  if (!valid_utf8(s)) return "text is not valid UTF-8";
+  return "";
+}
+
+template <class T>
+std::string check_value_limits(const T& v) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    return check_text(v);
+  } else if constexpr (std::is_same_v<T, std::vector<float>> || std::is_same_v<T, std::vector<glm::vec3>>) {
+    if (v.size() > max_preset_list)
+      return std::to_string(v.size()) + " entries, more than the limit of " + std::to_string(max_preset_list);
+  }
+  return "";
+}
+
+// Counts values and checks nesting and string sizes before the document is built, so a hostile
+// file is refused while it still costs nothing. Syntax errors are left to the real parse.
+struct preset_size_check : nlohmann::json_sax<json> {
+  size_t values = 0;
+  int depth = 0;
+  std::string error;
+  bool value() {
+    if (++values <= max_preset_values) return true;
+    error = "the preset holds more than " + std::to_string(max_preset_values) + " values (the limit)";
+    return false;
+  }
+  bool text(const std::string& s) {
+    if (s.size() <= max_preset_text_bytes) return value();
+    error = "a string of " + mb_text(s.size()) + " is longer than the " + mb_text(max_preset_text_bytes) + " limit";
+    return false;
+  }
+  bool open() {
+    if (++depth <= 32) return value();
+    error = "nested deeper than 32 levels";
+    return false;
+  }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t& s) override { return text(s); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(); }
+  bool key(string_t& s) override { return text(s); }
+  bool end_object() override { --depth; return true; }
+  bool start_array(std::size_t) override { return open(); }
+  bool end_array() override { --depth; return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+};
 
 // ---------------------------------------------------------------------------------------------
 // One value <-> JSON, for every type params.h allows.
@@ -148,15 +207,18 @@ std::string json_to_value(const json& j, T& out, const param_info& info, std::ve
     if (!json_to_vec3(j, out)) return "expected [x, y, z]";
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (!j.is_string()) return std::string("expected a string, got ") + json_type_name(j);
+    if (std::string e = check_text(j.get_ref<const std::string&>()); !e.empty()) return e;
     out = j.get<std::string>();
   } else if constexpr (std::is_same_v<T, std::vector<float>>) {
     if (!j.is_array()) return std::string("expected an array of numbers, got ") + json_type_name(j);
+    if (j.size() > max_preset_list) return "more than " + std::to_string(max_preset_list) + " entries (the limit)";
     std::vector<float> v(j.size());
     for (size_t i = 0; i < j.size(); ++i)
       if (!json_to_float(j[i], v[i])) return "expected an array of numbers";
     out = std::move(v);
   } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
     if (!j.is_array()) return std::string("expected an array of [x, y, z], got ") + json_type_name(j);
+    if (j.size() > max_preset_list) return "more than " + std::to_string(max_preset_list) + " entries (the limit)";
     std::vector<glm::vec3> v(j.size());
     for (size_t i = 0; i < j.size(); ++i)
       if (!json_to_vec3(j[i], v[i])) return "expected an array of [x, y, z]";
@@ -217,11 +279,15 @@ const std::vector<upgrade_step>& upgrade_steps() {
   return steps;
 }
 
+std::string newer_version_text(const std::string& version) {
+  return "written by a newer Sylva (preset version " + version + ", this one reads " + std::to_string(preset_version) +
+         "); unknown keys are ignored";
+}
+
 std::string upgrade_preset(json& doc, int64_t version, std::vector<std::string>& warnings) {
   if (version < 1) return "sylva_preset version " + std::to_string(version) + " is not valid (expected >= 1)";
   if (version > preset_version) {
-    warnings.push_back("written by a newer Sylva (preset version " + std::to_string(version) + ", this one reads " +
-                       std::to_string(preset_version) + "); unknown keys are ignored");
+    warnings.push_back(newer_version_text(std::to_string(version)));
     return "";
   }
   for (int64_t v = version; v < preset_version; ++v) {
@@ -259,6 +325,10 @@ load_result load_preset_doc(json& doc, preset& out) {
     r.warnings.push_back("no \"sylva_preset\" version; read as version " + std::to_string(preset_version));
   } else if (!it->is_number_integer()) {
     return fail(std::string("sylva_preset: expected an integer version, got ") + json_type_name(*it));
+  } else if (it->is_number_unsigned() && it->get<uint64_t>() > uint64_t(std::numeric_limits<int64_t>::max())) {
+    // Read as int64_t, 18446744073709551615 would become -1 and be called invalid.
+    r.warnings.push_back(newer_version_text(std::to_string(it->get<uint64_t>())));
+    version = preset_version;
   } else {
     version = it->get<int64_t>();
   }
@@ -269,6 +339,7 @@ load_result load_preset_doc(json& doc, preset& out) {
     auto it = doc.find(key);
     if (it == doc.end()) return "";
     if (!it->is_string()) return std::string(key) + ": expected a string, got " + json_type_name(*it);
+    if (std::string e = check_text(it->get_ref<const std::string&>()); !e.empty()) return std::string(key) + ": " + e;
     dst = it->get<std::string>();
     return "";
   };
@@ -276,8 +347,12 @@ load_result load_preset_doc(json& doc, preset& out) {
   if (std::string e = get_string("description", p.description); !e.empty()) return fail(e);
   if (auto it = doc.find("tags"); it != doc.end()) {
     if (!it->is_array()) return fail(std::string("tags: expected an array of strings, got ") + json_type_name(*it));
+    if (it->size() > max_preset_tags)
+      return fail("tags: " + std::to_string(it->size()) + " tags, more than the limit of " +
+                  std::to_string(max_preset_tags));
     for (const json& t : *it) {
       if (!t.is_string()) return fail("tags: expected an array of strings");
+      if (std::string e = check_text(t.get_ref<const std::string&>()); !e.empty()) return fail("tags: " + e);
       p.tags.push_back(t.get<std::string>());
     }
   }
@@ -378,6 +453,7 @@ std::string text_to_value(std::string_view s, T& out, const param_info& info) {
   } else if constexpr (std::is_same_v<T, glm::vec3>) {
     if (!parse_vec3_text(s, out)) return quote_text(s) + " is not x,y,z";
   } else if constexpr (std::is_same_v<T, std::string>) {
+    if (std::string e = check_text(s); !e.empty()) return e;
     out = std::string(s);
   } else if constexpr (std::is_same_v<T, std::vector<float>>) {
     std::vector<float> v;
@@ -398,7 +474,7 @@ std::string text_to_value(std::string_view s, T& out, const param_info& info) {
   } else {
     static_assert(sizeof(T) == 0, "value type not supported by --set (see params.h)");
   }
-  return "";
+  return check_value_limits(out);
 }
 
 // Calls f(value, info) on the parameter `key` (optionally "params.", "mesh." or "render."
@@ -440,6 +516,21 @@ std::string with_param(preset& p, std::string_view key, F&& f) {
 
 load_result load_preset_json(std::string_view text, preset& out) {
   json doc;
+  if (text.size() > max_preset_bytes) {
+    load_result r;
+    r.error = "the preset is larger than the " + mb_text(max_preset_bytes) + " limit";
+    return r;
+  }
+  try {
+    preset_size_check check;
+    json::sax_parse(text.begin(), text.end(), &check);
+    if (!check.error.empty()) {
+      load_result r;
+      r.error = check.error;
+      return r;
+    }
+  } catch (const std::exception&) {  // reported with its position by the parse below
+  }
   try {
     doc = json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
@@ -465,7 +556,7 @@ load_result load_preset_json(std::string_view text, preset& out) {
 
 load_result load_preset_file(const std::string& path, preset& out) {
   std::string text;
-  if (std::string e = read_file(path, text); !e.empty()) {
+  if (std::string e = read_file(path, text, max_preset_bytes); !e.empty()) {
     load_result r;
     r.error = e;
     return r;
@@ -486,11 +577,31 @@ std::string save_preset_json(const preset& p) {
   doc["params"] = std::visit([](const auto& gp) { return params_to_json(gp); }, p.spec.params);
   doc["mesh"] = params_to_json(p.mesh);
   doc["render"] = params_to_json(p.render);
-  return doc.dump(2) + "\n";
+  return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 std::string save_preset_file(const preset& p, const std::string& path) {
   return write_file_atomic(path, save_preset_json(p));
+}
+
+bool valid_utf8(std::string_view s) {
+  const auto* b = reinterpret_cast<const unsigned char*>(s.data());
+  const size_t n = s.size();
+  for (size_t i = 0; i < n;) {
+    const unsigned c = b[i];
+    if (c < 0x80) { ++i; continue; }
+    size_t len;
+    unsigned lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (c >= 0xC2 && c <= 0xDF) len = 2;
+    else if (c >= 0xE0 && c <= 0xEF) { len = 3; if (c == 0xE0) lo = 0xA0; if (c == 0xED) hi = 0x9F; }
+    else if (c >= 0xF0 && c <= 0xF4) { len = 4; if (c == 0xF0) lo = 0x90; if (c == 0xF4) hi = 0x8F; }
+    else return false;
+    if (n - i < len || b[i + 1] < lo || b[i + 1] > hi) return false;
+    for (size_t k = 2; k < len; ++k)
+      if ((b[i + k] & 0xC0) != 0x80) return false;
+    i += len;
+  }
+  return true;
 }
 
 std::string set_preset_param(preset& p, std::string_view assignment) {
@@ -525,6 +636,7 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
   });
   if (!found.empty()) return found;
   if (!numeric || parts.size() != 3) {  // a plain value (strings such as L-system text may hold ':')
+    if (std::string e = set_preset_param(copy, assignment); !e.empty()) return e;
     out.emplace_back(assignment);
     return "";
   }
@@ -533,6 +645,7 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
       n != std::floor(n) || n < 1 || n > 100000)
     return std::string(key) + ": a sweep is from:to:count with a whole count >= 1, got \"" + std::string(text) + "\"";
   const int count = int(n);
+  std::vector<std::string> values;
   for (int i = 0; i < count; ++i) {
     const double t = count == 1 ? 0.0 : double(i) / double(count - 1);
     double v = double(a) + (double(b) - double(a)) * t;
@@ -543,8 +656,13 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
       auto r = std::to_chars(buf, buf + sizeof buf - 1, float(v));
       *r.ptr = 0;
     }
-    out.push_back(std::string(key) + "=" + buf);
+    std::string value = std::string(key) + "=" + buf;
+    // Checked now, so that a sweep whose last value is out of range is refused before the first grows.
+    if (std::string e = set_preset_param(copy, value); !e.empty())
+      return e + " (value " + std::to_string(i + 1) + " of the sweep " + quote_text(text) + ")";
+    values.push_back(std::move(value));
   }
+  out.insert(out.end(), std::make_move_iterator(values.begin()), std::make_move_iterator(values.end()));
   return "";
 }
 
@@ -560,16 +678,38 @@ preset default_preset() {
 std::string write_file_atomic(const std::string& path, std::string_view bytes) {
   namespace fs = std::filesystem;
   if (path.empty()) return "cannot write: empty path";
-  const fs::path target(path);
+  // Through symlinks (as editors do): renaming over the link itself would turn it into a copy.
+  fs::path target(path);
+  for (int hops = 0;; ++hops) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(target, ec)) || ec) break;
+    if (hops == 40) return "cannot write " + path + ": too many levels of symbolic links";
+    const fs::path link = fs::read_symlink(target, ec);
+    if (ec) return "cannot write " + path + ": cannot read the symbolic link: " + ec.message();
+    target = link.is_absolute() ? link : target.parent_path() / link;
+  }
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // An existing file keeps its permissions (a 0600 file must not come back 0644) and, where the
+  // user may, its owner; a new file gets 0666 less the umask, as open() would give it.
+  struct stat old_st {};
+  const bool existed = ::stat(target.c_str(), &old_st) == 0 && S_ISREG(old_st.st_mode);
   static std::atomic<unsigned> counter{0};
   const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                                std::to_string(counter.fetch_add(1)));
   auto fail = [&](const char* what, int err) {
     return "cannot write " + path + ": " + what + ": " + std::strerror(err);
   };
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, existed ? 0600 : 0666);
   if (fd < 0) return fail("cannot create a file in its folder", errno);
+  if (existed) {
+    if (::fchown(fd, old_st.st_uid, old_st.st_gid) != 0) {}  // only root may give a file away; not an error
+    if (::fchmod(fd, old_st.st_mode & 07777) != 0) {
+      const int err = errno;
+      ::close(fd);
+      ::unlink(temp.c_str());
+      return fail("cannot keep the file's permissions", err);
+    }
+  }
   size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
@@ -606,15 +746,54 @@ std::string write_file_atomic(const std::string& path, std::string_view bytes) {
   return "";
 }
 
-std::string read_file(const std::string& path, std::string& out) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return "cannot read " + path + ": it is a folder";
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return "cannot read " + path + ": " + std::strerror(errno);
-  std::ostringstream s;
-  s << f.rdbuf();
-  if (f.bad()) return "cannot read " + path + ": read error";
-  out = std::move(s).str();
+std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes) {
+  auto fail = [&](const std::string& why) { return "cannot read " + path + ": " + why; };
+  // O_NONBLOCK: opening a FIFO with no writer must not hang before the type check below refuses it.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+  if (fd < 0) return fail(std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return fail(std::strerror(err));
+  }
+  // Only regular files: a device (/dev/zero), FIFO or socket may never end, and a folder has no bytes.
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return fail(S_ISDIR(st.st_mode) ? "it is a folder" : "not a regular file (a device, FIFO or socket)");
+  }
+  auto too_big = [&] {
+    return fail("larger than the " + std::to_string(max_bytes >> 20) + " MB limit for this kind of file");
+  };
+  if (uint64_t(st.st_size) > max_bytes) {
+    ::close(fd);
+    return too_big();
+  }
+  std::string text;
+  text.resize(size_t(st.st_size));
+  size_t got = 0;
+  for (;;) {  // also reads past st_size if the file grows meanwhile, up to the limit
+    if (got == text.size()) {
+      if (got > max_bytes) {
+        ::close(fd);
+        return too_big();
+      }
+      text.resize(std::min<uint64_t>(max_bytes + 1, std::max<uint64_t>(got * 2, 4096)));
+    }
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      return fail(std::strerror(err));
+    }
+    if (n == 0) break;
+    got += size_t(n);
+  }
+  ::close(fd);
+  if (got > max_bytes) return too_big();
+  text.resize(got);
+  out = std::move(text);
   return "";
 }
 

@@ -1,6 +1,8 @@
 // Presets (DESIGN §6) and safe file writing. Core I/O returns errors as values, never throws.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +14,18 @@
 namespace sylva {
 
 inline constexpr int preset_version = 1;
+
+// Input limits (docs/DESIGN-NOTES.md): a preset is a page of text; a texture or mesh may be large.
+inline constexpr uint64_t max_preset_bytes = 64ull << 20;
+inline constexpr uint64_t max_asset_bytes = 256ull << 20;
+// What one preset may hold, so a small file cannot expand into gigabytes once parsed.
+inline constexpr size_t max_preset_values = 1000000;     // JSON values in the whole document
+inline constexpr size_t max_preset_tags = 1000;
+inline constexpr size_t max_preset_list = 100000;        // entries of a list parameter (positions, schedules)
+inline constexpr size_t max_preset_text_bytes = 1 << 20;  // one string: a name, a tag, an L-system text
+
+// True when `s` is well-formed UTF-8 (RFC 3629: no overlong forms, no surrogates, <= U+10FFFF).
+bool valid_utf8(std::string_view s);
 
 struct preset {
   std::string name = "Untitled";
@@ -33,6 +47,8 @@ struct load_result {
 // clamped with a warning, wrong types and malformed JSON are errors.
 load_result load_preset_json(std::string_view text, preset& out);
 load_result load_preset_file(const std::string& path, preset& out);
+// Never throws: strings that are not UTF-8 (they cannot enter through the loaders or --set, but
+// an editor document might hold one) are written with U+FFFD in place of the bad bytes.
 std::string save_preset_json(const preset& p);
 // Writes through a temporary file and a rename; returns "" or the error.
 std::string save_preset_file(const preset& p, const std::string& path);
@@ -41,15 +57,20 @@ std::string save_preset_file(const preset& p, const std::string& path);
 // Returns "" or the error.
 std::string set_preset_param(preset& p, std::string_view assignment);
 // CLI `--set key=a:b:n` for a numeric parameter: appends n assignments from a to b, evenly spaced
-// (rounded for integers); any other assignment is appended unchanged. Returns "" or the error.
+// (rounded for integers); any other assignment is appended unchanged. Every value is checked as
+// set_preset_param would, so a sweep is refused whole before anything is grown. Returns "" or the error.
 std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out);
 
 // The tree `sylva` shows when started without a preset: Honda's tree a (lsystem_params defaults).
 preset default_preset();
 
 // Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-// Returns "" or a message naming the path and the reason.
+// A symlink is written through: its target is replaced and the link stays. An existing file keeps
+// its permission bits (and its owner, where allowed). Returns "" or a message naming the path and
+// the reason.
 std::string write_file_atomic(const std::string& path, std::string_view bytes);
-std::string read_file(const std::string& path, std::string& out);
+// Reads a whole regular file of at most `max_bytes`. Devices, FIFOs, sockets and folders are refused
+// at once, and so is a file over the limit (docs/DESIGN-NOTES.md, "Input limits").
+std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes = max_asset_bytes);
 
 }  // namespace sylva

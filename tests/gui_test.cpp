@@ -14,7 +14,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "app/headless.h"
-#include "app/worker.h"
 #include "render/gl/renderer.h"
 
 using namespace sylva;
@@ -285,49 +284,4 @@ TEST(HeadlessRender, UserBarkTextureIsUsedAndABadPathIsHarmless) {
   // A missing file keeps the procedural texture: same image as no user texture at all.
   p.render.bark_texture = temp_path("does_not_exist.png");
   EXPECT_EQ(reddish(load(render(p, "bark_missing.png"))), before);
-}
-
-namespace {
-// Polls the worker (as the editor's frame loop does) until it publishes generation g, or 20 s pass.
-std::shared_ptr<const grow_result> wait_for(worker_state& w, uint32_t g) {
-  std::shared_ptr<const grow_result> r;
-  uint32_t seen = 0;
-  for (int i = 0; i < 2000; ++i) {
-    if (auto x = take_result(w, seen)) {
-      r = x;
-      seen = x->generation;
-      if (seen == g) return r;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return nullptr;
-}
-}  // namespace
-
-TEST(GrowthWorker, NewestRequestWinsAndMeshEditsReuseTheSkeleton) {
-  worker_state w;
-  start_worker(w);
-  lsystem_params big;
-  big.derivations = 16;
-  lsystem_params small;
-  small.derivations = 6;
-  mesh_params m;
-  post_request(w, tree_spec{big, 1}, m);   // superseded at once: cancelled or never started
-  const uint32_t g = post_request(w, tree_spec{small, 1}, m);
-  auto r = wait_for(w, g);
-  ASSERT_TRUE(r);
-  // Honda with min = 0: n derivations give 2^n - 1 internodes plus the root, 2^6 = 64 nodes.
-  EXPECT_EQ(r->skeleton->size(), 64u);
-  EXPECT_TRUE(r->regrown);
-  EXPECT_EQ(validate_mesh(r->mesh), "");
-
-  mesh_params m2 = m;
-  m2.radial_segments = 5;
-  const uint32_t g2 = post_request(w, tree_spec{small, 1}, m2);
-  auto r2 = wait_for(w, g2);
-  ASSERT_TRUE(r2);
-  EXPECT_FALSE(r2->regrown);
-  EXPECT_EQ(r2->skeleton.get(), r->skeleton.get());   // the same tree, not regrown
-  EXPECT_EQ(r2->mesh.radial_segments, 5);
-  stop_worker(w);
 }
