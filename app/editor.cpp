@@ -25,6 +25,7 @@
 #include "app/editor_generators.h"
 #include "app/export_dialog.h"
 #include "app/headless.h"
+#include "app/input_queue.h"
 #include "app/preset_browser.h"
 #include "app/worker.h"
 #include "render/export.h"
@@ -77,6 +78,7 @@ struct editor_state {
   export_dialog_state exporter;   // app/export_dialog.h
   preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
+  input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
 };
 
 void set_status(editor_state& e, const std::string& m, bool error = false) {
@@ -646,6 +648,7 @@ int run_editor(const editor_options& o) {
   ImGui::GetStyle().WindowRounding = 0;
   load_fonts();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
+  install_input_queue(window, &e->input);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   if (!init_renderer(e->renderer)) set_status(*e, e->renderer.error, true);
@@ -667,6 +670,7 @@ int run_editor(const editor_options& o) {
     last = now;
     e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
 
+    feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
