@@ -38,6 +38,8 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
 // `total_steps`: the last increment grows on at the recent step-to-step ratio, and a falling ratio
 // goes on falling (to a constant increment), so growth that is filling its crown levels off and a
 // runaway one explodes. Capped at `cap`.
-double extrapolate_nodes(const std::vector<double>& born_per_step, int complete_steps, int total_steps, double cap);
+// `node_steps`, when given, receives Σ over the steps of the nodes standing then (time goes with it).
+double extrapolate_nodes(const std::vector<double>& born_per_step, int complete_steps, int total_steps, double cap,
+                         double* node_steps = nullptr);
 
 }  // namespace sylva
