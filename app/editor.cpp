@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -62,11 +63,16 @@ struct editor_state {
   // View.
   renderer_state renderer;
   orbit_camera camera;
-  bool frame_pending = true;      // frame the camera on the next tree
+  bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
+  bool frame_now = false;         // frame the tree on screen now (F)
+  uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false;
   std::string picker_path, save_as_path;
+  bool confirm_overwrite = false;
+  std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
+  std::string script_shot;        // the scripted test's screenshot path, taken at the end of the frame
   std::vector<std::string> preset_files;
   // Status.
   std::string message;
@@ -78,6 +84,32 @@ struct editor_state {
   export_dialog_state exporter;   // app/export_dialog.h
   preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
+  GLFWwindow* window = nullptr;
+  // Growth state (issue 14): the status bar shows exactly one of these.
+  enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;
+  std::string growth_text;        // detail for done / cancelled / failed
+  uint32_t posted_generation = 0; // the newest request
+  uint32_t stale_before = 0;      // results older than this were cancelled
+  std::chrono::steady_clock::time_point posted_at;
+  std::shared_ptr<const grow_result> budget_answer;   // an over-budget estimate waiting for the user
+  bool open_budget_prompt = false, approve_next = false;
+  // Nodes alive at the scrubbed step (cached per tree and step).
+  const tree_skeleton* counted_tree = nullptr;
+  int counted_step = -1;
+  size_t counted_nodes = 0;
+  // Unsaved work: what to do once the user has answered save / discard / cancel.
+  enum class then { nothing, quit, open } pending = then::nothing;
+  std::string pending_path;
+  bool open_confirm = false, continue_after_save = false, close_requested = false, quit_confirmed = false;
+  // Recovery: the document is autosaved while modified and offered back on the next start.
+  std::string home;               // ~/Sylva or $SYLVA_HOME
+  double autosave_wait = 0;
+  preset autosaved;
+  bool autosaved_any = false;
+  bool open_recovery = false;
+  preset recovered;
+  std::string recovered_path;
+  std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
 };
 
@@ -261,18 +293,112 @@ void open_preset(editor_state& e, const std::string& path) {
   e.undo_base = loaded;
   e.path = path;
   note_saved_preset(e.browser, e.doc, path);
-  e.frame_pending = true;
+  e.frame_new = true;
   std::string m = "Opened " + path;
   if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
   set_status(e, m, false);
 }
 
-void save_to(editor_state& e, const std::string& path) {
+bool save_to(editor_state& e, const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
   std::string err = save_preset_file(e.doc, path);
-  if (!err.empty()) return set_status(e, "Save failed: " + err, true);
+  if (!err.empty()) {
+    set_status(e, "Save failed: " + err, true);
+    return false;
+  }
   e.path = path;
   note_saved_preset(e.browser, e.doc, path);
   set_status(e, "Saved " + path);
+  return true;
+}
+
+// ---------------------------------------------------------------- unsaved work (issue 14)
+
+// The user's own folder for saves, exports, screenshots and the recovery file: $SYLVA_HOME, else ~/Sylva.
+std::string user_folder() {
+  if (const char* h = std::getenv("SYLVA_HOME"); h && *h) return h;
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / "Sylva").string();
+  return (fs::current_path() / "Sylva").string();
+}
+
+// A shipped preset is never overwritten by Save: it goes to Save as in the user's folder instead.
+bool is_installed_preset(const std::string& path) {
+  if (path.empty()) return false;
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  for (const fs::path& d : preset_dirs()) {
+    const fs::path c = fs::weakly_canonical(d, ec);
+    if (!ec && p.parent_path() == c) return true;
+  }
+  return false;
+}
+
+// "My tree" -> "~/Sylva/my_tree.json".
+std::string default_save_path(const editor_state& e) {
+  if (!e.path.empty() && !is_installed_preset(e.path)) return e.path;
+  std::string stem;
+  for (char c : e.doc.name) stem += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '_';
+  if (stem.empty()) stem = "tree";
+  return (fs::path(e.home) / (stem + ".json")).string();
+}
+
+bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
+
+std::string recovery_path(const editor_state& e) { return (fs::path(e.home) / "recovery.json").string(); }
+
+void remove_recovery(editor_state& e) {
+  std::error_code ec;
+  fs::remove(recovery_path(e), ec);
+  fs::remove(recovery_path(e) + ".source", ec);
+  e.autosaved_any = false;
+}
+
+// Every few seconds while modified: the document to ~/Sylva/recovery.json, its own path beside it.
+void autosave(editor_state& e, double dt) {
+  if (e.quit_confirmed) return;
+  if (!modified(e)) {
+    if (e.autosaved_any) remove_recovery(e);
+    e.autosave_wait = 0;
+    return;
+  }
+  e.autosave_wait += dt;
+  if (e.autosave_wait < 3.0 || (e.autosaved_any && e.doc == e.autosaved)) return;
+  e.autosave_wait = 0;
+  std::error_code ec;
+  fs::create_directories(e.home, ec);
+  if (!save_preset_file(e.doc, recovery_path(e)).empty()) return;   // best effort; never interrupts
+  (void)write_file_atomic(recovery_path(e) + ".source", e.path);
+  e.autosaved = e.doc;
+  e.autosaved_any = true;
+}
+
+// Carries out what waited for the unsaved-changes question.
+void perform_pending(editor_state& e) {
+  const editor_state::then what = e.pending;
+  e.pending = editor_state::then::nothing;
+  e.continue_after_save = false;
+  if (what == editor_state::then::quit) {
+    e.quit_confirmed = true;
+    remove_recovery(e);
+    glfwSetWindowShouldClose(e.window, GLFW_TRUE);
+  } else if (what == editor_state::then::open) {
+    open_preset(e, e.pending_path);
+  }
+}
+
+// Quit, window close, Open and the library go through here: asks first when the document is modified.
+void request(editor_state& e, editor_state::then what, const std::string& path = "") {
+  e.pending = what;
+  e.pending_path = path;
+  if (!modified(e)) return perform_pending(e);
+  e.open_confirm = true;
+}
+
+// Save: to the document's own file, or Save as when it has none or it is a shipped preset.
+void save_command(editor_state& e) {
+  if (e.path.empty() || is_installed_preset(e.path)) e.open_save_as = true;
+  else save_to(e, e.path);
 }
 
 // ---------------------------------------------------------------- undo
@@ -294,27 +420,62 @@ void record_undo(editor_state& e) {
   e.undo_base = e.doc;
 }
 
+std::string count_text(double n) {
+  char b[64];
+  if (n >= 1e6) std::snprintf(b, sizeof b, "%.1f million", n / 1e6);
+  else if (n >= 1e4) std::snprintf(b, sizeof b, "%.0f thousand", n / 1e3);
+  else std::snprintf(b, sizeof b, "%.0f", n);
+  return b;
+}
+
+std::string seconds_text(double s) {
+  char b[64];
+  if (s >= 120) std::snprintf(b, sizeof b, "%.0f min", s / 60);
+  else if (s >= 1) std::snprintf(b, sizeof b, "%.0f s", s);
+  else std::snprintf(b, sizeof b, "%.1f s", s);
+  return b;
+}
+
+// A cancelled or over-budget request: the document goes back to the tree on screen, so what is
+// shown is what would be saved. The edit is dropped from the undo history.
+void keep_shown_tree(editor_state& e, const std::string& why) {
+  if (e.shown && e.shown->skeleton && e.shown->skeleton->size()) {
+    e.doc.spec = e.shown->spec;
+    e.doc.mesh = e.shown->mesh_settings;
+    if (!e.undo.empty() && e.undo.back() == e.doc) e.undo.pop_back();
+    e.undo_base = e.doc;
+    e.posted_spec = e.doc.spec;
+    e.posted_mesh = e.doc.mesh;
+  }
+  e.growth_state = editor_state::growth::cancelled;
+  e.growth_text = why;
+}
+
 // ---------------------------------------------------------------- UI
 
-void draw_menu(editor_state& e, GLFWwindow* window) {
+void draw_menu(editor_state& e) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open preset...", "Ctrl+O")) e.open_picker = true;
     ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
-    if (ImGui::MenuItem("Save", "Ctrl+S")) {
-      if (e.path.empty()) e.open_save_as = true;
-      else save_to(e, e.path);
-    }
+    if (ImGui::MenuItem("Save", "Ctrl+S")) save_command(e);
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
     ImGui::MenuItem("Export...", nullptr, &e.exporter.open);
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) request(e, editor_state::then::quit);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
     if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !e.undo.empty())) apply_undo(e, e.undo, e.redo);
     if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, !e.redo.empty())) apply_undo(e, e.redo, e.undo);
+    ImGui::Separator();
+    int64_t budget = e.worker.node_budget.load();
+    const int64_t lo = 1000, hi = 50000000;
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::SliderScalar("Node budget", ImGuiDataType_S64, &budget, &lo, &hi, "%lld", ImGuiSliderFlags_Logarithmic))
+      e.worker.node_budget = std::clamp(budget, lo, hi);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A request estimated to grow more nodes than this asks before growing");
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -323,7 +484,7 @@ void draw_menu(editor_state& e, GLFWwindow* window) {
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
-    if (ImGui::MenuItem("Frame tree", "F")) e.frame_pending = true;
+    if (ImGui::MenuItem("Frame tree", "F")) e.frame_now = true;
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
@@ -344,7 +505,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
     spec.params = default_params(g);
-    e.frame_pending = true;
+    e.frame_new = true;
   }
   int seed = int(spec.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
@@ -401,6 +562,32 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::End();
 }
 
+// Nodes alive at the scrubbed step, like the leaf and triangle counts (O(n), once per step change).
+size_t nodes_at_step(editor_state& e) {
+  const tree_skeleton* t = e.shown ? e.shown->skeleton.get() : nullptr;
+  if (!t) return 0;
+  if (t != e.counted_tree || e.step != e.counted_step) {
+    size_t n = 0;
+    for (size_t i = 0; i < t->size(); ++i) n += t->alive(i, e.step);
+    e.counted_tree = t, e.counted_step = e.step, e.counted_nodes = n;
+  }
+  return e.counted_nodes;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The growth in progress has run long enough to show a progress bar with Cancel (~200 ms).
+bool long_growth(const editor_state& e) {
+  return e.growth_state == editor_state::growth::growing && seconds_since(e.posted_at) > 0.2;
+}
+
+void cancel_request(editor_state& e) {
+  e.stale_before = cancel_growth(e.worker);
+  keep_shown_tree(e, "the previous tree stays");
+}
+
 void draw_status(editor_state& e, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(0, y));
   ImGui::SetNextWindowSize(ImVec2(w, status_height));
@@ -409,23 +596,49 @@ void draw_status(editor_state& e, float y, float w) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
   const grow_result* r = e.shown.get();
-  ImGui::Text("nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms%s",
-              r && r->skeleton ? r->skeleton->size() : size_t(0), e.renderer.leaves_drawn, e.renderer.triangles_drawn,
-              r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms, e.worker.busy ? "   growing..." : "");
+  // One state: growing (with progress and Cancel once it takes a while), done, cancelled or failed.
+  using g = editor_state::growth;
+  switch (e.growth_state) {
+    case g::growing:
+      if (long_growth(e)) {
+        ImGui::TextUnformatted("growing");
+        ImGui::SameLine();
+        ImGui::ProgressBar(e.worker.progress.load(), ImVec2(160, 0));
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Cancel (Esc)")) cancel_request(e);
+      } else {
+        ImGui::TextUnformatted("growing...");
+      }
+      break;
+    case g::asking: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", e.growth_text.c_str()); break;
+    case g::done: ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1), "done: %s", e.growth_text.c_str()); break;
+    case g::cancelled: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "cancelled: %s", e.growth_text.c_str()); break;
+    case g::failed: ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "failed: %s", e.growth_text.c_str()); break;
+    case g::idle: ImGui::TextDisabled("no tree yet"); break;
+  }
   ImGui::SameLine();
-  const std::string& m = !e.message.empty() || !r ? e.message : r->report.message;
-  const bool err = e.message_is_error || (e.message.empty() && r && r->report.error);
-  ImGui::TextColored(err ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", m.c_str());
+  ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
+              e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+  if (!e.message.empty()) {
+    ImGui::SameLine();
+    ImGui::TextColored(e.message_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", e.message.c_str());
+  }
   if (r && !r->mesh.message.empty()) {   // the leaf cap: growth went on, the foliage stopped
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "   %s", r->mesh.message.c_str());
   }
-  if (r && !r->report.stop_reason.empty()) {   // why growth ended: points used up, cap, step limit ...
-    ImGui::SameLine();
-    ImGui::TextDisabled("   ended: %s", r->report.stop_reason.c_str());
-  }
   ImGui::End();
   ImGui::PopStyleVar();
+}
+
+// A dialog button that the scripted test can press too (`answer LABEL`).
+bool scripted_button(editor_state& e, const char* label) {
+  const bool clicked = ImGui::Button(label);
+  if (!e.script_answer.empty() && e.script_answer == label) {
+    e.script_answer.clear();
+    return true;
+  }
+  return clicked;
 }
 
 void draw_dialogs(editor_state& e) {
@@ -435,9 +648,14 @@ void draw_dialogs(editor_state& e) {
     e.open_picker = false;
   }
   if (e.open_save_as) {
-    if (e.save_as_path.empty()) e.save_as_path = e.path.empty() ? "my_tree.json" : e.path;
+    e.save_as_path = default_save_path(e);
+    e.confirm_overwrite = false;
     ImGui::OpenPopup("Save preset as");
     e.open_save_as = false;
+  }
+  if (e.open_confirm) {
+    ImGui::OpenPopup("Unsaved changes");
+    e.open_confirm = false;
   }
   if (e.open_about) {
     ImGui::OpenPopup("About Sylva");
@@ -451,7 +669,7 @@ void draw_dialogs(editor_state& e) {
       if (ImGui::Selectable(name.c_str(), e.picker_path == f, ImGuiSelectableFlags_AllowDoubleClick)) {
         e.picker_path = f;
         if (ImGui::IsMouseDoubleClicked(0)) {
-          open_preset(e, f);
+          request(e, editor_state::then::open, f);
           ImGui::CloseCurrentPopup();
         }
       }
@@ -463,7 +681,7 @@ void draw_dialogs(editor_state& e) {
     ImGui::InputText("##path", &e.picker_path);
     ImGui::SameLine();
     if (ImGui::Button("Open") && !e.picker_path.empty()) {
-      open_preset(e, e.picker_path);
+      request(e, editor_state::then::open, e.picker_path);
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
@@ -471,15 +689,113 @@ void draw_dialogs(editor_state& e) {
     ImGui::EndPopup();
   }
   if (ImGui::BeginPopupModal("Save preset as", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Save preset as");
     ImGui::InputText("Name", &e.doc.name);
     ImGui::SetNextItemWidth(480);
-    ImGui::InputText("Path", &e.save_as_path);
-    if (ImGui::Button("Save") && !e.save_as_path.empty()) {
-      save_to(e, e.save_as_path);
+    if (ImGui::InputText("Path", &e.save_as_path)) e.confirm_overwrite = false;
+    std::error_code ec;
+    const bool exists = fs::exists(e.save_as_path, ec) && e.save_as_path != e.path;
+    if (is_installed_preset(e.save_as_path))
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "This is a shipped preset; save your own copy in %s instead.", e.home.c_str());
+    else if (e.confirm_overwrite)
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s exists. Replace it?", e.save_as_path.c_str());
+    const bool can = !e.save_as_path.empty() && !is_installed_preset(e.save_as_path);
+    if (!can) ImGui::BeginDisabled();
+    if (scripted_button(e, e.confirm_overwrite ? "Replace" : "Save")) {
+      if (exists && !e.confirm_overwrite) {
+        e.confirm_overwrite = true;
+      } else {
+        const bool saved = save_to(e, e.save_as_path);
+        ImGui::CloseCurrentPopup();
+        if (saved && e.continue_after_save) perform_pending(e);
+        e.continue_after_save = false;
+      }
+    }
+    if (!can) ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (scripted_button(e, "Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+      e.continue_after_save = false;
+      e.pending = editor_state::then::nothing;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+  if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Unsaved changes");
+    ImGui::Text("\"%s\" has changes that are not saved.", e.doc.name.c_str());
+    ImGui::TextUnformatted(e.pending == editor_state::then::quit ? "Save them before quitting?" : "Save them before opening another preset?");
+    ImGui::Spacing();
+    if (scripted_button(e, "Save")) {
+      ImGui::CloseCurrentPopup();
+      if (e.path.empty() || is_installed_preset(e.path)) {
+        e.continue_after_save = true;
+        e.open_save_as = true;
+      } else if (save_to(e, e.path)) {
+        perform_pending(e);
+      }
+    }
+    ImGui::SameLine();
+    if (scripted_button(e, "Discard")) {
+      ImGui::CloseCurrentPopup();
+      perform_pending(e);
+    }
+    ImGui::SameLine();
+    if (scripted_button(e, "Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+      e.pending = editor_state::then::nothing;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+  if (e.open_budget_prompt) {
+    ImGui::OpenPopup("Large tree");
+    e.open_budget_prompt = false;
+  }
+  if (ImGui::BeginPopupModal("Large tree", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Large tree");
+    const grow_result* b = e.budget_answer.get();
+    if (b) {
+      ImGui::Text("This will grow about %s nodes, ~%s, ~%.1f GB.", count_text(b->estimated_nodes).c_str(),
+                  seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
+      ImGui::Text("The node budget is %s (Edit > Preferences).", count_text(double(e.worker.node_budget.load())).c_str());
+      ImGui::TextDisabled("The tree on screen stays until you choose.");
+    }
+    if (scripted_button(e, "Grow anyway") && b) {
+      e.approve_next = true;
+      e.posted_once = false;   // post again, approved
+      e.budget_answer.reset();
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+    if (scripted_button(e, "Keep the current tree") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+      keep_shown_tree(e, "over budget: the previous tree stays");
+      e.budget_answer.reset();
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+  if (e.open_recovery) {
+    ImGui::OpenPopup("Restore unsaved work?");
+    e.open_recovery = false;
+  }
+  if (ImGui::BeginPopupModal("Restore unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Restore unsaved work?");
+    ImGui::Text("Sylva closed with unsaved changes to \"%s\"%s%s.", e.recovered.name.c_str(),
+                e.recovered_path.empty() ? "" : " from ", e.recovered_path.c_str());
+    ImGui::TextDisabled("Autosaved in %s", recovery_path(e).c_str());
+    if (scripted_button(e, "Restore")) {
+      e.undo.push_back(e.doc);
+      e.doc = e.recovered;
+      e.undo_base = e.doc;
+      e.path = e.recovered_path;
+      e.frame_new = true;
+      set_status(e, "Restored unsaved work; save it to keep it");
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (scripted_button(e, "Discard")) {
+      remove_recovery(e);
+      ImGui::CloseCurrentPopup();
+    }
     ImGui::EndPopup();
   }
   if (ImGui::BeginPopupModal("About Sylva", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -492,8 +808,9 @@ void draw_dialogs(editor_state& e) {
   }
 }
 
-void handle_keys(editor_state& e, GLFWwindow* window) {
+void handle_keys(editor_state& e) {
   ImGuiIO& io = ImGui::GetIO();
+  if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
   if (io.WantTextInput) return;
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z)) {
@@ -501,14 +818,11 @@ void handle_keys(editor_state& e, GLFWwindow* window) {
     else apply_undo(e, e.undo, e.redo);
   }
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y)) apply_undo(e, e.redo, e.undo);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) {
-    if (e.path.empty()) e.open_save_as = true;
-    else save_to(e, e.path);
-  }
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) glfwSetWindowShouldClose(window, GLFW_TRUE);
-  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_pending = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
+  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
   if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
 }
@@ -550,11 +864,49 @@ std::string save_window_png(int width, int height, const std::string& path) {
   return save_png_rgba(path, width, height, flipped.data());
 }
 
+// Posts the document when its spec or mesh settings changed; render settings only touch uniforms.
+void post_if_changed(editor_state& e) {
+  if (e.hold_post) return;
+  if (e.posted_once && e.doc.spec == e.posted_spec && e.doc.mesh == e.posted_mesh) return;
+  // A new generator (switched, opened or undone) is a new tree: frame it. Edits keep the camera.
+  if (e.posted_once && e.doc.spec.params.index() != e.posted_spec.params.index()) e.frame_new = true;
+  e.posted_spec = e.doc.spec;
+  e.posted_mesh = e.doc.mesh;
+  e.posted_once = true;
+  e.posted_generation = post_request(e.worker, e.posted_spec, e.posted_mesh, e.approve_next);
+  e.approve_next = false;
+  e.posted_at = std::chrono::steady_clock::now();
+  e.growth_state = editor_state::growth::growing;
+  if (e.frame_new) e.frame_generation = e.posted_generation;
+  e.frame_new = false;
+}
+
+// Keeps the pitch off the poles, then fits the box from the current direction (never top-down).
+void frame_view(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi) {
+  if (c.pitch > 50 || c.pitch < -30) c.pitch = 10;
+  frame_camera(c, lo, hi);
+}
+
 // Shows a newer worker result: upload in the same frame it is seen (DESIGN §5).
 void take_new_tree(editor_state& e) {
   std::shared_ptr<const grow_result> r = take_result(e.worker, e.seen_generation);
   if (!r) return;
   e.seen_generation = r->generation;
+  if (int32_t(r->generation - e.stale_before) < 0) return;   // cancelled before it arrived
+  const bool newest = r->generation == e.posted_generation;
+  if (r->over_budget) {
+    if (!newest) return;
+    e.budget_answer = r;
+    e.open_budget_prompt = true;
+    e.growth_state = editor_state::growth::asking;
+    e.growth_text = "over the node budget: grow it anyway?";
+    return;
+  }
+  if (newest) {
+    e.growth_state = r->report.error ? editor_state::growth::failed : editor_state::growth::done;
+    e.growth_text = r->report.error ? r->report.message : r->report.stop_reason;
+    if (!r->report.error && !r->report.message.empty()) e.growth_text += " (" + r->report.message + ")";
+  }
   if (e.shown && keeps_last_tree(*r)) return set_status(e, r->report.message, true);
   const int old_steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : -1;
   const bool at_end = !e.shown || e.step >= old_steps;
@@ -564,11 +916,152 @@ void take_new_tree(editor_state& e) {
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(e.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);
-  if (e.frame_pending) {
-    frame_camera(e.camera, e.renderer.bounds_min, e.renderer.bounds_max);
-    e.frame_pending = false;
+  if (e.frame_generation != 0 && int32_t(r->generation - e.frame_generation) >= 0) {
+    frame_view(e.camera, e.renderer.bounds_min, e.renderer.bounds_max);
+    e.frame_generation = 0;
   }
   if (e.message_is_error && e.message.rfind("Cannot open", 0) != 0) e.message.clear();
+}
+
+// ---------------------------------------------------------------- scripted driving (tests)
+
+// SYLVA_SCRIPT=FILE drives the real window from a script, one command per line, for the editor's
+// end-to-end test (tests/editor_test.cpp). Commands that wait give up after a timeout and fail.
+//   wait_tree                  until no growth is in progress and a tree is shown
+//   set KEY=VALUE              an edit, as the panel would make it (set_preset_param)
+//   key [ctrl+][shift+]NAME    a press and release queued between two frames (NAME: a-z, escape, f12, ...)
+//   taps N [ctrl+]NAME         N presses and releases queued at once
+//   expect_recovery 0|1        whether the autosaved recovery file exists (waits for it)
+//   answer LABEL               press a button of the open dialog
+//   expect_prompt TITLE / expect_no_prompt
+//   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
+//   wait_progress              until the progress bar with Cancel shows
+//   remember / expect_same_tree / expect_new_tree
+//   budget N / shot PATH / frames N / quit (as Ctrl+Q)
+// At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
+struct script_state {
+  std::vector<std::string> lines;
+  size_t next = 0;
+  std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
+  int frames_left = -1;
+  const tree_skeleton* remembered = nullptr;
+  std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
+  bool failed = false, finished = false;
+};
+
+int glfw_key(const std::string& name) {
+  if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0]))) return GLFW_KEY_A + (std::tolower(name[0]) - 'a');
+  if (name.size() == 1 && std::isdigit(static_cast<unsigned char>(name[0]))) return GLFW_KEY_0 + (name[0] - '0');
+  if (name == "escape") return GLFW_KEY_ESCAPE;
+  if (name == "enter") return GLFW_KEY_ENTER;
+  if (name == "backspace") return GLFW_KEY_BACKSPACE;
+  if (name == "space") return GLFW_KEY_SPACE;
+  if (name == "f12") return GLFW_KEY_F12;
+  return GLFW_KEY_UNKNOWN;
+}
+
+// Runs the script's current command; returns false once the script is over.
+bool run_script(editor_state& e, script_state& sc) {
+  using clock = std::chrono::steady_clock;
+  auto fail = [&](const std::string& why) {
+    std::fprintf(stderr, "sylva script: FAIL at line %zu (%s): %s\n", sc.next + 1, sc.lines[sc.next].c_str(), why.c_str());
+    sc.failed = true;
+    return false;
+  };
+  while (sc.next < sc.lines.size()) {
+    const std::string& line = sc.lines[sc.next];
+    const size_t sp = line.find(' ');
+    const std::string cmd = line.substr(0, sp), arg = sp == std::string::npos ? "" : line.substr(sp + 1);
+    const double waited = std::chrono::duration<double>(clock::now() - sc.started_line).count();
+    const bool growing = e.growth_state == editor_state::growth::growing;
+    bool done = true;   // false: wait and try again next frame
+    auto shown_prompt = [&](const std::string& t) {
+      return std::find(e.prompts_shown.begin(), e.prompts_shown.end(), t) != e.prompts_shown.end();
+    };
+    if (line.empty() || line[0] == '#') {
+    } else if (cmd == "wait_tree") {
+      done = !growing && e.shown;
+      if (!done && waited > 120) return fail("no tree after 120 s");
+    } else if (cmd == "set") {
+      if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
+      sc.frames_left = 2;   // posted on the next frame
+    } else if (cmd == "expect_recovery") {
+      std::error_code ec;
+      done = fs::exists(recovery_path(e), ec) == (arg == "1");
+      if (!done && waited > 20) return fail(arg == "1" ? "no recovery file" : "the recovery file stays");
+    } else if (cmd == "key" || cmd == "taps") {
+      std::string name = arg;
+      int taps = 1;
+      if (cmd == "taps") {   // taps N KEY: N press/release pairs queued at once between two frames
+        taps = std::atoi(arg.c_str());
+        name = arg.substr(std::min(arg.size(), arg.find(' ') + 1));
+      }
+      bool ctrl = false, shift = false;
+      for (;;) {
+        if (name.rfind("ctrl+", 0) == 0) ctrl = true, name = name.substr(5);
+        else if (name.rfind("shift+", 0) == 0) shift = true, name = name.substr(6);
+        else break;
+      }
+      const int k = glfw_key(name);
+      if (k == GLFW_KEY_UNKNOWN) return fail("unknown key");
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS);
+      if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_PRESS);
+      for (int i = 0; i < taps; ++i) {
+        e.input.push_key(k, GLFW_PRESS);
+        e.input.push_key(k, GLFW_RELEASE);
+      }
+      if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_RELEASE);
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE);
+      sc.frames_left = 2 * taps + 3;   // let the queued events drain before the next command
+    } else if (cmd == "answer") {
+      e.script_answer = arg;
+      sc.frames_left = 2;
+    } else if (cmd == "expect_prompt") {
+      done = shown_prompt(arg);
+      if (!done && waited > 30) return fail("the dialog did not appear");
+    } else if (cmd == "expect_no_prompt") {
+      if (!e.prompts_shown.empty()) return fail("a dialog is open: " + e.prompts_shown.front());
+    } else if (cmd == "expect_modified") {
+      if (modified(e) != (arg == "1")) return fail(modified(e) ? "the document is modified" : "the document is not modified");
+    } else if (cmd == "expect_state") {
+      static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
+      if (arg != names[int(e.growth_state)]) return fail(std::string("the state is ") + names[int(e.growth_state)]);
+    } else if (cmd == "expect_param") {
+      preset copy = e.doc;
+      if (std::string err = set_preset_param(copy, arg); !err.empty()) return fail(err);
+      if (!(copy == e.doc)) return fail("the parameter differs");
+    } else if (cmd == "wait_progress") {
+      done = long_growth(e) && e.worker.busy;
+      if (!done && waited > 30) return fail("no progress bar");
+    } else if (cmd == "remember") {
+      sc.remembered_hold = e.shown;
+      sc.remembered = e.shown ? e.shown->skeleton.get() : nullptr;
+    } else if (cmd == "expect_same_tree" || cmd == "expect_new_tree") {
+      const bool same = e.shown && e.shown->skeleton.get() == sc.remembered;
+      if (same != (cmd == "expect_same_tree")) return fail(same ? "the tree did not change" : "the tree changed");
+    } else if (cmd == "budget") {
+      e.worker.node_budget = std::atoll(arg.c_str());
+    } else if (cmd == "shot") {
+      e.script_shot = arg;
+      sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame
+    } else if (cmd == "frames") {
+      if (sc.frames_left < 0) sc.frames_left = std::atoi(arg.c_str());
+    } else if (cmd == "quit") {
+      request(e, editor_state::then::quit);
+      sc.frames_left = 2;
+    } else {
+      return fail("unknown command");
+    }
+    if (!done) return true;
+    static const auto script_start = clock::now();
+    std::printf("sylva script: ok %s (%.1f s)\n", line.c_str(), std::chrono::duration<double>(clock::now() - script_start).count());
+    std::fflush(stdout);
+    ++sc.next;
+    sc.started_line = clock::now();
+    if (sc.frames_left > 0) return true;   // continue after that many frames
+  }
+  sc.finished = true;
+  return false;
 }
 
 }  // namespace
@@ -606,6 +1099,34 @@ int run_editor(const editor_options& o) {
   }
   e->undo_base = e->doc;
   note_saved_preset(e->browser, e->doc, e->path);
+  e->home = user_folder();
+  script_state script;
+  if (const char* s = std::getenv("SYLVA_SCRIPT")) {
+    std::string text;
+    if (std::string err = read_file(s, text); !err.empty()) {
+      std::fprintf(stderr, "sylva: %s\n", err.c_str());
+      return 2;
+    }
+    size_t a = 0;
+    while (a <= text.size()) {
+      size_t b = text.find('\n', a);
+      if (b == std::string::npos) b = text.size();
+      script.lines.push_back(text.substr(a, b - a));
+      a = b + 1;
+    }
+  }
+  const bool scripted = !script.lines.empty();
+  const bool automated = !o.screenshot_path.empty();
+  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) e->worker.node_budget = std::max<int64_t>(1000, std::atoll(s));
+  // Work left unsaved by a crash or a killed session: offered back (not in automatic screenshots).
+  if (std::error_code ec; !automated && fs::exists(recovery_path(*e), ec)) {
+    if (load_preset_file(recovery_path(*e), e->recovered).ok) {
+      std::string source;
+      (void)read_file(recovery_path(*e) + ".source", source);
+      e->recovered_path = source;
+      e->open_recovery = true;
+    }
+  }
   e->show_overlays = o.overlays;
   if (const char* s = std::getenv("SYLVA_SHOW_BROWSER")) e->browser.open = std::atoi(s) != 0;
   if (const char* s = std::getenv("SYLVA_SHOW_EXPORT")) e->exporter.open = std::atoi(s) != 0;
@@ -638,6 +1159,15 @@ int run_editor(const editor_options& o) {
     return 1;
   }
   glfwMakeContextCurrent(window);
+  e->window = window;
+  // Closing the window asks first when there are unsaved changes (issue 14).
+  glfwSetWindowUserPointer(window, e.get());
+  glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+    auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w));
+    if (!ed || ed->quit_confirmed) return;
+    glfwSetWindowShouldClose(w, GLFW_FALSE);
+    ed->close_requested = true;
+  });
   glfwSwapInterval(o.screenshot_path.empty() ? 1 : 0);
   install_gl_debug_output();
 
@@ -681,7 +1211,12 @@ int run_editor(const editor_options& o) {
 
     // Build the UI first; only then read the state for drawing (DESIGN §9).
     e->hold_post = false;
-    draw_menu(*e, window);
+    e->prompts_shown.clear();
+    if (e->close_requested) {
+      e->close_requested = false;
+      request(*e, editor_state::then::quit);
+    }
+    draw_menu(*e);
     const float top = ImGui::GetFrameHeight();
     const float bottom = float(win_h) - status_height - (e->show_timeline ? timeline_height : 0);
     if (e->show_panel) draw_panel(*e, top, float(win_h) - status_height);
@@ -689,20 +1224,26 @@ int run_editor(const editor_options& o) {
     if (e->show_timeline) draw_timeline(*e, left, bottom, float(win_w) - left);
     draw_status(*e, float(win_h) - status_height, float(win_w));
     draw_dialogs(*e);
-    if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) open_preset(*e, p);
+    if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
     draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
-    handle_keys(*e, window);
+    handle_keys(*e);
     handle_mouse(*e, int(bottom - top));
     record_undo(*e);
+    autosave(*e, dt);
 
-    // Post growth when the spec or mesh settings changed; render settings only touch uniforms.
-    if (!e->hold_post && (!e->posted_once || !(e->doc.spec == e->posted_spec) || !(e->doc.mesh == e->posted_mesh))) {
-      e->posted_spec = e->doc.spec;
-      e->posted_mesh = e->doc.mesh;
-      e->posted_once = true;
-      post_request(e->worker, e->posted_spec, e->posted_mesh);
-    }
+    post_if_changed(*e);
     take_new_tree(*e);
+    if (scripted && !script.failed && !script.finished) {
+      if (script.frames_left > 0) --script.frames_left;
+      else {
+        script.frames_left = -1;
+        if (!run_script(*e, script)) {
+          if (script.failed) exit_code = 3;
+          e->quit_confirmed = true;
+          glfwSetWindowShouldClose(window, GLFW_TRUE);
+        }
+      }
+    }
 
     // Playback and scrubbing: draw counts plus a small per-node upload, never a re-mesh.
     if (e->shown && e->shown->skeleton) {
@@ -717,10 +1258,8 @@ int run_editor(const editor_options& o) {
       e->step = std::clamp(e->step, 0, steps);
       if (e->step != e->renderer.step) set_tree_step(e->renderer, *e->shown->skeleton, e->shown->mesh_settings.min_radius, e->step);
     }
-    if (e->frame_pending && e->shown) {
-      frame_camera(e->camera, e->renderer.bounds_min, e->renderer.bounds_max);
-      e->frame_pending = false;
-    }
+    if (e->frame_now && e->shown) frame_view(e->camera, e->renderer.bounds_min, e->renderer.bounds_max);
+    e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
     const std::string title = "Sylva - " + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
@@ -756,9 +1295,15 @@ int run_editor(const editor_options& o) {
         glfwSetWindowShouldClose(window, GLFW_TRUE);
       }
     }
+    if (!e->script_shot.empty() && script.frames_left == 1) {
+      if (std::string err = save_window_png(fb_w, fb_h, e->script_shot); !err.empty()) std::fprintf(stderr, "sylva: %s\n", err.c_str());
+      e->script_shot.clear();
+    }
     glfwSwapBuffers(window);
   }
 
+  if (scripted && !script.finished && !script.failed)
+    std::printf("sylva script: the editor closed before line %zu\n", script.next + 1);
   shutdown_export_dialog(e->exporter);
   stop_worker(e->worker);
   shutdown_preset_browser(e->browser);

@@ -1,0 +1,128 @@
+// The editor end to end (issue 14): a real window under Xvfb driven by SYLVA_SCRIPT through an
+// edit, undo and redo from key taps queued between frames, quit with changes (the prompt
+// appears), an over-budget request (the prompt appears, the previous tree stays) and Cancel
+// (Esc) during a long regrow; the autosaved recovery file comes and goes with the changes.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+bool have_display() {
+  const char* d = std::getenv("DISPLAY");
+  return d && *d;
+}
+
+struct run_result {
+  int code = -1;
+  std::string output;
+};
+
+run_result run_script(const std::string& name, const std::string& script, const std::string& preset) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir / "home");
+  std::ofstream(dir / "script.txt") << script;
+  const std::string log = (dir / "log.txt").string();
+  const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
+                          "' SYLVA_WINDOW=1280x720 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" + log +
+                          "' 2>&1";
+  run_result r;
+  const int status = std::system(cmd.c_str());
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  return r;
+}
+
+}  // namespace
+
+TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json";
+  const std::string script = R"(wait_tree
+remember
+set lambda=0.42
+wait_tree
+expect_new_tree
+expect_modified 1
+expect_recovery 1
+key ctrl+z
+wait_tree
+expect_param lambda=0.46
+expect_modified 0
+expect_recovery 0
+key ctrl+shift+z
+wait_tree
+expect_param lambda=0.42
+set lambda=0.43
+set lambda=0.44
+taps 2 ctrl+z
+expect_param lambda=0.42
+quit
+expect_prompt Unsaved changes
+answer Cancel
+frames 2
+expect_no_prompt
+remember
+budget 100000
+set lambda=1
+expect_prompt Large tree
+expect_same_tree
+answer Keep the current tree
+frames 2
+expect_no_prompt
+expect_param lambda=0.42
+expect_same_tree
+expect_state cancelled
+budget 100000000
+set lambda=1
+wait_progress
+key escape
+expect_state cancelled
+expect_same_tree
+expect_param lambda=0.42
+quit
+expect_prompt Unsaved changes
+answer Discard
+not reached: Discard quits
+)";
+  run_result r = run_script("session", script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the editor closed before line 46"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/recovery.json"));
+}
+
+TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  namespace fs = std::filesystem;
+  const fs::path home = fs::temp_directory_path() / "sylva_editor_recovery" / "home";
+  // First session: edit, wait for the autosave, then "crash" (the script ends without asking).
+  run_result first = run_script("recovery", "wait_tree\nset derivations=8\nwait_tree\nexpect_recovery 1\n", preset);
+  ASSERT_EQ(first.code, 0) << first.output;
+  ASSERT_TRUE(fs::exists(home / "recovery.json"));
+  const std::string script = "expect_prompt Restore unsaved work?\nanswer Restore\nframes 2\nwait_tree\n"
+                             "expect_param derivations=8\nexpect_modified 1\n";
+  // run_script clears its folder: keep the recovery file across the second start.
+  const fs::path keep = fs::temp_directory_path() / "sylva_recovery_keep.json";
+  fs::copy_file(home / "recovery.json", keep, fs::copy_options::overwrite_existing);
+  const std::string cmd_home = home.string();
+  fs::remove_all(home.parent_path());
+  fs::create_directories(home);
+  fs::copy_file(keep, home / "recovery.json");
+  std::ofstream(home.parent_path() / "script.txt") << script;
+  const std::string cmd = "SYLVA_HOME='" + cmd_home + "' SYLVA_SCRIPT='" + (home.parent_path() / "script.txt").string() +
+                          "' SYLVA_WINDOW=1280x720 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
