@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cctype>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -39,9 +40,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr float panel_width = 420;
-constexpr float timeline_height = 38;
-constexpr float status_height = 26;
+// Layout sizes at a content scale of 1; multiplied by ui_scale (the monitor's content scale).
+float ui_scale = 1;
+float panel_width() { return 420 * ui_scale; }
+float timeline_height() { return 38 * ui_scale; }
+float status_height() { return 26 * ui_scale; }
 
 struct editor_state {
   preset doc;                     // the edited copy (DESIGN §9: edit a copy, commit on change)
@@ -77,6 +80,11 @@ struct editor_state {
   // Status.
   std::string message;
   bool message_is_error = false;
+  std::string toast;              // the last error in full, until dismissed or a success
+  uint32_t error_after = 0;       // a tree from a newer request clears the error
+  struct log_line { std::string time, text; bool error; };
+  std::vector<log_line> log;      // View > Messages
+  bool show_log = false, show_shortcuts = false;
   double frame_ms = 0;
   bool screenshot_requested = false;
   std::string screenshot_path;
@@ -113,10 +121,29 @@ struct editor_state {
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
 };
 
+// The status bar's message; errors also go to a dismissable toast, and every message to the log.
+// A successful action's message replaces an earlier error, and its toast goes away.
 void set_status(editor_state& e, const std::string& m, bool error = false) {
   e.message = m;
   e.message_is_error = error;
   if (error) std::fprintf(stderr, "sylva: %s\n", m.c_str());
+  e.toast = error ? m : "";
+  // A tree from a later request is a successful action that clears this error (the first request
+  // is generation 1: an error while opening the start preset stays over its tree).
+  if (error) e.error_after = e.posted_once ? e.posted_generation : 1;
+  if (m.empty()) return;
+  char stamp[16] = "";
+  const std::time_t t = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%H:%M:%S", std::localtime(&t));
+  e.log.push_back({stamp, m, error});
+  if (e.log.size() > 500) e.log.erase(e.log.begin());
+}
+
+// The next successful action clears an error left from before.
+void clear_error(editor_state& e) {
+  if (e.message_is_error) e.message.clear();
+  e.message_is_error = false;
+  e.toast.clear();
 }
 
 // ---------------------------------------------------------------- parameter panel
@@ -236,6 +263,24 @@ struct param_drawer {
   }
 };
 
+// True when the seed cannot change the skeleton (cached per L-system source).
+bool skeleton_is_deterministic(const tree_spec& spec) {
+  const auto* l = std::get_if<lsystem_params>(&spec.params);
+  if (!l) return false;
+  if (l->mode == lsystem_mode::honda) return true;
+  static std::string cached_source;
+  static bool cached = false;
+  if (l->source != cached_source) {
+    cached_source = l->source;
+    lsystem_program prog;
+    cached = compile_lsystem(l->source, prog).ok() && l->source.find("rand") == std::string::npos;
+    if (cached)
+      for (const lsystem_rule& r : prog.rules)
+        if (r.successors.size() > 1) cached = false;
+  }
+  return cached;
+}
+
 template <class P>
 bool draw_params(P& p, const char* section, editor_state& e) {
   static const P defaults{};
@@ -311,6 +356,49 @@ bool save_to(editor_state& e, const std::string& path) {
   note_saved_preset(e.browser, e.doc, path);
   set_status(e, "Saved " + path);
   return true;
+}
+
+// ---------------------------------------------------------------- settings
+
+// ~/Sylva/settings.ini: one `key value...` per line.
+struct editor_settings {
+  int x = 0, y = 0, width = 0, height = 0;   // width 0: never saved
+  bool maximized = false;
+  int64_t node_budget = 0;
+  std::vector<std::string> recent;           // newest first
+};
+
+editor_settings load_settings(const std::string& home) {
+  editor_settings s;
+  std::string text;
+  if (!read_file((fs::path(home) / "settings.ini").string(), text).empty()) return s;
+  size_t a = 0;
+  while (a < text.size()) {
+    size_t b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    const std::string line = text.substr(a, b - a);
+    a = b + 1;
+    long long n = 0;
+    int m = 0;
+    if (std::sscanf(line.c_str(), "window %d %d %d %d %d", &s.x, &s.y, &s.width, &s.height, &m) >= 4) s.maximized = m != 0;
+    else if (std::sscanf(line.c_str(), "node_budget %lld", &n) == 1) s.node_budget = n;
+    else if (line.rfind("recent ", 0) == 0 && s.recent.size() < 10) s.recent.push_back(line.substr(7));
+  }
+  return s;
+}
+
+void save_settings(const std::string& home, const editor_settings& s) {
+  std::string text;
+  char b[128];
+  if (s.width > 0) {
+    std::snprintf(b, sizeof b, "window %d %d %d %d %d\n", s.x, s.y, s.width, s.height, int(s.maximized));
+    text += b;
+  }
+  if (s.node_budget > 0) text += "node_budget " + std::to_string(s.node_budget) + "\n";
+  for (const std::string& r : s.recent) text += "recent " + r + "\n";
+  std::error_code ec;
+  fs::create_directories(home, ec);
+  (void)write_file_atomic((fs::path(home) / "settings.ini").string(), text);
 }
 
 // ---------------------------------------------------------------- unsaved work (issue 14)
@@ -488,6 +576,8 @@ void draw_menu(editor_state& e) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
+    ImGui::MenuItem("Keyboard and mouse", "F1", &e.show_shortcuts);
+    ImGui::MenuItem("Messages", nullptr, &e.show_log);
     if (ImGui::MenuItem("About Sylva")) e.open_about = true;
     ImGui::EndMenu();
   }
@@ -496,7 +586,7 @@ void draw_menu(editor_state& e) {
 
 void draw_panel(editor_state& e, float top, float bottom) {
   ImGui::SetNextWindowPos(ImVec2(0, top));
-  ImGui::SetNextWindowSize(ImVec2(panel_width, bottom - top));
+  ImGui::SetNextWindowSize(ImVec2(panel_width(), bottom - top));
   ImGui::Begin("Parameters", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
@@ -510,7 +600,16 @@ void draw_panel(editor_state& e, float top, float bottom) {
   int seed = int(spec.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
   ImGui::SameLine();
+  // Randomize only where the seed changes something: Honda's model and L-systems without
+  // stochastic productions or rand() are deterministic; then only the leaf scatter uses the seed.
+  const bool random_tree = !skeleton_is_deterministic(spec);
+  const bool random_leaves = e.doc.mesh.leaves_enabled;
+  if (!random_tree && !random_leaves) ImGui::BeginDisabled();
   if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
+  if (!random_tree && !random_leaves) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && !random_tree)
+    ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
+                                    : "This generator is deterministic and leaves are off: the seed changes nothing");
   std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
   draw_generator_panel(e.generator_panels, spec, e.shown.get());
   draw_params(e.doc.mesh, "Mesh", e);
@@ -540,25 +639,107 @@ void draw_panel(editor_state& e, float top, float bottom) {
 
 void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(x, y));
-  ImGui::SetNextWindowSize(ImVec2(w, timeline_height));
+  ImGui::SetNextWindowSize(ImVec2(w, timeline_height()));
   ImGui::Begin("Timeline", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
   const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
-  if (ImGui::Button("|<")) e.step = std::max(0, e.step - 1);
+  if (ImGui::Button("|<")) e.step = 0;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Jump to the start (Home)");
+  ImGui::SameLine();
+  if (ImGui::Button("<")) e.step = std::max(0, e.step - 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("One step back (Left)");
   ImGui::SameLine();
   if (ImGui::Button(e.playing ? "Pause" : "Play")) {
     e.playing = !e.playing;
     if (e.playing && e.step >= steps) e.step = 0;
   }
   ImGui::SameLine();
-  if (ImGui::Button(">|")) e.step = std::min(steps, e.step + 1);
+  if (ImGui::Button(">")) e.step = std::min(steps, e.step + 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("One step forward (Right)");
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) e.step = steps;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Jump to the end (End)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(110);
   ImGui::SliderFloat("##speed", &e.speed, 0.25f, 30, "%.2g steps/s", ImGuiSliderFlags_Logarithmic);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderInt("##step", &e.step, 0, std::max(steps, 0), "step %d");
+  ImGui::End();
+}
+
+// The last error, whole, in the viewport's top right corner until dismissed or a success.
+void draw_toast(editor_state& e, float left, float top, float right) {
+  if (e.toast.empty()) return;
+  const float w = std::min(520.0f * ui_scale, right - left - 20);
+  ImGui::SetNextWindowPos(ImVec2(right - w - 10, top + 10));
+  ImGui::SetNextWindowSize(ImVec2(w, 0));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.35f, 0.08f, 0.08f, 1));
+  ImGui::Begin("##toast", nullptr,
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+  ImGui::PushTextWrapPos(w - 70 * ui_scale);
+  ImGui::TextUnformatted(e.toast.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::SameLine(w - 60 * ui_scale);
+  if (ImGui::SmallButton("Dismiss")) e.toast.clear();
+  if (ImGui::SmallButton("Messages...")) e.show_log = true;
+  ImGui::End();
+  ImGui::PopStyleColor();
+}
+
+void draw_shortcuts(editor_state& e) {
+  if (!e.show_shortcuts) return;
+  ImGui::SetNextWindowSize(ImVec2(560 * ui_scale, 0), ImGuiCond_Appearing);
+  if (ImGui::Begin("Keyboard and mouse", &e.show_shortcuts, ImGuiWindowFlags_AlwaysAutoResize)) {
+    static const char* rows[][2] = {
+        {"Left-drag", "orbit"}, {"Right- or middle-drag", "pan"}, {"Wheel", "zoom"}, {"F", "frame the tree"},
+        {"Ctrl+Z", "undo"}, {"Ctrl+Shift+Z, Ctrl+Y", "redo"}, {"Ctrl+S", "save (Save as for shipped presets)"},
+        {"Ctrl+O", "open a preset"}, {"Ctrl+L", "preset library"}, {"Ctrl+Q", "quit (asks about unsaved changes)"},
+        {"Space", "play / pause the growth"}, {"Home, End", "first / last step"}, {"Left, Right", "one step back / forward"},
+        {"Esc", "cancel a long regrow; close a dialog"}, {"F12", "screenshot of the 3D view"}, {"F1", "this list"},
+        {"Right-click a slider", "reset it to its default"}};
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
+      for (const auto& r : rows) {
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r[0]);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r[1]);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::Separator();
+    ImGui::TextWrapped("README.md explains more: \"The editor\" (panels, timeline, presets), \"The four "
+                       "generators\" (the papers behind the parameters), \"Command line\" and \"Rendering at scale\".");
+  }
+  ImGui::End();
+}
+
+void draw_message_log(editor_state& e) {
+  if (!e.show_log) return;
+  ImGui::SetNextWindowSize(ImVec2(640 * ui_scale, 300 * ui_scale), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Messages", &e.show_log)) {
+    if (ImGui::SmallButton("Clear")) e.log.clear();
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Copy all")) {
+      std::string all;
+      for (const auto& l : e.log) all += l.time + "  " + l.text + "\n";
+      ImGui::SetClipboardText(all.c_str());
+    }
+    ImGui::Separator();
+    ImGui::BeginChild("lines");
+    for (const auto& l : e.log) {
+      ImGui::TextDisabled("%s", l.time.c_str());
+      ImGui::SameLine();
+      ImGui::PushTextWrapPos(0);
+      if (l.error) ImGui::TextColored(ImVec4(1, 0.5f, 0.45f, 1), "%s", l.text.c_str());
+      else ImGui::TextUnformatted(l.text.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+    ImGui::EndChild();
+  }
   ImGui::End();
 }
 
@@ -590,7 +771,7 @@ void cancel_request(editor_state& e) {
 
 void draw_status(editor_state& e, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(0, y));
-  ImGui::SetNextWindowSize(ImVec2(w, status_height));
+  ImGui::SetNextWindowSize(ImVec2(w, status_height()));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
   ImGui::Begin("Status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
@@ -824,7 +1005,13 @@ void handle_keys(editor_state& e) {
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
   if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
+  const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
+  if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
+  if (ImGui::IsKeyPressed(GLFW_KEY_END)) e.step = steps;
+  if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) e.step = std::max(0, e.step - 1);
+  if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) e.step = std::min(steps, e.step + 1);
 }
 
 void handle_mouse(editor_state& e, int viewport_height) {
@@ -847,7 +1034,7 @@ void load_fonts() {
   const char* candidates[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
                               "/usr/share/fonts/TTF/DejaVuSans.ttf", nullptr};
   for (int i = 0; candidates[i]; ++i)
-    if (fs::exists(candidates[i]) && io.Fonts->AddFontFromFileTTF(candidates[i], 16.0f, nullptr, ranges)) return;
+    if (fs::exists(candidates[i]) && io.Fonts->AddFontFromFileTTF(candidates[i], 16.0f * ui_scale, nullptr, ranges)) return;
   std::fprintf(stderr, "sylva: DejaVu Sans not found (install fonts-dejavu-core); Greek symbols will not show\n");
   io.Fonts->AddFontDefault();
 }
@@ -920,7 +1107,8 @@ void take_new_tree(editor_state& e) {
     frame_view(e.camera, e.renderer.bounds_min, e.renderer.bounds_max);
     e.frame_generation = 0;
   }
-  if (e.message_is_error && e.message.rfind("Cannot open", 0) != 0) e.message.clear();
+  if (newest && !r->report.error && int32_t(r->generation - e.error_after) > 0) clear_error(e);
+  else if (newest && r->report.error) set_status(e, r->report.message, true);
 }
 
 // ---------------------------------------------------------------- scripted driving (tests)
@@ -1077,6 +1265,7 @@ int run_editor(const std::string& preset_path) {
     if (std::sscanf(s, "%dx%d", &w, &h) == 2 && w >= 320 && h >= 240) {
       o.width = w;
       o.height = h;
+      o.fit_screen = false;
     }
   }
   return run_editor(o);
@@ -1152,7 +1341,30 @@ int run_editor(const editor_options& o) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "Sylva", nullptr, nullptr);
+  // The window fits the monitor's work area on the first start and keeps its place afterwards.
+  editor_settings settings = load_settings(e->home);
+  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker.node_budget = settings.node_budget;
+  const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;
+  int width = o.width, height = o.height, pos_x = -1, pos_y = -1;
+  if (o.fit_screen) {
+    int ax = 0, ay = 0, aw = 0, ah = 0;
+    if (GLFWmonitor* m = glfwGetPrimaryMonitor()) glfwGetMonitorWorkarea(m, &ax, &ay, &aw, &ah);
+    if (aw > 0 && ah > 0) {
+      const int frame = 40;   // room for the window manager's title bar
+      if (remember_window && settings.width > 0) {
+        width = std::min(settings.width, aw), height = std::min(settings.height, ah - frame);
+        pos_x = std::clamp(settings.x, ax, ax + aw - width), pos_y = std::clamp(settings.y, ay, ay + ah - height);
+      } else {
+        width = std::min(o.width, aw), height = std::min(o.height, ah - frame);
+        pos_x = ax + (aw - width) / 2, pos_y = ay + std::max(0, (ah - frame - height) / 2) + frame;
+      }
+    }
+  }
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  if (remember_window && settings.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(width, height, "Sylva", nullptr, nullptr);
+  if (window && pos_x >= 0) glfwSetWindowPos(window, pos_x, pos_y);
+  if (window) glfwShowWindow(window);
   if (!window) {
     std::fprintf(stderr, "sylva: cannot create an OpenGL 3.3 core window\n");
     glfwTerminate();
@@ -1175,7 +1387,19 @@ int run_editor(const editor_options& o) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;   // the layout is fixed; no imgui.ini litter
   ImGui::StyleColorsDark();
-  ImGui::GetStyle().WindowRounding = 0;
+  {
+    ImGuiStyle& style = ImGui::GetStyle();
+    style.WindowRounding = 0;
+    // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
+    style.Colors[ImGuiCol_PopupBg].w = 1;
+    style.Colors[ImGuiCol_WindowBg].w = 1;
+    style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
+    float xs = 1, ys = 1;
+    glfwGetWindowContentScale(window, &xs, &ys);
+    if (const char* sc = std::getenv("SYLVA_UI_SCALE")) xs = float(std::atof(sc));
+    ui_scale = std::clamp(xs, 1.0f, 4.0f);   // fonts and sizes follow the monitor's content scale
+    style.ScaleAllSizes(ui_scale);
+  }
   load_fonts();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   install_input_queue(window, &e->input);
@@ -1218,11 +1442,14 @@ int run_editor(const editor_options& o) {
     }
     draw_menu(*e);
     const float top = ImGui::GetFrameHeight();
-    const float bottom = float(win_h) - status_height - (e->show_timeline ? timeline_height : 0);
-    if (e->show_panel) draw_panel(*e, top, float(win_h) - status_height);
-    const float left = e->show_panel ? panel_width : 0;
+    const float bottom = float(win_h) - status_height() - (e->show_timeline ? timeline_height() : 0);
+    if (e->show_panel) draw_panel(*e, top, float(win_h) - status_height());
+    const float left = e->show_panel ? panel_width() : 0;
     if (e->show_timeline) draw_timeline(*e, left, bottom, float(win_w) - left);
-    draw_status(*e, float(win_h) - status_height, float(win_w));
+    draw_status(*e, float(win_h) - status_height(), float(win_w));
+    draw_toast(*e, left, top, float(win_w));
+    draw_message_log(*e);
+    draw_shortcuts(*e);
     draw_dialogs(*e);
     if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
     draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
@@ -1304,6 +1531,17 @@ int run_editor(const editor_options& o) {
 
   if (scripted && !script.finished && !script.failed)
     std::printf("sylva script: the editor closed before line %zu\n", script.next + 1);
+  if (remember_window) {
+    settings.maximized = glfwGetWindowAttrib(window, GLFW_MAXIMIZED) == GLFW_TRUE;
+    if (!settings.maximized) {
+      glfwGetWindowPos(window, &settings.x, &settings.y);
+      glfwGetWindowSize(window, &settings.width, &settings.height);
+    }
+  }
+  if (o.screenshot_path.empty() && !scripted) {
+    settings.node_budget = e->worker.node_budget.load();
+    save_settings(e->home, settings);
+  }
   shutdown_export_dialog(e->exporter);
   stop_worker(e->worker);
   shutdown_preset_browser(e->browser);
