@@ -20,6 +20,7 @@ void refresh_check(lsystem_panel_state& s, const std::string& source) {
   s.checked_source = source;
   s.checked = true;
   s.error = lsystem_check(source);
+  s.warnings = lsystem_warnings(source);
   s.constants = lsystem_constants(source);
 }
 
@@ -150,6 +151,14 @@ bool draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed,
       ImGui::TextDisabled("The last good tree stays on screen until the text parses.");
     } else if (shown && shown->report.stop_reason == "evaluation error") {
       ImGui::TextColored(error_colour, "%s", shown->report.message.c_str());
+    } else if (!s.warnings.empty()) {
+      const ImVec4 warn(1, 0.78f, 0.35f, 1);
+      for (const lsystem_error& w : s.warnings) {
+        ImGui::PushStyleColor(ImGuiCol_Text, warn);
+        ImGui::TextWrapped("line %d:%d  warning: %s", w.line, w.column, w.message.c_str());
+        ImGui::PopStyleColor();
+      }
+      ImGui::TextDisabled("The tree grows as written.");
     } else {
       ImGui::TextColored(ImVec4(0.6f, 0.85f, 0.6f, 1), "ok");
     }
