@@ -69,6 +69,7 @@ struct editor_state {
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
   uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
+  int overlay_generator = -1;     // the generator whose default overlay layer is selected
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false;
@@ -669,6 +670,70 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::End();
 }
 
+// The overlays' legend in the viewport's bottom left corner: each visible layer, its colour and units.
+void draw_overlay_legend(editor_state& e, float left, float bottom) {
+  const overlay_gpu& g = e.renderer.overlay;
+  const uint32_t shown = g.view.kinds & g.present;
+  if (!e.show_overlays || !shown) return;
+  ImGui::SetNextWindowPos(ImVec2(left + 10, bottom - 10), 0, ImVec2(0, 1));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("##legend", nullptr,
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoInputs);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float h = ImGui::GetTextLineHeight();
+  auto swatch = [&](const glm::vec3& c) {
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    dl->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(p.x + h - 4, p.y + h - 2), ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1)));
+    ImGui::Dummy(ImVec2(h - 2, h));
+    ImGui::SameLine();
+  };
+  auto ramp = [&](const char* lo, const char* hi) {
+    ImGui::TextUnformatted(lo);
+    ImGui::SameLine();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = 120 * ui_scale;
+    for (int i = 0; i < 24; ++i) {
+      const glm::vec3 c = overlay_ramp((float(i) + 0.5f) / 24);
+      dl->AddRectFilled(ImVec2(p.x + w * float(i) / 24, p.y + 2), ImVec2(p.x + w * float(i + 1) / 24, p.y + h - 2),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1)));
+    }
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(hi);
+  };
+  char hi[64];
+  for (int k = 0; k < overlay_kind_count; ++k) {
+    if (!((shown >> k) & 1u)) continue;
+    switch (k) {
+      case overlay_shadow_grid:
+        ImGui::Text("Shadow grid: shade s of each voxel%s", g.view.shadow_slice ? "" : " (whole grid)");
+        if (g.view.shadow_slice) ImGui::Text("  slice at %.2f m of %.2f to %.2f m", g.view.slice_height, g.shadow_min_y, g.shadow_max_y);
+        std::snprintf(hi, sizeof hi, "%.3g (densest)", g.max_shade);
+        ramp("  0", hi);
+        break;
+      case overlay_flow:
+        ImGui::TextUnformatted("Resource flow per internode (point area ∝ flow)");
+        std::snprintf(hi, sizeof hi, "%.3g", g.max_flow);
+        ramp("  0", hi);
+        break;
+      case overlay_fates:
+        swatch(overlay_fate_colour[0]); ImGui::TextUnformatted("bud grew");
+        swatch(overlay_fate_colour[1]); ImGui::TextUnformatted("bud dormant");
+        swatch(overlay_fate_colour[2]); ImGui::TextUnformatted("branch shed");
+        break;
+      case overlay_markers: swatch(overlay_marker_colour); ImGui::TextUnformatted("attraction points / markers alive"); break;
+      case overlay_killed: swatch(overlay_killed_colour); ImGui::TextUnformatted("points killed in this step"); break;
+      case overlay_endpoints:
+        swatch(overlay_source_colour); ImGui::TextUnformatted("sources of the step");
+        swatch(overlay_endpoint_colour); ImGui::TextUnformatted("endpoints of the step");
+        break;
+      default: ImGui::TextUnformatted(overlay_kind_labels[k]); break;
+    }
+  }
+  ImGui::End();
+}
+
 // The last error, whole, in the viewport's top right corner until dismissed or a success.
 void draw_toast(editor_state& e, float left, float top, float right) {
   if (e.toast.empty()) return;
@@ -1100,6 +1165,11 @@ void take_new_tree(editor_state& e) {
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
   upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
+  if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
+    e.overlay_generator = int(r->spec.params.index());
+    overlay_view& v = e.renderer.overlay.view;
+    if (!v.combine) v.kinds = 1u << overlay_default_kind(e.overlay_generator, e.renderer.overlay.present);
+  }
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(e.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);
@@ -1448,6 +1518,7 @@ int run_editor(const editor_options& o) {
     if (e->show_timeline) draw_timeline(*e, left, bottom, float(win_w) - left);
     draw_status(*e, float(win_h) - status_height(), float(win_w));
     draw_toast(*e, left, top, float(win_w));
+    draw_overlay_legend(*e, left, bottom);
     draw_message_log(*e);
     draw_shortcuts(*e);
     draw_dialogs(*e);

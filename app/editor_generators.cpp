@@ -229,11 +229,17 @@ bool draw_step_table(std::vector<step_column>& cols, bool& hold) {
 
 void draw_overlay_menu(overlay_view& view, const overlay_gpu& gpu) {
   if (!ImGui::BeginMenu("Overlay layers")) return;
+  // One layer at a time unless "Combine layers" is on: several at once bury the tree.
   for (int k = 0; k < overlay_kind_count; ++k) {
+    const bool present = (gpu.present >> k) & 1u;
     bool on = (view.kinds >> k) & 1u;
-    if (ImGui::MenuItem(overlay_kind_labels[k], nullptr, &on)) view.kinds = on ? view.kinds | (1u << k) : view.kinds & ~(1u << k);
+    if (ImGui::MenuItem(overlay_kind_labels[k], nullptr, &on, present)) {
+      if (view.combine) view.kinds = on ? view.kinds | (1u << k) : view.kinds & ~(1u << k);
+      else view.kinds = on ? 1u << k : 0u;
+    }
   }
   ImGui::Separator();
+  ImGui::MenuItem("Combine layers", nullptr, &view.combine);
   ImGui::MenuItem("Shadow grid as a slice", nullptr, &view.shadow_slice);
   if (gpu.shadow_max_y > gpu.shadow_min_y) {
     ImGui::SetNextItemWidth(180);
