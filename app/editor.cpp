@@ -24,6 +24,7 @@
 #include <imgui_impl_opengl3.h>
 #include <imgui_stdlib.h>
 
+#include "app/editor_files.h"
 #include "app/editor_generators.h"
 #include "app/export_dialog.h"
 #include "app/headless.h"
@@ -72,12 +73,12 @@ struct editor_state {
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
-  bool open_picker = false, open_save_as = false, open_about = false;
-  std::string picker_path, save_as_path;
-  bool confirm_overwrite = false;
+  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false;
+  file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as
+  enum class browsing { open, save_as, screenshot } browse = browsing::open;
+  std::vector<std::string> recent;
   std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
   std::string script_shot;        // the scripted test's screenshot path, taken at the end of the frame
-  std::vector<std::string> preset_files;
   // Status.
   std::string message;
   bool message_is_error = false;
@@ -87,7 +88,8 @@ struct editor_state {
   std::vector<log_line> log;      // View > Messages
   bool show_log = false, show_shortcuts = false;
   double frame_ms = 0;
-  bool screenshot_requested = false;
+  bool screenshot_requested = false;   // F12: the 3D view to ~/Sylva/screenshots/
+  std::string screenshot_to;            // Screenshot as...: this path
   std::string screenshot_path;
   std::string texture_message;    // the renderer's last texture error, once shown
   export_dialog_state exporter;   // app/export_dialog.h
@@ -314,18 +316,6 @@ std::vector<fs::path> preset_dirs() {
   return dirs;
 }
 
-void scan_presets(editor_state& e) {
-  e.preset_files.clear();
-  for (const fs::path& d : preset_dirs()) {
-    std::error_code ec;
-    if (!fs::is_directory(d, ec)) continue;
-    for (const auto& entry : fs::directory_iterator(d, ec))
-      if (entry.path().extension() == ".json") e.preset_files.push_back(fs::weakly_canonical(entry.path(), ec).string());
-  }
-  std::sort(e.preset_files.begin(), e.preset_files.end());
-  e.preset_files.erase(std::unique(e.preset_files.begin(), e.preset_files.end()), e.preset_files.end());
-}
-
 void open_preset(editor_state& e, const std::string& path) {
   preset loaded;
   load_result r = load_preset_file(path, loaded);
@@ -339,6 +329,7 @@ void open_preset(editor_state& e, const std::string& path) {
   e.undo_base = loaded;
   e.path = path;
   note_saved_preset(e.browser, e.doc, path);
+  note_recent(e.recent, path);
   e.frame_new = true;
   std::string m = "Opened " + path;
   if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
@@ -355,6 +346,7 @@ bool save_to(editor_state& e, const std::string& path) {
   }
   e.path = path;
   note_saved_preset(e.browser, e.doc, path);
+  note_recent(e.recent, path);
   set_status(e, "Saved " + path);
   return true;
 }
@@ -509,6 +501,14 @@ void record_undo(editor_state& e) {
   e.undo_base = e.doc;
 }
 
+// "sylva-20261201-114502.png"
+std::string screenshot_name() {
+  char b[64];
+  const std::time_t t = std::time(nullptr);
+  std::strftime(b, sizeof b, "sylva-%Y%m%d-%H%M%S.png", std::localtime(&t));
+  return b;
+}
+
 std::string count_text(double n) {
   char b[64];
   if (n >= 1e6) std::snprintf(b, sizeof b, "%.1f million", n / 1e6);
@@ -551,6 +551,8 @@ void draw_menu(editor_state& e) {
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
     ImGui::MenuItem("Export...", nullptr, &e.exporter.open);
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The 3D view, without menus, to %s/screenshots/", e.home.c_str());
+    if (ImGui::MenuItem("Screenshot as...")) e.browse_screenshot = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) request(e, editor_state::then::quit);
     ImGui::EndMenu();
@@ -888,16 +890,66 @@ bool scripted_button(editor_state& e, const char* label) {
 }
 
 void draw_dialogs(editor_state& e) {
+  // Open, Save as and Screenshot as share the file browser; places: the user's folder, the
+  // shipped presets (read-only for Save) and home.
+  auto places = [&](file_browser& b) {
+    b.places.clear();
+    b.places.push_back({"My trees", e.home});
+    for (const fs::path& d : preset_dirs())
+      if (std::error_code ec; fs::is_directory(d, ec)) {
+        b.places.push_back({"Shipped presets", fs::weakly_canonical(d, ec).string()});
+        break;
+      }
+    if (const char* h = std::getenv("HOME")) b.places.push_back({"Home", h});
+    b.forbidden_folders.clear();
+    for (const fs::path& d : preset_dirs()) b.forbidden_folders.push_back(d.string());
+    b.forbidden_folder_note = "The shipped presets are read-only: save your own copy in " + e.home;
+  };
   if (e.open_picker) {
-    scan_presets(e);
-    ImGui::OpenPopup("Open preset");
+    std::string folder = !e.path.empty() && !is_installed_preset(e.path) ? fs::path(e.path).parent_path().string() : e.home;
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) {   // nothing of the user's yet: the shipped presets
+      folder.clear();
+      for (const fs::path& d : preset_dirs())
+        if (fs::is_directory(d, ec)) { folder = d.string(); break; }
+      if (folder.empty()) folder = e.home;
+    }
+    places(e.files);
+    open_file_browser(e.files, "Open preset", false, folder, "", {".json"});
+    e.browse = editor_state::browsing::open;
     e.open_picker = false;
   }
   if (e.open_save_as) {
-    e.save_as_path = default_save_path(e);
-    e.confirm_overwrite = false;
-    ImGui::OpenPopup("Save preset as");
+    const fs::path p = default_save_path(e);
+    places(e.files);
+    open_file_browser(e.files, "Save preset as", true, p.parent_path().string(), p.filename().string(), {".json"});
+    e.browse = editor_state::browsing::save_as;
     e.open_save_as = false;
+  }
+  if (e.browse_screenshot) {
+    places(e.files);
+    open_file_browser(e.files, "Save screenshot as", true, (fs::path(e.home) / "screenshots").string(),
+                      screenshot_name(), {".png"});
+    e.browse = editor_state::browsing::screenshot;
+    e.browse_screenshot = false;
+  }
+  if (!e.files.title.empty()) e.prompts_shown.push_back(e.files.title);
+  const bool was_open = !e.files.title.empty();
+  if (const std::string chosen = draw_file_browser(e.files, e.recent, e.script_answer); !chosen.empty()) {
+    if (e.browse == editor_state::browsing::open) {
+      request(e, editor_state::then::open, chosen);
+    } else if (e.browse == editor_state::browsing::save_as) {
+      const bool saved = save_to(e, chosen);
+      if (saved && e.continue_after_save) perform_pending(e);
+      e.continue_after_save = false;
+    } else {
+      e.screenshot_to = chosen;
+    }
+  } else if (was_open && e.files.title.empty()) {   // cancelled
+    if (e.browse == editor_state::browsing::save_as) {
+      e.continue_after_save = false;
+      e.pending = editor_state::then::nothing;
+    }
   }
   if (e.open_confirm) {
     ImGui::OpenPopup("Unsaved changes");
@@ -906,65 +958,6 @@ void draw_dialogs(editor_state& e) {
   if (e.open_about) {
     ImGui::OpenPopup("About Sylva");
     e.open_about = false;
-  }
-  ImGui::SetNextWindowSize(ImVec2(620, 420), ImGuiCond_Appearing);
-  if (ImGui::BeginPopupModal("Open preset")) {
-    ImGui::BeginChild("list", ImVec2(0, -60), true);
-    for (const std::string& f : e.preset_files) {
-      const std::string name = fs::path(f).filename().string();
-      if (ImGui::Selectable(name.c_str(), e.picker_path == f, ImGuiSelectableFlags_AllowDoubleClick)) {
-        e.picker_path = f;
-        if (ImGui::IsMouseDoubleClicked(0)) {
-          request(e, editor_state::then::open, f);
-          ImGui::CloseCurrentPopup();
-        }
-      }
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.c_str());
-    }
-    if (e.preset_files.empty()) ImGui::TextDisabled("No presets/ folder found; type a path below.");
-    ImGui::EndChild();
-    ImGui::SetNextItemWidth(-130);
-    ImGui::InputText("##path", &e.picker_path);
-    ImGui::SameLine();
-    if (ImGui::Button("Open") && !e.picker_path.empty()) {
-      request(e, editor_state::then::open, e.picker_path);
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
-  }
-  if (ImGui::BeginPopupModal("Save preset as", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    e.prompts_shown.push_back("Save preset as");
-    ImGui::InputText("Name", &e.doc.name);
-    ImGui::SetNextItemWidth(480);
-    if (ImGui::InputText("Path", &e.save_as_path)) e.confirm_overwrite = false;
-    std::error_code ec;
-    const bool exists = fs::exists(e.save_as_path, ec) && e.save_as_path != e.path;
-    if (is_installed_preset(e.save_as_path))
-      ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "This is a shipped preset; save your own copy in %s instead.", e.home.c_str());
-    else if (e.confirm_overwrite)
-      ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s exists. Replace it?", e.save_as_path.c_str());
-    const bool can = !e.save_as_path.empty() && !is_installed_preset(e.save_as_path);
-    if (!can) ImGui::BeginDisabled();
-    if (scripted_button(e, e.confirm_overwrite ? "Replace" : "Save")) {
-      if (exists && !e.confirm_overwrite) {
-        e.confirm_overwrite = true;
-      } else {
-        const bool saved = save_to(e, e.save_as_path);
-        ImGui::CloseCurrentPopup();
-        if (saved && e.continue_after_save) perform_pending(e);
-        e.continue_after_save = false;
-      }
-    }
-    if (!can) ImGui::EndDisabled();
-    ImGui::SameLine();
-    if (scripted_button(e, "Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
-      e.continue_after_save = false;
-      e.pending = editor_state::then::nothing;
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::EndPopup();
   }
   if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     e.prompts_shown.push_back("Unsaved changes");
@@ -1104,17 +1097,19 @@ void load_fonts() {
   io.Fonts->AddFontDefault();
 }
 
-std::string save_window_png(int width, int height, const std::string& path) {
+std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
   std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4), flipped(pixels.size());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   const size_t row = size_t(width) * 4;
   for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
   for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;
   return save_png_rgba(path, width, height, flipped.data());
 }
+
+std::string save_window_png(int width, int height, const std::string& path) { return save_region_png(0, 0, width, height, path); }
 
 // Posts the document when its spec or mesh settings changed; render settings only touch uniforms.
 void post_if_changed(editor_state& e) {
@@ -1414,6 +1409,7 @@ int run_editor(const editor_options& o) {
   // The window fits the monitor's work area on the first start and keeps its place afterwards.
   editor_settings settings = load_settings(e->home);
   if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker.node_budget = settings.node_budget;
+  if (!scripted) e->recent = settings.recent;
   const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;
   int width = o.width, height = o.height, pos_x = -1, pos_y = -1;
   if (o.fit_screen) {
@@ -1576,18 +1572,31 @@ int run_editor(const editor_options& o) {
       e->texture_message = e->renderer.texture_message;
       if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);
     }
+    // F12 and Screenshot as: the 3D view alone, read before the menus and panels are drawn over it.
+    if (e->screenshot_requested || !e->screenshot_to.empty()) {
+      std::string path = e->screenshot_to;
+      if (path.empty()) {
+        std::error_code ec;
+        fs::create_directories(fs::path(e->home) / "screenshots", ec);
+        path = (fs::path(e->home) / "screenshots" / screenshot_name()).string();
+      }
+      std::string err = save_region_png(vx, vy, vw, vh, path);
+      if (err.empty()) note_recent(e->recent, path);
+      set_status(*e, err.empty() ? "Screenshot saved to " + path : "Screenshot failed: " + err, !err.empty());
+      e->screenshot_requested = false;
+      e->screenshot_to.clear();
+    }
     glViewport(0, 0, fb_w, fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
     if (e->shown) ++frames_with_tree;
     const bool auto_shot = !o.screenshot_path.empty() && frames_with_tree >= o.frames;
     const double waited = std::chrono::duration<double>(now - started).count();
-    if (e->screenshot_requested || auto_shot || (!o.screenshot_path.empty() && waited > 60)) {
-      std::string path = !o.screenshot_path.empty() ? o.screenshot_path : "sylva_screenshot.png";
+    if (auto_shot || (!o.screenshot_path.empty() && waited > 60)) {   // SYLVA_SCREENSHOT: the whole window
+      const std::string& path = o.screenshot_path;
       std::string err = save_window_png(fb_w, fb_h, path);
       set_status(*e, err.empty() ? "Screenshot saved to " + path : "Screenshot failed: " + err, !err.empty());
-      e->screenshot_requested = false;
-      if (!o.screenshot_path.empty()) {
+      {
         if (!err.empty() || !auto_shot) exit_code = 1;
         if (!auto_shot) std::fprintf(stderr, "sylva: no tree after 60 s; screenshot taken anyway\n");
         glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -1611,6 +1620,7 @@ int run_editor(const editor_options& o) {
   }
   if (o.screenshot_path.empty() && !scripted) {
     settings.node_budget = e->worker.node_budget.load();
+    settings.recent = e->recent;
     save_settings(e->home, settings);
   }
   shutdown_export_dialog(e->exporter);

@@ -10,6 +10,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "app/editor_files.h"
+#include "render/files.h"
 
 namespace {
 
@@ -31,7 +35,7 @@ run_result run_script(const std::string& name, const std::string& script, const 
   std::ofstream(dir / "script.txt") << script;
   const std::string log = (dir / "log.txt").string();
   const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
-                          "' SYLVA_WINDOW=1280x720 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" + log +
+                          "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" + log +
                           "' 2>&1";
   run_result r;
   const int status = std::system(cmd.c_str());
@@ -47,7 +51,12 @@ run_result run_script(const std::string& name, const std::string& script, const 
 
 TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json";
+  // The bush without its leaves: llvmpipe draws frames fast enough for a test that waits on many.
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = (std::filesystem::temp_directory_path() / "sylva_editor_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
   const std::string script = R"(wait_tree
 remember
 set lambda=0.42
@@ -123,6 +132,49 @@ TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   fs::copy_file(keep, home / "recovery.json");
   std::ofstream(home.parent_path() / "script.txt") << script;
   const std::string cmd = "SYLVA_HOME='" + cmd_home + "' SYLVA_SCRIPT='" + (home.parent_path() / "script.txt").string() +
-                          "' SYLVA_WINDOW=1280x720 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' 2>&1";
+                          "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
+
+TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  namespace fs = std::filesystem;
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  // Ctrl+S on a shipped preset is Save as in the user's folder; F12 saves the 3D view there and
+  // says where; Open browses with the recent files.
+  const std::string script = "wait_tree\nkey ctrl+s\nexpect_prompt Save preset as\nanswer Save\nframes 2\n"
+                             "expect_modified 0\nkey f12\nframes 3\nkey ctrl+o\nexpect_prompt Open preset\n"
+                             "answer Cancel\nframes 2\nexpect_no_prompt\n";
+  run_result r = run_script("files", script, preset);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path home = fs::temp_directory_path() / "sylva_editor_files" / "home";
+  int presets = 0, shots = 0;
+  for (const auto& f : fs::directory_iterator(home)) presets += f.path().extension() == ".json";
+  for (const auto& f : fs::directory_iterator(home / "screenshots")) shots += f.path().extension() == ".png";
+  EXPECT_EQ(presets, 1);
+  EXPECT_EQ(shots, 1);
+  EXPECT_FALSE(fs::exists("sylva_screenshot.png"));
+}
+
+TEST(EditorFiles, ListsFoldersFirstAndFiltersByExtension) {
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / "sylva_list_folder";
+  fs::remove_all(d);
+  fs::create_directories(d / "sub");
+  std::ofstream(d / "b.json") << "{}";
+  std::ofstream(d / "a.JSON") << "{}";
+  std::ofstream(d / "c.png") << "";
+  std::ofstream(d / ".hidden.json") << "";
+  std::vector<sylva::file_entry> out;
+  EXPECT_EQ(sylva::list_folder(d.string(), {".json"}, false, out), "");
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_TRUE(out[0].folder);
+  EXPECT_EQ(out[1].name, "a.JSON");
+  EXPECT_EQ(out[2].name, "b.json");
+  EXPECT_EQ(sylva::list_folder(d.string(), {".json"}, true, out), "");
+  EXPECT_EQ(out.size(), 4u);
+  EXPECT_NE(sylva::list_folder((d / "missing").string(), {".json"}, false, out), "");
+  std::vector<std::string> recent = {"x", "y"};
+  sylva::note_recent(recent, "y");
+  EXPECT_EQ(recent, (std::vector<std::string>{"y", "x"}));
 }
