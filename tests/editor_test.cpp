@@ -178,3 +178,18 @@ TEST(EditorFiles, ListsFoldersFirstAndFiltersByExtension) {
   sylva::note_recent(recent, "y");
   EXPECT_EQ(recent, (std::vector<std::string>{"y", "x"}));
 }
+
+TEST(EditorBench, EditLatencyIsReportedPerPreset) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string cmd = "'" + std::string(SYLVA_BINARY) + "' bench --edit --json --repeat 2 --width 64 --height 48 '" +
+                          std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json' 2>&1";
+  FILE* f = popen(cmd.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::string out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, f)) out += buf;
+  EXPECT_EQ(pclose(f), 0) << out;
+  EXPECT_NE(out.find("\"preset\":\"lsystem_honda_a\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"nodes\":1024"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"edit_ms\":"), std::string::npos) << out;
+}
