@@ -169,6 +169,7 @@ struct param_drawer {
   bool open = true;
   bool header_drawn = false;
   const char* pending_header = nullptr;   // drawn before the group's first shown parameter
+  const char* last_header = nullptr;      // the header drawn last
   bool relevant = true;                   // param_relevant() for the parameter being visited
   std::vector<step_column>* steps = nullptr;   // the struct's per-step schedules, drawn as one table
   bool steps_drawn = false;
@@ -191,8 +192,12 @@ struct param_drawer {
     }
     // Hidden in the current mode; multi-line texts get their own panel (draw_generator_panel).
     if (!relevant || (info.flags & param_multiline)) return;
+    // A group that continues the one just drawn (nested structs may both name "Leaves") gets no
+    // second header.
+    if (pending_header && last_header && std::strcmp(pending_header, last_header) == 0) pending_header = nullptr;
     if (pending_header) {
       open = ImGui::CollapsingHeader(pending_header, ImGuiTreeNodeFlags_DefaultOpen);
+      last_header = pending_header;
       pending_header = nullptr;
     }
     if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
