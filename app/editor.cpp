@@ -163,6 +163,7 @@ std::vector<const void*> default_pointers(const P& defaults) {
 struct param_drawer {
   const std::vector<const void*>& defaults;
   const char* section;     // header for parameters before the first group
+  const char* source;      // the paper the struct's parameters come from, with a trailing newline, or nullptr
   bool show_advanced;
   bool changed = false;
   bool hold = false;       // an apply-on-release item is active
@@ -260,7 +261,7 @@ struct param_drawer {
       if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
     }
     if (ImGui::IsItemHovered() && info.help && *info.help)
-      ImGui::SetTooltip("%s\n(right-click: reset to default)", info.help);
+      ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
     if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) {
       value = def;
       edited = true;
@@ -289,11 +290,26 @@ bool skeleton_is_deterministic(const tree_spec& spec) {
   return cached;
 }
 
+// The paper each generator's parameters come from, named in every tooltip.
+template <class P>
+const char* param_source() {
+  if constexpr (std::is_same_v<P, self_organizing_params>)
+    return "Palubicki et al. 2009, Self-organizing tree models for image synthesis (SIGGRAPH)\n";
+  else if constexpr (std::is_same_v<P, space_colonization_params>)
+    return "Runions, Lane & Prusinkiewicz 2007, Modeling trees with a space colonization algorithm\n";
+  else if constexpr (std::is_same_v<P, guiding_vectors_params>)
+    return "Xu & Mould 2015, Procedural tree modeling with guiding vectors\n";
+  else if constexpr (std::is_same_v<P, lsystem_params>)
+    return "Honda 1971; Prusinkiewicz & Lindenmayer 1990, The Algorithmic Beauty of Plants (ch. 1-2)\n";
+  else
+    return nullptr;
+}
+
 template <class P>
 bool draw_params(P& p, const char* section, editor_state& e) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
-  param_drawer d{pointers, section, e.show_advanced};
+  param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
   std::vector<step_column> steps = collect_step_columns(p);
   d.steps = &steps;
   visit_params(p, [&](auto& value, const param_info& info) {
@@ -431,7 +447,7 @@ std::string default_save_path(const editor_state& e) {
 
 bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
 
-std::string recovery_path(const editor_state& e) { return (fs::path(e.home) / "recovery.json").string(); }
+std::string recovery_path(const editor_state& e) { return (fs::path(e.home) / ".recovery.json").string(); }   // hidden from the file browser
 
 void remove_recovery(editor_state& e) {
   std::error_code ec;
@@ -440,7 +456,7 @@ void remove_recovery(editor_state& e) {
   e.autosaved_any = false;
 }
 
-// Every few seconds while modified: the document to ~/Sylva/recovery.json, its own path beside it.
+// Every few seconds while modified: the document to ~/Sylva/.recovery.json, its own path beside it.
 void autosave(editor_state& e, double dt) {
   if (e.quit_confirmed) return;
   if (!modified(e)) {

@@ -109,7 +109,7 @@ not reached: Discard quits
   EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("the editor closed before line 46"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/recovery.json"));
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/.recovery.json"));
 }
 
 TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
@@ -120,16 +120,16 @@ TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   // First session: edit, wait for the autosave, then "crash" (the script ends without asking).
   run_result first = run_script("recovery", "wait_tree\nset derivations=8\nwait_tree\nexpect_recovery 1\n", preset);
   ASSERT_EQ(first.code, 0) << first.output;
-  ASSERT_TRUE(fs::exists(home / "recovery.json"));
+  ASSERT_TRUE(fs::exists(home / ".recovery.json"));
   const std::string script = "expect_prompt Restore unsaved work?\nanswer Restore\nframes 2\nwait_tree\n"
                              "expect_param derivations=8\nexpect_modified 1\n";
   // run_script clears its folder: keep the recovery file across the second start.
   const fs::path keep = fs::temp_directory_path() / "sylva_recovery_keep.json";
-  fs::copy_file(home / "recovery.json", keep, fs::copy_options::overwrite_existing);
+  fs::copy_file(home / ".recovery.json", keep, fs::copy_options::overwrite_existing);
   const std::string cmd_home = home.string();
   fs::remove_all(home.parent_path());
   fs::create_directories(home);
-  fs::copy_file(keep, home / "recovery.json");
+  fs::copy_file(keep, home / ".recovery.json");
   std::ofstream(home.parent_path() / "script.txt") << script;
   const std::string cmd = "SYLVA_HOME='" + cmd_home + "' SYLVA_SCRIPT='" + (home.parent_path() / "script.txt").string() +
                           "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' 2>&1";
