@@ -1,5 +1,6 @@
 // The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
 #include "app/cli.h"
+#include "app/editor_bench.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -658,7 +659,7 @@ int run_cli(int argc, char** argv) {
 
   std::vector<std::string> bench_paths;
   int repeat = 5;
-  bool bench_json = false, bench_export = false, bench_render = false;
+  bool bench_json = false, bench_export = false, bench_render = false, bench_edit = false;
   int bench_width = 1280, bench_height = 720;
   bool bench_preset_light = false;
   CLI::App* bench = app.add_subcommand("bench", "Time grow and mesh per preset (default: every bench/*.json)");
@@ -668,6 +669,7 @@ int run_cli(int argc, char** argv) {
   bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
   bench->add_flag("--render", bench_render,
                   "Time rendering instead: frame ms per pass (needs DISPLAY; default: one preset per generator)");
+  bench->add_flag("--edit", bench_edit, "Time a slider release to the new tree on screen (worker, upload, one frame)");
   bench->add_option("--width", bench_width, "--render: image width")->check(CLI::Range(16, 8192));
   bench->add_option("--height", bench_height, "--render: image height")->check(CLI::Range(16, 8192));
   bench->add_flag("--preset-light", bench_preset_light,
@@ -689,6 +691,7 @@ int run_cli(int argc, char** argv) {
   try {
     if (params->parsed()) return run_params(params_json);
     if (exp->parsed()) return run_export(ex);
+    if (bench->parsed() && bench_edit) return run_bench_edit(bench_paths, repeat, bench_json, bench_width, bench_height);
     if (bench->parsed() && bench_render) {
       if (bench_export) return usage_error("bench", "--render and --export time different things; give one");
       return run_bench_render(bench_paths, repeat, bench_json, bench_width, bench_height, bench_preset_light);

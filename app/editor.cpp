@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cctype>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -22,9 +24,11 @@
 #include <imgui_impl_opengl3.h>
 #include <imgui_stdlib.h>
 
+#include "app/editor_files.h"
 #include "app/editor_generators.h"
 #include "app/export_dialog.h"
 #include "app/headless.h"
+#include "app/input_queue.h"
 #include "app/preset_browser.h"
 #include "app/worker.h"
 #include "render/export.h"
@@ -37,9 +41,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr float panel_width = 420;
-constexpr float timeline_height = 38;
-constexpr float status_height = 26;
+// Layout sizes at a content scale of 1; multiplied by ui_scale (the monitor's content scale).
+float ui_scale = 1;
+float panel_width() { return 420 * ui_scale; }
+float timeline_height() { return 38 * ui_scale; }
+float status_height() { return 26 * ui_scale; }
 
 struct editor_state {
   preset doc;                     // the edited copy (DESIGN §9: edit a copy, commit on change)
@@ -61,28 +67,86 @@ struct editor_state {
   // View.
   renderer_state renderer;
   orbit_camera camera;
-  bool frame_pending = true;      // frame the camera on the next tree
+  bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
+  bool frame_now = false;         // frame the tree on screen now (F)
+  uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
+  int overlay_generator = -1;     // the generator whose default overlay layer is selected
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
-  bool open_picker = false, open_save_as = false, open_about = false;
-  std::string picker_path, save_as_path;
-  std::vector<std::string> preset_files;
+  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false;
+  file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as
+  enum class browsing { open, save_as, screenshot } browse = browsing::open;
+  std::vector<std::string> recent;
+  std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
+  std::string script_shot;        // the scripted test's screenshot path, taken at the end of the frame
   // Status.
   std::string message;
   bool message_is_error = false;
+  std::string toast;              // the last error in full, until dismissed or a success
+  uint32_t error_after = 0;       // a tree from a newer request clears the error
+  struct log_line { std::string time, text; bool error; };
+  std::vector<log_line> log;      // View > Messages
+  bool show_log = false, show_shortcuts = false;
   double frame_ms = 0;
-  bool screenshot_requested = false;
+  bool screenshot_requested = false;   // F12: the 3D view to ~/Sylva/screenshots/
+  std::string screenshot_to;            // Screenshot as...: this path
   std::string screenshot_path;
   std::string texture_message;    // the renderer's last texture error, once shown
   export_dialog_state exporter;   // app/export_dialog.h
   preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
+  GLFWwindow* window = nullptr;
+  // Growth state (issue 14): the status bar shows exactly one of these.
+  enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;
+  std::string growth_text;        // detail for done / cancelled / failed
+  uint32_t posted_generation = 0; // the newest request
+  uint32_t stale_before = 0;      // results older than this were cancelled
+  std::chrono::steady_clock::time_point posted_at;
+  std::shared_ptr<const grow_result> budget_answer;   // an over-budget estimate waiting for the user
+  bool open_budget_prompt = false, approve_next = false;
+  // Nodes alive at the scrubbed step (cached per tree and step).
+  const tree_skeleton* counted_tree = nullptr;
+  int counted_step = -1;
+  size_t counted_nodes = 0;
+  // Unsaved work: what to do once the user has answered save / discard / cancel.
+  enum class then { nothing, quit, open } pending = then::nothing;
+  std::string pending_path;
+  bool open_confirm = false, continue_after_save = false, close_requested = false, quit_confirmed = false;
+  // Recovery: the document is autosaved while modified and offered back on the next start.
+  std::string home;               // ~/Sylva or $SYLVA_HOME
+  double autosave_wait = 0;
+  preset autosaved;
+  bool autosaved_any = false;
+  bool open_recovery = false;
+  preset recovered;
+  std::string recovered_path;
+  std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
+  input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
 };
 
+// The status bar's message; errors also go to a dismissable toast, and every message to the log.
+// A successful action's message replaces an earlier error, and its toast goes away.
 void set_status(editor_state& e, const std::string& m, bool error = false) {
   e.message = m;
   e.message_is_error = error;
   if (error) std::fprintf(stderr, "sylva: %s\n", m.c_str());
+  e.toast = error ? m : "";
+  // A tree from a later request is a successful action that clears this error (the first request
+  // is generation 1: an error while opening the start preset stays over its tree).
+  if (error) e.error_after = e.posted_once ? e.posted_generation : 1;
+  if (m.empty()) return;
+  char stamp[16] = "";
+  const std::time_t t = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%H:%M:%S", std::localtime(&t));
+  e.log.push_back({stamp, m, error});
+  if (e.log.size() > 500) e.log.erase(e.log.begin());
+}
+
+// The next successful action clears an error left from before.
+void clear_error(editor_state& e) {
+  if (e.message_is_error) e.message.clear();
+  e.message_is_error = false;
+  e.toast.clear();
 }
 
 // ---------------------------------------------------------------- parameter panel
@@ -99,12 +163,14 @@ std::vector<const void*> default_pointers(const P& defaults) {
 struct param_drawer {
   const std::vector<const void*>& defaults;
   const char* section;     // header for parameters before the first group
+  const char* source;      // the paper the struct's parameters come from, with a trailing newline, or nullptr
   bool show_advanced;
   bool changed = false;
   bool hold = false;       // an apply-on-release item is active
   bool open = true;
   bool header_drawn = false;
   const char* pending_header = nullptr;   // drawn before the group's first shown parameter
+  const char* last_header = nullptr;      // the header drawn last
   bool relevant = true;                   // param_relevant() for the parameter being visited
   std::vector<step_column>* steps = nullptr;   // the struct's per-step schedules, drawn as one table
   bool steps_drawn = false;
@@ -127,8 +193,12 @@ struct param_drawer {
     }
     // Hidden in the current mode; multi-line texts get their own panel (draw_generator_panel).
     if (!relevant || (info.flags & param_multiline)) return;
+    // A group that continues the one just drawn (nested structs may both name "Leaves") gets no
+    // second header.
+    if (pending_header && last_header && std::strcmp(pending_header, last_header) == 0) pending_header = nullptr;
     if (pending_header) {
       open = ImGui::CollapsingHeader(pending_header, ImGuiTreeNodeFlags_DefaultOpen);
+      last_header = pending_header;
       pending_header = nullptr;
     }
     if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
@@ -191,7 +261,7 @@ struct param_drawer {
       if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
     }
     if (ImGui::IsItemHovered() && info.help && *info.help)
-      ImGui::SetTooltip("%s\n(right-click: reset to default)", info.help);
+      ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
     if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) {
       value = def;
       edited = true;
@@ -202,11 +272,44 @@ struct param_drawer {
   }
 };
 
+// True when the seed cannot change the skeleton (cached per L-system source).
+bool skeleton_is_deterministic(const tree_spec& spec) {
+  const auto* l = std::get_if<lsystem_params>(&spec.params);
+  if (!l) return false;
+  if (l->mode == lsystem_mode::honda) return true;
+  static std::string cached_source;
+  static bool cached = false;
+  if (l->source != cached_source) {
+    cached_source = l->source;
+    lsystem_program prog;
+    cached = compile_lsystem(l->source, prog).ok() && l->source.find("rand") == std::string::npos;
+    if (cached)
+      for (const lsystem_rule& r : prog.rules)
+        if (r.successors.size() > 1) cached = false;
+  }
+  return cached;
+}
+
+// The paper each generator's parameters come from, named in every tooltip.
+template <class P>
+const char* param_source() {
+  if constexpr (std::is_same_v<P, self_organizing_params>)
+    return "Palubicki et al. 2009, Self-organizing tree models for image synthesis (SIGGRAPH)\n";
+  else if constexpr (std::is_same_v<P, space_colonization_params>)
+    return "Runions, Lane & Prusinkiewicz 2007, Modeling trees with a space colonization algorithm\n";
+  else if constexpr (std::is_same_v<P, guiding_vectors_params>)
+    return "Xu & Mould 2015, Procedural tree modeling with guiding vectors\n";
+  else if constexpr (std::is_same_v<P, lsystem_params>)
+    return "Honda 1971; Prusinkiewicz & Lindenmayer 1990, The Algorithmic Beauty of Plants (ch. 1-2)\n";
+  else
+    return nullptr;
+}
+
 template <class P>
 bool draw_params(P& p, const char* section, editor_state& e) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
-  param_drawer d{pointers, section, e.show_advanced};
+  param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
   std::vector<step_column> steps = collect_step_columns(p);
   d.steps = &steps;
   visit_params(p, [&](auto& value, const param_info& info) {
@@ -234,18 +337,6 @@ std::vector<fs::path> preset_dirs() {
   return dirs;
 }
 
-void scan_presets(editor_state& e) {
-  e.preset_files.clear();
-  for (const fs::path& d : preset_dirs()) {
-    std::error_code ec;
-    if (!fs::is_directory(d, ec)) continue;
-    for (const auto& entry : fs::directory_iterator(d, ec))
-      if (entry.path().extension() == ".json") e.preset_files.push_back(fs::weakly_canonical(entry.path(), ec).string());
-  }
-  std::sort(e.preset_files.begin(), e.preset_files.end());
-  e.preset_files.erase(std::unique(e.preset_files.begin(), e.preset_files.end()), e.preset_files.end());
-}
-
 void open_preset(editor_state& e, const std::string& path) {
   preset loaded;
   load_result r = load_preset_file(path, loaded);
@@ -259,18 +350,157 @@ void open_preset(editor_state& e, const std::string& path) {
   e.undo_base = loaded;
   e.path = path;
   note_saved_preset(e.browser, e.doc, path);
-  e.frame_pending = true;
+  note_recent(e.recent, path);
+  e.frame_new = true;
   std::string m = "Opened " + path;
   if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
   set_status(e, m, false);
 }
 
-void save_to(editor_state& e, const std::string& path) {
+bool save_to(editor_state& e, const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
   std::string err = save_preset_file(e.doc, path);
-  if (!err.empty()) return set_status(e, "Save failed: " + err, true);
+  if (!err.empty()) {
+    set_status(e, "Save failed: " + err, true);
+    return false;
+  }
   e.path = path;
   note_saved_preset(e.browser, e.doc, path);
+  note_recent(e.recent, path);
   set_status(e, "Saved " + path);
+  return true;
+}
+
+// ---------------------------------------------------------------- settings
+
+// ~/Sylva/settings.ini: one `key value...` per line.
+struct editor_settings {
+  int x = 0, y = 0, width = 0, height = 0;   // width 0: never saved
+  bool maximized = false;
+  int64_t node_budget = 0;
+  std::vector<std::string> recent;           // newest first
+};
+
+editor_settings load_settings(const std::string& home) {
+  editor_settings s;
+  std::string text;
+  if (!read_file((fs::path(home) / "settings.ini").string(), text).empty()) return s;
+  size_t a = 0;
+  while (a < text.size()) {
+    size_t b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    const std::string line = text.substr(a, b - a);
+    a = b + 1;
+    long long n = 0;
+    int m = 0;
+    if (std::sscanf(line.c_str(), "window %d %d %d %d %d", &s.x, &s.y, &s.width, &s.height, &m) >= 4) s.maximized = m != 0;
+    else if (std::sscanf(line.c_str(), "node_budget %lld", &n) == 1) s.node_budget = n;
+    else if (line.rfind("recent ", 0) == 0 && s.recent.size() < 10) s.recent.push_back(line.substr(7));
+  }
+  return s;
+}
+
+void save_settings(const std::string& home, const editor_settings& s) {
+  std::string text;
+  char b[128];
+  if (s.width > 0) {
+    std::snprintf(b, sizeof b, "window %d %d %d %d %d\n", s.x, s.y, s.width, s.height, int(s.maximized));
+    text += b;
+  }
+  if (s.node_budget > 0) text += "node_budget " + std::to_string(s.node_budget) + "\n";
+  for (const std::string& r : s.recent) text += "recent " + r + "\n";
+  std::error_code ec;
+  fs::create_directories(home, ec);
+  (void)write_file_atomic((fs::path(home) / "settings.ini").string(), text);
+}
+
+// ---------------------------------------------------------------- unsaved work (issue 14)
+
+// The user's own folder for saves, exports, screenshots and the recovery file: $SYLVA_HOME, else ~/Sylva.
+std::string user_folder() {
+  if (const char* h = std::getenv("SYLVA_HOME"); h && *h) return h;
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / "Sylva").string();
+  return (fs::current_path() / "Sylva").string();
+}
+
+// A shipped preset is never overwritten by Save: it goes to Save as in the user's folder instead.
+bool is_installed_preset(const std::string& path) {
+  if (path.empty()) return false;
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  for (const fs::path& d : preset_dirs()) {
+    const fs::path c = fs::weakly_canonical(d, ec);
+    if (!ec && p.parent_path() == c) return true;
+  }
+  return false;
+}
+
+// "My tree" -> "~/Sylva/my_tree.json".
+std::string default_save_path(const editor_state& e) {
+  if (!e.path.empty() && !is_installed_preset(e.path)) return e.path;
+  std::string stem;
+  for (char c : e.doc.name) stem += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '_';
+  if (stem.empty()) stem = "tree";
+  return (fs::path(e.home) / (stem + ".json")).string();
+}
+
+bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
+
+std::string recovery_path(const editor_state& e) { return (fs::path(e.home) / ".recovery.json").string(); }   // hidden from the file browser
+
+void remove_recovery(editor_state& e) {
+  std::error_code ec;
+  fs::remove(recovery_path(e), ec);
+  fs::remove(recovery_path(e) + ".source", ec);
+  e.autosaved_any = false;
+}
+
+// Every few seconds while modified: the document to ~/Sylva/.recovery.json, its own path beside it.
+void autosave(editor_state& e, double dt) {
+  if (e.quit_confirmed) return;
+  if (!modified(e)) {
+    if (e.autosaved_any) remove_recovery(e);
+    e.autosave_wait = 0;
+    return;
+  }
+  e.autosave_wait += dt;
+  if (e.autosave_wait < 3.0 || (e.autosaved_any && e.doc == e.autosaved)) return;
+  e.autosave_wait = 0;
+  std::error_code ec;
+  fs::create_directories(e.home, ec);
+  if (!save_preset_file(e.doc, recovery_path(e)).empty()) return;   // best effort; never interrupts
+  (void)write_file_atomic(recovery_path(e) + ".source", e.path);
+  e.autosaved = e.doc;
+  e.autosaved_any = true;
+}
+
+// Carries out what waited for the unsaved-changes question.
+void perform_pending(editor_state& e) {
+  const editor_state::then what = e.pending;
+  e.pending = editor_state::then::nothing;
+  e.continue_after_save = false;
+  if (what == editor_state::then::quit) {
+    e.quit_confirmed = true;
+    remove_recovery(e);
+    glfwSetWindowShouldClose(e.window, GLFW_TRUE);
+  } else if (what == editor_state::then::open) {
+    open_preset(e, e.pending_path);
+  }
+}
+
+// Quit, window close, Open and the library go through here: asks first when the document is modified.
+void request(editor_state& e, editor_state::then what, const std::string& path = "") {
+  e.pending = what;
+  e.pending_path = path;
+  if (!modified(e)) return perform_pending(e);
+  e.open_confirm = true;
+}
+
+// Save: to the document's own file, or Save as when it has none or it is a shipped preset.
+void save_command(editor_state& e) {
+  if (e.path.empty() || is_installed_preset(e.path)) e.open_save_as = true;
+  else save_to(e, e.path);
 }
 
 // ---------------------------------------------------------------- undo
@@ -292,27 +522,72 @@ void record_undo(editor_state& e) {
   e.undo_base = e.doc;
 }
 
+// "sylva-20261201-114502.png"
+std::string screenshot_name() {
+  char b[64];
+  const std::time_t t = std::time(nullptr);
+  std::strftime(b, sizeof b, "sylva-%Y%m%d-%H%M%S.png", std::localtime(&t));
+  return b;
+}
+
+std::string count_text(double n) {
+  char b[64];
+  if (n >= 1e6) std::snprintf(b, sizeof b, "%.1f million", n / 1e6);
+  else if (n >= 1e4) std::snprintf(b, sizeof b, "%.0f thousand", n / 1e3);
+  else std::snprintf(b, sizeof b, "%.0f", n);
+  return b;
+}
+
+std::string seconds_text(double s) {
+  char b[64];
+  if (s >= 120) std::snprintf(b, sizeof b, "%.0f min", s / 60);
+  else if (s >= 1) std::snprintf(b, sizeof b, "%.0f s", s);
+  else std::snprintf(b, sizeof b, "%.1f s", s);
+  return b;
+}
+
+// A cancelled or over-budget request: the document goes back to the tree on screen, so what is
+// shown is what would be saved. The edit is dropped from the undo history.
+void keep_shown_tree(editor_state& e, const std::string& why) {
+  if (e.shown && e.shown->skeleton && e.shown->skeleton->size()) {
+    e.doc.spec = e.shown->spec;
+    e.doc.mesh = e.shown->mesh_settings;
+    if (!e.undo.empty() && e.undo.back() == e.doc) e.undo.pop_back();
+    e.undo_base = e.doc;
+    e.posted_spec = e.doc.spec;
+    e.posted_mesh = e.doc.mesh;
+  }
+  e.growth_state = editor_state::growth::cancelled;
+  e.growth_text = why;
+}
+
 // ---------------------------------------------------------------- UI
 
-void draw_menu(editor_state& e, GLFWwindow* window) {
+void draw_menu(editor_state& e) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open preset...", "Ctrl+O")) e.open_picker = true;
     ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
-    if (ImGui::MenuItem("Save", "Ctrl+S")) {
-      if (e.path.empty()) e.open_save_as = true;
-      else save_to(e, e.path);
-    }
+    if (ImGui::MenuItem("Save", "Ctrl+S")) save_command(e);
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
     ImGui::MenuItem("Export...", nullptr, &e.exporter.open);
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The 3D view, without menus, to %s/screenshots/", e.home.c_str());
+    if (ImGui::MenuItem("Screenshot as...")) e.browse_screenshot = true;
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) request(e, editor_state::then::quit);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
     if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !e.undo.empty())) apply_undo(e, e.undo, e.redo);
     if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, !e.redo.empty())) apply_undo(e, e.redo, e.undo);
+    ImGui::Separator();
+    int64_t budget = e.worker.node_budget.load();
+    const int64_t lo = 1000, hi = 50000000;
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::SliderScalar("Node budget", ImGuiDataType_S64, &budget, &lo, &hi, "%lld", ImGuiSliderFlags_Logarithmic))
+      e.worker.node_budget = std::clamp(budget, lo, hi);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A request estimated to grow more nodes than this asks before growing");
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -321,10 +596,12 @@ void draw_menu(editor_state& e, GLFWwindow* window) {
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
-    if (ImGui::MenuItem("Frame tree", "F")) e.frame_pending = true;
+    if (ImGui::MenuItem("Frame tree", "F")) e.frame_now = true;
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
+    ImGui::MenuItem("Keyboard and mouse", "F1", &e.show_shortcuts);
+    ImGui::MenuItem("Messages", nullptr, &e.show_log);
     if (ImGui::MenuItem("About Sylva")) e.open_about = true;
     ImGui::EndMenu();
   }
@@ -333,7 +610,7 @@ void draw_menu(editor_state& e, GLFWwindow* window) {
 
 void draw_panel(editor_state& e, float top, float bottom) {
   ImGui::SetNextWindowPos(ImVec2(0, top));
-  ImGui::SetNextWindowSize(ImVec2(panel_width, bottom - top));
+  ImGui::SetNextWindowSize(ImVec2(panel_width(), bottom - top));
   ImGui::Begin("Parameters", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
@@ -342,12 +619,21 @@ void draw_panel(editor_state& e, float top, float bottom) {
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
     spec.params = default_params(g);
-    e.frame_pending = true;
+    e.frame_new = true;
   }
   int seed = int(spec.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
   ImGui::SameLine();
+  // Randomize only where the seed changes something: Honda's model and L-systems without
+  // stochastic productions or rand() are deterministic; then only the leaf scatter uses the seed.
+  const bool random_tree = !skeleton_is_deterministic(spec);
+  const bool random_leaves = e.doc.mesh.leaves_enabled;
+  if (!random_tree && !random_leaves) ImGui::BeginDisabled();
   if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
+  if (!random_tree && !random_leaves) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && !random_tree)
+    ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
+                                    : "This generator is deterministic and leaves are off: the seed changes nothing");
   std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
   draw_generator_panel(e.generator_panels, spec, e.shown.get());
   draw_params(e.doc.mesh, "Mesh", e);
@@ -377,19 +663,27 @@ void draw_panel(editor_state& e, float top, float bottom) {
 
 void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(x, y));
-  ImGui::SetNextWindowSize(ImVec2(w, timeline_height));
+  ImGui::SetNextWindowSize(ImVec2(w, timeline_height()));
   ImGui::Begin("Timeline", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
   const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
-  if (ImGui::Button("|<")) e.step = std::max(0, e.step - 1);
+  if (ImGui::Button("|<")) e.step = 0;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Jump to the start (Home)");
+  ImGui::SameLine();
+  if (ImGui::Button("<")) e.step = std::max(0, e.step - 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("One step back (Left)");
   ImGui::SameLine();
   if (ImGui::Button(e.playing ? "Pause" : "Play")) {
     e.playing = !e.playing;
     if (e.playing && e.step >= steps) e.step = 0;
   }
   ImGui::SameLine();
-  if (ImGui::Button(">|")) e.step = std::min(steps, e.step + 1);
+  if (ImGui::Button(">")) e.step = std::min(steps, e.step + 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("One step forward (Right)");
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) e.step = steps;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Jump to the end (End)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(110);
   ImGui::SliderFloat("##speed", &e.speed, 0.25f, 30, "%.2g steps/s", ImGuiSliderFlags_Logarithmic);
@@ -399,85 +693,369 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::End();
 }
 
+// The overlays' legend in the viewport's bottom left corner: each visible layer, its colour and units.
+void draw_overlay_legend(editor_state& e, float left, float bottom) {
+  const overlay_gpu& g = e.renderer.overlay;
+  const uint32_t shown = g.view.kinds & g.present;
+  if (!e.show_overlays || !shown) return;
+  ImGui::SetNextWindowPos(ImVec2(left + 10, bottom - 10), 0, ImVec2(0, 1));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("##legend", nullptr,
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoInputs);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float h = ImGui::GetTextLineHeight();
+  auto swatch = [&](const glm::vec3& c) {
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    dl->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(p.x + h - 4, p.y + h - 2), ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1)));
+    ImGui::Dummy(ImVec2(h - 2, h));
+    ImGui::SameLine();
+  };
+  auto ramp = [&](const char* lo, const char* hi) {
+    ImGui::TextUnformatted(lo);
+    ImGui::SameLine();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = 120 * ui_scale;
+    for (int i = 0; i < 24; ++i) {
+      const glm::vec3 c = overlay_ramp((float(i) + 0.5f) / 24);
+      dl->AddRectFilled(ImVec2(p.x + w * float(i) / 24, p.y + 2), ImVec2(p.x + w * float(i + 1) / 24, p.y + h - 2),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1)));
+    }
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(hi);
+  };
+  char hi[64];
+  for (int k = 0; k < overlay_kind_count; ++k) {
+    if (!((shown >> k) & 1u)) continue;
+    switch (k) {
+      case overlay_shadow_grid:
+        ImGui::Text("Shadow grid: shade s of each voxel%s", g.view.shadow_slice ? "" : " (whole grid)");
+        if (g.view.shadow_slice) ImGui::Text("  slice at %.2f m of %.2f to %.2f m", g.view.slice_height, g.shadow_min_y, g.shadow_max_y);
+        std::snprintf(hi, sizeof hi, "%.3g (densest)", g.max_shade);
+        ramp("  0", hi);
+        break;
+      case overlay_flow:
+        ImGui::TextUnformatted("Resource flow per internode (point area ∝ flow)");
+        std::snprintf(hi, sizeof hi, "%.3g", g.max_flow);
+        ramp("  0", hi);
+        break;
+      case overlay_fates:
+        swatch(overlay_fate_colour[0]); ImGui::TextUnformatted("bud grew");
+        swatch(overlay_fate_colour[1]); ImGui::TextUnformatted("bud dormant");
+        swatch(overlay_fate_colour[2]); ImGui::TextUnformatted("branch shed");
+        break;
+      case overlay_markers: swatch(overlay_marker_colour); ImGui::TextUnformatted("attraction points / markers alive"); break;
+      case overlay_killed: swatch(overlay_killed_colour); ImGui::TextUnformatted("points killed in this step"); break;
+      case overlay_endpoints:
+        swatch(overlay_source_colour); ImGui::TextUnformatted("sources of the step");
+        swatch(overlay_endpoint_colour); ImGui::TextUnformatted("endpoints of the step");
+        break;
+      default: ImGui::TextUnformatted(overlay_kind_labels[k]); break;
+    }
+  }
+  ImGui::End();
+}
+
+// The last error, whole, in the viewport's top right corner until dismissed or a success.
+void draw_toast(editor_state& e, float left, float top, float right) {
+  if (e.toast.empty()) return;
+  const float w = std::min(520.0f * ui_scale, right - left - 20);
+  ImGui::SetNextWindowPos(ImVec2(right - w - 10, top + 10));
+  ImGui::SetNextWindowSize(ImVec2(w, 0));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.35f, 0.08f, 0.08f, 1));
+  ImGui::Begin("##toast", nullptr,
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+  ImGui::PushTextWrapPos(w - 70 * ui_scale);
+  ImGui::TextUnformatted(e.toast.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::SameLine(w - 60 * ui_scale);
+  if (ImGui::SmallButton("Dismiss")) e.toast.clear();
+  if (ImGui::SmallButton("Messages...")) e.show_log = true;
+  ImGui::End();
+  ImGui::PopStyleColor();
+}
+
+void draw_shortcuts(editor_state& e) {
+  if (!e.show_shortcuts) return;
+  ImGui::SetNextWindowSize(ImVec2(560 * ui_scale, 0), ImGuiCond_Appearing);
+  if (ImGui::Begin("Keyboard and mouse", &e.show_shortcuts, ImGuiWindowFlags_AlwaysAutoResize)) {
+    static const char* rows[][2] = {
+        {"Left-drag", "orbit"}, {"Right- or middle-drag", "pan"}, {"Wheel", "zoom"}, {"F", "frame the tree"},
+        {"Ctrl+Z", "undo"}, {"Ctrl+Shift+Z, Ctrl+Y", "redo"}, {"Ctrl+S", "save (Save as for shipped presets)"},
+        {"Ctrl+O", "open a preset"}, {"Ctrl+L", "preset library"}, {"Ctrl+Q", "quit (asks about unsaved changes)"},
+        {"Space", "play / pause the growth"}, {"Home, End", "first / last step"}, {"Left, Right", "one step back / forward"},
+        {"Esc", "cancel a long regrow; close a dialog"}, {"F12", "screenshot of the 3D view"}, {"F1", "this list"},
+        {"Right-click a slider", "reset it to its default"}};
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
+      for (const auto& r : rows) {
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r[0]);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r[1]);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::Separator();
+    ImGui::TextWrapped("README.md explains more: \"The editor\" (panels, timeline, presets), \"The four "
+                       "generators\" (the papers behind the parameters), \"Command line\" and \"Rendering at scale\".");
+  }
+  ImGui::End();
+}
+
+void draw_message_log(editor_state& e) {
+  if (!e.show_log) return;
+  ImGui::SetNextWindowSize(ImVec2(640 * ui_scale, 300 * ui_scale), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Messages", &e.show_log)) {
+    if (ImGui::SmallButton("Clear")) e.log.clear();
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Copy all")) {
+      std::string all;
+      for (const auto& l : e.log) all += l.time + "  " + l.text + "\n";
+      ImGui::SetClipboardText(all.c_str());
+    }
+    ImGui::Separator();
+    ImGui::BeginChild("lines");
+    for (const auto& l : e.log) {
+      ImGui::TextDisabled("%s", l.time.c_str());
+      ImGui::SameLine();
+      ImGui::PushTextWrapPos(0);
+      if (l.error) ImGui::TextColored(ImVec4(1, 0.5f, 0.45f, 1), "%s", l.text.c_str());
+      else ImGui::TextUnformatted(l.text.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+    ImGui::EndChild();
+  }
+  ImGui::End();
+}
+
+// Nodes alive at the scrubbed step, like the leaf and triangle counts (O(n), once per step change).
+size_t nodes_at_step(editor_state& e) {
+  const tree_skeleton* t = e.shown ? e.shown->skeleton.get() : nullptr;
+  if (!t) return 0;
+  if (t != e.counted_tree || e.step != e.counted_step) {
+    size_t n = 0;
+    for (size_t i = 0; i < t->size(); ++i) n += t->alive(i, e.step);
+    e.counted_tree = t, e.counted_step = e.step, e.counted_nodes = n;
+  }
+  return e.counted_nodes;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The growth in progress has run long enough to show a progress bar with Cancel (~200 ms).
+bool long_growth(const editor_state& e) {
+  return e.growth_state == editor_state::growth::growing && seconds_since(e.posted_at) > 0.2;
+}
+
+void cancel_request(editor_state& e) {
+  e.stale_before = cancel_growth(e.worker);
+  keep_shown_tree(e, "the previous tree stays");
+}
+
 void draw_status(editor_state& e, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(0, y));
-  ImGui::SetNextWindowSize(ImVec2(w, status_height));
+  ImGui::SetNextWindowSize(ImVec2(w, status_height()));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
   ImGui::Begin("Status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
   const grow_result* r = e.shown.get();
-  ImGui::Text("nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms%s",
-              r && r->skeleton ? r->skeleton->size() : size_t(0), e.renderer.leaves_drawn, e.renderer.triangles_drawn,
-              r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms, e.worker.busy ? "   growing..." : "");
+  // One state: growing (with progress and Cancel once it takes a while), done, cancelled or failed.
+  using g = editor_state::growth;
+  switch (e.growth_state) {
+    case g::growing:
+      if (long_growth(e)) {
+        ImGui::TextUnformatted("growing");
+        ImGui::SameLine();
+        ImGui::ProgressBar(e.worker.progress.load(), ImVec2(160, 0));
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Cancel (Esc)")) cancel_request(e);
+      } else {
+        ImGui::TextUnformatted("growing...");
+      }
+      break;
+    case g::asking: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", e.growth_text.c_str()); break;
+    case g::done: ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1), "done: %s", e.growth_text.c_str()); break;
+    case g::cancelled: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "cancelled: %s", e.growth_text.c_str()); break;
+    case g::failed: ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "failed: %s", e.growth_text.c_str()); break;
+    case g::idle: ImGui::TextDisabled("no tree yet"); break;
+  }
   ImGui::SameLine();
-  const std::string& m = !e.message.empty() || !r ? e.message : r->report.message;
-  const bool err = e.message_is_error || (e.message.empty() && r && r->report.error);
-  ImGui::TextColored(err ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", m.c_str());
+  ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
+              e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+  if (!e.message.empty()) {
+    ImGui::SameLine();
+    ImGui::TextColored(e.message_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", e.message.c_str());
+  }
   if (r && !r->mesh.message.empty()) {   // the leaf cap: growth went on, the foliage stopped
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "   %s", r->mesh.message.c_str());
-  }
-  if (r && !r->report.stop_reason.empty()) {   // why growth ended: points used up, cap, step limit ...
-    ImGui::SameLine();
-    ImGui::TextDisabled("   ended: %s", r->report.stop_reason.c_str());
   }
   ImGui::End();
   ImGui::PopStyleVar();
 }
 
+// A dialog button that the scripted test can press too (`answer LABEL`).
+bool scripted_button(editor_state& e, const char* label) {
+  const bool clicked = ImGui::Button(label);
+  if (!e.script_answer.empty() && e.script_answer == label) {
+    e.script_answer.clear();
+    return true;
+  }
+  return clicked;
+}
+
 void draw_dialogs(editor_state& e) {
+  // Open, Save as and Screenshot as share the file browser; places: the user's folder, the
+  // shipped presets (read-only for Save) and home.
+  auto places = [&](file_browser& b) {
+    b.places.clear();
+    b.places.push_back({"My trees", e.home});
+    for (const fs::path& d : preset_dirs())
+      if (std::error_code ec; fs::is_directory(d, ec)) {
+        b.places.push_back({"Shipped presets", fs::weakly_canonical(d, ec).string()});
+        break;
+      }
+    if (const char* h = std::getenv("HOME")) b.places.push_back({"Home", h});
+    b.forbidden_folders.clear();
+    for (const fs::path& d : preset_dirs()) b.forbidden_folders.push_back(d.string());
+    b.forbidden_folder_note = "The shipped presets are read-only: save your own copy in " + e.home;
+  };
   if (e.open_picker) {
-    scan_presets(e);
-    ImGui::OpenPopup("Open preset");
+    std::string folder = !e.path.empty() && !is_installed_preset(e.path) ? fs::path(e.path).parent_path().string() : e.home;
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) {   // nothing of the user's yet: the shipped presets
+      folder.clear();
+      for (const fs::path& d : preset_dirs())
+        if (fs::is_directory(d, ec)) { folder = d.string(); break; }
+      if (folder.empty()) folder = e.home;
+    }
+    places(e.files);
+    open_file_browser(e.files, "Open preset", false, folder, "", {".json"});
+    e.browse = editor_state::browsing::open;
     e.open_picker = false;
   }
   if (e.open_save_as) {
-    if (e.save_as_path.empty()) e.save_as_path = e.path.empty() ? "my_tree.json" : e.path;
-    ImGui::OpenPopup("Save preset as");
+    const fs::path p = default_save_path(e);
+    places(e.files);
+    open_file_browser(e.files, "Save preset as", true, p.parent_path().string(), p.filename().string(), {".json"});
+    e.browse = editor_state::browsing::save_as;
     e.open_save_as = false;
+  }
+  if (e.browse_screenshot) {
+    places(e.files);
+    open_file_browser(e.files, "Save screenshot as", true, (fs::path(e.home) / "screenshots").string(),
+                      screenshot_name(), {".png"});
+    e.browse = editor_state::browsing::screenshot;
+    e.browse_screenshot = false;
+  }
+  if (!e.files.title.empty()) e.prompts_shown.push_back(e.files.title);
+  const bool was_open = !e.files.title.empty();
+  if (const std::string chosen = draw_file_browser(e.files, e.recent, e.script_answer); !chosen.empty()) {
+    if (e.browse == editor_state::browsing::open) {
+      request(e, editor_state::then::open, chosen);
+    } else if (e.browse == editor_state::browsing::save_as) {
+      const bool saved = save_to(e, chosen);
+      if (saved && e.continue_after_save) perform_pending(e);
+      e.continue_after_save = false;
+    } else {
+      e.screenshot_to = chosen;
+    }
+  } else if (was_open && e.files.title.empty()) {   // cancelled
+    if (e.browse == editor_state::browsing::save_as) {
+      e.continue_after_save = false;
+      e.pending = editor_state::then::nothing;
+    }
+  }
+  if (e.open_confirm) {
+    ImGui::OpenPopup("Unsaved changes");
+    e.open_confirm = false;
   }
   if (e.open_about) {
     ImGui::OpenPopup("About Sylva");
     e.open_about = false;
   }
-  ImGui::SetNextWindowSize(ImVec2(620, 420), ImGuiCond_Appearing);
-  if (ImGui::BeginPopupModal("Open preset")) {
-    ImGui::BeginChild("list", ImVec2(0, -60), true);
-    for (const std::string& f : e.preset_files) {
-      const std::string name = fs::path(f).filename().string();
-      if (ImGui::Selectable(name.c_str(), e.picker_path == f, ImGuiSelectableFlags_AllowDoubleClick)) {
-        e.picker_path = f;
-        if (ImGui::IsMouseDoubleClicked(0)) {
-          open_preset(e, f);
-          ImGui::CloseCurrentPopup();
-        }
+  if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Unsaved changes");
+    ImGui::Text("\"%s\" has changes that are not saved.", e.doc.name.c_str());
+    ImGui::TextUnformatted(e.pending == editor_state::then::quit ? "Save them before quitting?" : "Save them before opening another preset?");
+    ImGui::Spacing();
+    if (scripted_button(e, "Save")) {
+      ImGui::CloseCurrentPopup();
+      if (e.path.empty() || is_installed_preset(e.path)) {
+        e.continue_after_save = true;
+        e.open_save_as = true;
+      } else if (save_to(e, e.path)) {
+        perform_pending(e);
       }
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.c_str());
     }
-    if (e.preset_files.empty()) ImGui::TextDisabled("No presets/ folder found; type a path below.");
-    ImGui::EndChild();
-    ImGui::SetNextItemWidth(-130);
-    ImGui::InputText("##path", &e.picker_path);
     ImGui::SameLine();
-    if (ImGui::Button("Open") && !e.picker_path.empty()) {
-      open_preset(e, e.picker_path);
+    if (scripted_button(e, "Discard")) {
+      ImGui::CloseCurrentPopup();
+      perform_pending(e);
+    }
+    ImGui::SameLine();
+    if (scripted_button(e, "Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+      e.pending = editor_state::then::nothing;
       ImGui::CloseCurrentPopup();
     }
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
-  if (ImGui::BeginPopupModal("Save preset as", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::InputText("Name", &e.doc.name);
-    ImGui::SetNextItemWidth(480);
-    ImGui::InputText("Path", &e.save_as_path);
-    if (ImGui::Button("Save") && !e.save_as_path.empty()) {
-      save_to(e, e.save_as_path);
+  if (e.open_budget_prompt) {
+    ImGui::OpenPopup("Large tree");
+    e.open_budget_prompt = false;
+  }
+  if (ImGui::BeginPopupModal("Large tree", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Large tree");
+    const grow_result* b = e.budget_answer.get();
+    if (b) {
+      ImGui::Text("This will grow about %s nodes, ~%s, ~%.1f GB.", count_text(b->estimated_nodes).c_str(),
+                  seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
+      ImGui::Text("The node budget is %s (Edit > Preferences).", count_text(double(e.worker.node_budget.load())).c_str());
+      ImGui::TextDisabled("The tree on screen stays until you choose.");
+    }
+    if (scripted_button(e, "Grow anyway") && b) {
+      e.approve_next = true;
+      e.posted_once = false;   // post again, approved
+      e.budget_answer.reset();
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+    if (scripted_button(e, "Keep the current tree") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+      keep_shown_tree(e, "over budget: the previous tree stays");
+      e.budget_answer.reset();
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+  if (e.open_recovery) {
+    ImGui::OpenPopup("Restore unsaved work?");
+    e.open_recovery = false;
+  }
+  if (ImGui::BeginPopupModal("Restore unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Restore unsaved work?");
+    ImGui::Text("Sylva closed with unsaved changes to \"%s\"%s%s.", e.recovered.name.c_str(),
+                e.recovered_path.empty() ? "" : " from ", e.recovered_path.c_str());
+    ImGui::TextDisabled("Autosaved in %s", recovery_path(e).c_str());
+    if (scripted_button(e, "Restore")) {
+      e.undo.push_back(e.doc);
+      e.doc = e.recovered;
+      e.undo_base = e.doc;
+      e.path = e.recovered_path;
+      e.frame_new = true;
+      set_status(e, "Restored unsaved work; save it to keep it");
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (scripted_button(e, "Discard")) {
+      remove_recovery(e);
+      ImGui::CloseCurrentPopup();
+    }
     ImGui::EndPopup();
   }
   if (ImGui::BeginPopupModal("About Sylva", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -490,8 +1068,9 @@ void draw_dialogs(editor_state& e) {
   }
 }
 
-void handle_keys(editor_state& e, GLFWwindow* window) {
+void handle_keys(editor_state& e) {
   ImGuiIO& io = ImGui::GetIO();
+  if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
   if (io.WantTextInput) return;
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z)) {
@@ -499,16 +1078,19 @@ void handle_keys(editor_state& e, GLFWwindow* window) {
     else apply_undo(e, e.undo, e.redo);
   }
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y)) apply_undo(e, e.redo, e.undo);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) {
-    if (e.path.empty()) e.open_save_as = true;
-    else save_to(e, e.path);
-  }
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) glfwSetWindowShouldClose(window, GLFW_TRUE);
-  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_pending = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
+  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
   if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
+  const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
+  if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
+  if (ImGui::IsKeyPressed(GLFW_KEY_END)) e.step = steps;
+  if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) e.step = std::max(0, e.step - 1);
+  if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) e.step = std::min(steps, e.step + 1);
 }
 
 void handle_mouse(editor_state& e, int viewport_height) {
@@ -531,21 +1113,46 @@ void load_fonts() {
   const char* candidates[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
                               "/usr/share/fonts/TTF/DejaVuSans.ttf", nullptr};
   for (int i = 0; candidates[i]; ++i)
-    if (fs::exists(candidates[i]) && io.Fonts->AddFontFromFileTTF(candidates[i], 16.0f, nullptr, ranges)) return;
+    if (fs::exists(candidates[i]) && io.Fonts->AddFontFromFileTTF(candidates[i], 16.0f * ui_scale, nullptr, ranges)) return;
   std::fprintf(stderr, "sylva: DejaVu Sans not found (install fonts-dejavu-core); Greek symbols will not show\n");
   io.Fonts->AddFontDefault();
 }
 
-std::string save_window_png(int width, int height, const std::string& path) {
+std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
   std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4), flipped(pixels.size());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   const size_t row = size_t(width) * 4;
   for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
   for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;
   return save_png_rgba(path, width, height, flipped.data());
+}
+
+std::string save_window_png(int width, int height, const std::string& path) { return save_region_png(0, 0, width, height, path); }
+
+// Posts the document when its spec or mesh settings changed; render settings only touch uniforms.
+void post_if_changed(editor_state& e) {
+  if (e.hold_post) return;
+  if (e.posted_once && e.doc.spec == e.posted_spec && e.doc.mesh == e.posted_mesh) return;
+  // A new generator (switched, opened or undone) is a new tree: frame it. Edits keep the camera.
+  if (e.posted_once && e.doc.spec.params.index() != e.posted_spec.params.index()) e.frame_new = true;
+  e.posted_spec = e.doc.spec;
+  e.posted_mesh = e.doc.mesh;
+  e.posted_once = true;
+  e.posted_generation = post_request(e.worker, e.posted_spec, e.posted_mesh, e.approve_next);
+  e.approve_next = false;
+  e.posted_at = std::chrono::steady_clock::now();
+  e.growth_state = editor_state::growth::growing;
+  if (e.frame_new) e.frame_generation = e.posted_generation;
+  e.frame_new = false;
+}
+
+// Keeps the pitch off the poles, then fits the box from the current direction (never top-down).
+void frame_view(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi) {
+  if (c.pitch > 50 || c.pitch < -30) c.pitch = 10;
+  frame_camera(c, lo, hi);
 }
 
 // Shows a newer worker result: upload in the same frame it is seen (DESIGN §5).
@@ -553,20 +1160,182 @@ void take_new_tree(editor_state& e) {
   std::shared_ptr<const grow_result> r = take_result(e.worker, e.seen_generation);
   if (!r) return;
   e.seen_generation = r->generation;
+  if (int32_t(r->generation - e.stale_before) < 0) return;   // cancelled before it arrived
+  const bool newest = r->generation == e.posted_generation;
+  if (r->over_budget) {
+    if (!newest) return;
+    e.budget_answer = r;
+    e.open_budget_prompt = true;
+    e.growth_state = editor_state::growth::asking;
+    e.growth_text = "over the node budget: grow it anyway?";
+    return;
+  }
+  if (newest) {
+    e.growth_state = r->report.error ? editor_state::growth::failed : editor_state::growth::done;
+    e.growth_text = r->report.error ? r->report.message : r->report.stop_reason;
+    if (!r->report.error && !r->report.message.empty()) e.growth_text += " (" + r->report.message + ")";
+  }
   if (e.shown && keeps_last_tree(*r)) return set_status(e, r->report.message, true);
   const int old_steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : -1;
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
   upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
+  if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
+    e.overlay_generator = int(r->spec.params.index());
+    overlay_view& v = e.renderer.overlay.view;
+    if (!v.combine) v.kinds = 1u << overlay_default_kind(e.overlay_generator, e.renderer.overlay.present);
+  }
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(e.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);
-  if (e.frame_pending) {
-    frame_camera(e.camera, e.renderer.bounds_min, e.renderer.bounds_max);
-    e.frame_pending = false;
+  if (e.frame_generation != 0 && int32_t(r->generation - e.frame_generation) >= 0) {
+    frame_view(e.camera, e.renderer.bounds_min, e.renderer.bounds_max);
+    e.frame_generation = 0;
   }
-  if (e.message_is_error && e.message.rfind("Cannot open", 0) != 0) e.message.clear();
+  if (newest && !r->report.error && int32_t(r->generation - e.error_after) > 0) clear_error(e);
+  else if (newest && r->report.error) set_status(e, r->report.message, true);
+}
+
+// ---------------------------------------------------------------- scripted driving (tests)
+
+// SYLVA_SCRIPT=FILE drives the real window from a script, one command per line, for the editor's
+// end-to-end test (tests/editor_test.cpp). Commands that wait give up after a timeout and fail.
+//   wait_tree                  until no growth is in progress and a tree is shown
+//   set KEY=VALUE              an edit, as the panel would make it (set_preset_param)
+//   key [ctrl+][shift+]NAME    a press and release queued between two frames (NAME: a-z, escape, f12, ...)
+//   taps N [ctrl+]NAME         N presses and releases queued at once
+//   expect_recovery 0|1        whether the autosaved recovery file exists (waits for it)
+//   answer LABEL               press a button of the open dialog
+//   expect_prompt TITLE / expect_no_prompt
+//   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
+//   wait_progress              until the progress bar with Cancel shows
+//   remember / expect_same_tree / expect_new_tree
+//   budget N / shot PATH / frames N / quit (as Ctrl+Q)
+// At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
+struct script_state {
+  std::vector<std::string> lines;
+  size_t next = 0;
+  std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
+  int frames_left = -1;
+  const tree_skeleton* remembered = nullptr;
+  std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
+  bool failed = false, finished = false;
+};
+
+int glfw_key(const std::string& name) {
+  if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0]))) return GLFW_KEY_A + (std::tolower(name[0]) - 'a');
+  if (name.size() == 1 && std::isdigit(static_cast<unsigned char>(name[0]))) return GLFW_KEY_0 + (name[0] - '0');
+  if (name == "escape") return GLFW_KEY_ESCAPE;
+  if (name == "enter") return GLFW_KEY_ENTER;
+  if (name == "backspace") return GLFW_KEY_BACKSPACE;
+  if (name == "space") return GLFW_KEY_SPACE;
+  if (name == "f12") return GLFW_KEY_F12;
+  return GLFW_KEY_UNKNOWN;
+}
+
+// Runs the script's current command; returns false once the script is over.
+bool run_script(editor_state& e, script_state& sc) {
+  using clock = std::chrono::steady_clock;
+  auto fail = [&](const std::string& why) {
+    std::fprintf(stderr, "sylva script: FAIL at line %zu (%s): %s\n", sc.next + 1, sc.lines[sc.next].c_str(), why.c_str());
+    sc.failed = true;
+    return false;
+  };
+  while (sc.next < sc.lines.size()) {
+    const std::string& line = sc.lines[sc.next];
+    const size_t sp = line.find(' ');
+    const std::string cmd = line.substr(0, sp), arg = sp == std::string::npos ? "" : line.substr(sp + 1);
+    const double waited = std::chrono::duration<double>(clock::now() - sc.started_line).count();
+    const bool growing = e.growth_state == editor_state::growth::growing;
+    bool done = true;   // false: wait and try again next frame
+    auto shown_prompt = [&](const std::string& t) {
+      return std::find(e.prompts_shown.begin(), e.prompts_shown.end(), t) != e.prompts_shown.end();
+    };
+    if (line.empty() || line[0] == '#') {
+    } else if (cmd == "wait_tree") {
+      done = !growing && e.shown;
+      if (!done && waited > 120) return fail("no tree after 120 s");
+    } else if (cmd == "set") {
+      if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
+      sc.frames_left = 2;   // posted on the next frame
+    } else if (cmd == "expect_recovery") {
+      std::error_code ec;
+      done = fs::exists(recovery_path(e), ec) == (arg == "1");
+      if (!done && waited > 20) return fail(arg == "1" ? "no recovery file" : "the recovery file stays");
+    } else if (cmd == "key" || cmd == "taps") {
+      std::string name = arg;
+      int taps = 1;
+      if (cmd == "taps") {   // taps N KEY: N press/release pairs queued at once between two frames
+        taps = std::atoi(arg.c_str());
+        name = arg.substr(std::min(arg.size(), arg.find(' ') + 1));
+      }
+      bool ctrl = false, shift = false;
+      for (;;) {
+        if (name.rfind("ctrl+", 0) == 0) ctrl = true, name = name.substr(5);
+        else if (name.rfind("shift+", 0) == 0) shift = true, name = name.substr(6);
+        else break;
+      }
+      const int k = glfw_key(name);
+      if (k == GLFW_KEY_UNKNOWN) return fail("unknown key");
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS);
+      if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_PRESS);
+      for (int i = 0; i < taps; ++i) {
+        e.input.push_key(k, GLFW_PRESS);
+        e.input.push_key(k, GLFW_RELEASE);
+      }
+      if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_RELEASE);
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE);
+      sc.frames_left = 2 * taps + 3;   // let the queued events drain before the next command
+    } else if (cmd == "answer") {
+      e.script_answer = arg;
+      sc.frames_left = 2;
+    } else if (cmd == "expect_prompt") {
+      done = shown_prompt(arg);
+      if (!done && waited > 30) return fail("the dialog did not appear");
+    } else if (cmd == "expect_no_prompt") {
+      if (!e.prompts_shown.empty()) return fail("a dialog is open: " + e.prompts_shown.front());
+    } else if (cmd == "expect_modified") {
+      if (modified(e) != (arg == "1")) return fail(modified(e) ? "the document is modified" : "the document is not modified");
+    } else if (cmd == "expect_state") {
+      static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
+      if (arg != names[int(e.growth_state)]) return fail(std::string("the state is ") + names[int(e.growth_state)]);
+    } else if (cmd == "expect_param") {
+      preset copy = e.doc;
+      if (std::string err = set_preset_param(copy, arg); !err.empty()) return fail(err);
+      if (!(copy == e.doc)) return fail("the parameter differs");
+    } else if (cmd == "wait_progress") {
+      done = long_growth(e) && e.worker.busy;
+      if (!done && waited > 30) return fail("no progress bar");
+    } else if (cmd == "remember") {
+      sc.remembered_hold = e.shown;
+      sc.remembered = e.shown ? e.shown->skeleton.get() : nullptr;
+    } else if (cmd == "expect_same_tree" || cmd == "expect_new_tree") {
+      const bool same = e.shown && e.shown->skeleton.get() == sc.remembered;
+      if (same != (cmd == "expect_same_tree")) return fail(same ? "the tree did not change" : "the tree changed");
+    } else if (cmd == "budget") {
+      e.worker.node_budget = std::atoll(arg.c_str());
+    } else if (cmd == "shot") {
+      e.script_shot = arg;
+      sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame
+    } else if (cmd == "frames") {
+      if (sc.frames_left < 0) sc.frames_left = std::atoi(arg.c_str());
+    } else if (cmd == "quit") {
+      request(e, editor_state::then::quit);
+      sc.frames_left = 2;
+    } else {
+      return fail("unknown command");
+    }
+    if (!done) return true;
+    static const auto script_start = clock::now();
+    std::printf("sylva script: ok %s (%.1f s)\n", line.c_str(), std::chrono::duration<double>(clock::now() - script_start).count());
+    std::fflush(stdout);
+    ++sc.next;
+    sc.started_line = clock::now();
+    if (sc.frames_left > 0) return true;   // continue after that many frames
+  }
+  sc.finished = true;
+  return false;
 }
 
 }  // namespace
@@ -582,6 +1351,7 @@ int run_editor(const std::string& preset_path) {
     if (std::sscanf(s, "%dx%d", &w, &h) == 2 && w >= 320 && h >= 240) {
       o.width = w;
       o.height = h;
+      o.fit_screen = false;
     }
   }
   return run_editor(o);
@@ -604,6 +1374,34 @@ int run_editor(const editor_options& o) {
   }
   e->undo_base = e->doc;
   note_saved_preset(e->browser, e->doc, e->path);
+  e->home = user_folder();
+  script_state script;
+  if (const char* s = std::getenv("SYLVA_SCRIPT")) {
+    std::string text;
+    if (std::string err = read_file(s, text); !err.empty()) {
+      std::fprintf(stderr, "sylva: %s\n", err.c_str());
+      return 2;
+    }
+    size_t a = 0;
+    while (a <= text.size()) {
+      size_t b = text.find('\n', a);
+      if (b == std::string::npos) b = text.size();
+      script.lines.push_back(text.substr(a, b - a));
+      a = b + 1;
+    }
+  }
+  const bool scripted = !script.lines.empty();
+  const bool automated = !o.screenshot_path.empty();
+  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) e->worker.node_budget = std::max<int64_t>(1000, std::atoll(s));
+  // Work left unsaved by a crash or a killed session: offered back (not in automatic screenshots).
+  if (std::error_code ec; !automated && fs::exists(recovery_path(*e), ec)) {
+    if (load_preset_file(recovery_path(*e), e->recovered).ok) {
+      std::string source;
+      (void)read_file(recovery_path(*e) + ".source", source);
+      e->recovered_path = source;
+      e->open_recovery = true;
+    }
+  }
   e->show_overlays = o.overlays;
   if (const char* s = std::getenv("SYLVA_SHOW_BROWSER")) e->browser.open = std::atoi(s) != 0;
   if (const char* s = std::getenv("SYLVA_SHOW_EXPORT")) e->exporter.open = std::atoi(s) != 0;
@@ -629,13 +1427,46 @@ int run_editor(const editor_options& o) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "Sylva", nullptr, nullptr);
+  // The window fits the monitor's work area on the first start and keeps its place afterwards.
+  editor_settings settings = load_settings(e->home);
+  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker.node_budget = settings.node_budget;
+  if (!scripted) e->recent = settings.recent;
+  const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;
+  int width = o.width, height = o.height, pos_x = -1, pos_y = -1;
+  if (o.fit_screen) {
+    int ax = 0, ay = 0, aw = 0, ah = 0;
+    if (GLFWmonitor* m = glfwGetPrimaryMonitor()) glfwGetMonitorWorkarea(m, &ax, &ay, &aw, &ah);
+    if (aw > 0 && ah > 0) {
+      const int frame = 40;   // room for the window manager's title bar
+      if (remember_window && settings.width > 0) {
+        width = std::min(settings.width, aw), height = std::min(settings.height, ah - frame);
+        pos_x = std::clamp(settings.x, ax, ax + aw - width), pos_y = std::clamp(settings.y, ay, ay + ah - height);
+      } else {
+        width = std::min(o.width, aw), height = std::min(o.height, ah - frame);
+        pos_x = ax + (aw - width) / 2, pos_y = ay + std::max(0, (ah - frame - height) / 2) + frame;
+      }
+    }
+  }
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  if (remember_window && settings.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(width, height, "Sylva", nullptr, nullptr);
+  if (window && pos_x >= 0) glfwSetWindowPos(window, pos_x, pos_y);
+  if (window) glfwShowWindow(window);
   if (!window) {
     std::fprintf(stderr, "sylva: cannot create an OpenGL 3.3 core window\n");
     glfwTerminate();
     return 1;
   }
   glfwMakeContextCurrent(window);
+  e->window = window;
+  // Closing the window asks first when there are unsaved changes (issue 14).
+  glfwSetWindowUserPointer(window, e.get());
+  glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+    auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w));
+    if (!ed || ed->quit_confirmed) return;
+    glfwSetWindowShouldClose(w, GLFW_FALSE);
+    ed->close_requested = true;
+  });
   glfwSwapInterval(o.screenshot_path.empty() ? 1 : 0);
   install_gl_debug_output();
 
@@ -643,9 +1474,22 @@ int run_editor(const editor_options& o) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;   // the layout is fixed; no imgui.ini litter
   ImGui::StyleColorsDark();
-  ImGui::GetStyle().WindowRounding = 0;
+  {
+    ImGuiStyle& style = ImGui::GetStyle();
+    style.WindowRounding = 0;
+    // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
+    style.Colors[ImGuiCol_PopupBg].w = 1;
+    style.Colors[ImGuiCol_WindowBg].w = 1;
+    style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
+    float xs = 1, ys = 1;
+    glfwGetWindowContentScale(window, &xs, &ys);
+    if (const char* sc = std::getenv("SYLVA_UI_SCALE")) xs = float(std::atof(sc));
+    ui_scale = std::clamp(xs, 1.0f, 4.0f);   // fonts and sizes follow the monitor's content scale
+    style.ScaleAllSizes(ui_scale);
+  }
   load_fonts();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
+  install_input_queue(window, &e->input);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   if (!init_renderer(e->renderer)) set_status(*e, e->renderer.error, true);
@@ -667,6 +1511,7 @@ int run_editor(const editor_options& o) {
     last = now;
     e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
 
+    feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -677,28 +1522,43 @@ int run_editor(const editor_options& o) {
 
     // Build the UI first; only then read the state for drawing (DESIGN §9).
     e->hold_post = false;
-    draw_menu(*e, window);
+    e->prompts_shown.clear();
+    if (e->close_requested) {
+      e->close_requested = false;
+      request(*e, editor_state::then::quit);
+    }
+    draw_menu(*e);
     const float top = ImGui::GetFrameHeight();
-    const float bottom = float(win_h) - status_height - (e->show_timeline ? timeline_height : 0);
-    if (e->show_panel) draw_panel(*e, top, float(win_h) - status_height);
-    const float left = e->show_panel ? panel_width : 0;
+    const float bottom = float(win_h) - status_height() - (e->show_timeline ? timeline_height() : 0);
+    if (e->show_panel) draw_panel(*e, top, float(win_h) - status_height());
+    const float left = e->show_panel ? panel_width() : 0;
     if (e->show_timeline) draw_timeline(*e, left, bottom, float(win_w) - left);
-    draw_status(*e, float(win_h) - status_height, float(win_w));
+    draw_status(*e, float(win_h) - status_height(), float(win_w));
+    draw_toast(*e, left, top, float(win_w));
+    draw_overlay_legend(*e, left, bottom);
+    draw_message_log(*e);
+    draw_shortcuts(*e);
     draw_dialogs(*e);
-    if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) open_preset(*e, p);
+    if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
     draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
-    handle_keys(*e, window);
+    handle_keys(*e);
     handle_mouse(*e, int(bottom - top));
     record_undo(*e);
+    autosave(*e, dt);
 
-    // Post growth when the spec or mesh settings changed; render settings only touch uniforms.
-    if (!e->hold_post && (!e->posted_once || !(e->doc.spec == e->posted_spec) || !(e->doc.mesh == e->posted_mesh))) {
-      e->posted_spec = e->doc.spec;
-      e->posted_mesh = e->doc.mesh;
-      e->posted_once = true;
-      post_request(e->worker, e->posted_spec, e->posted_mesh);
-    }
+    post_if_changed(*e);
     take_new_tree(*e);
+    if (scripted && !script.failed && !script.finished) {
+      if (script.frames_left > 0) --script.frames_left;
+      else {
+        script.frames_left = -1;
+        if (!run_script(*e, script)) {
+          if (script.failed) exit_code = 3;
+          e->quit_confirmed = true;
+          glfwSetWindowShouldClose(window, GLFW_TRUE);
+        }
+      }
+    }
 
     // Playback and scrubbing: draw counts plus a small per-node upload, never a re-mesh.
     if (e->shown && e->shown->skeleton) {
@@ -713,10 +1573,8 @@ int run_editor(const editor_options& o) {
       e->step = std::clamp(e->step, 0, steps);
       if (e->step != e->renderer.step) set_tree_step(e->renderer, *e->shown->skeleton, e->shown->mesh_settings.min_radius, e->step);
     }
-    if (e->frame_pending && e->shown) {
-      frame_camera(e->camera, e->renderer.bounds_min, e->renderer.bounds_max);
-      e->frame_pending = false;
-    }
+    if (e->frame_now && e->shown) frame_view(e->camera, e->renderer.bounds_min, e->renderer.bounds_max);
+    e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
     const std::string title = "Sylva - " + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
@@ -735,26 +1593,57 @@ int run_editor(const editor_options& o) {
       e->texture_message = e->renderer.texture_message;
       if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);
     }
+    // F12 and Screenshot as: the 3D view alone, read before the menus and panels are drawn over it.
+    if (e->screenshot_requested || !e->screenshot_to.empty()) {
+      std::string path = e->screenshot_to;
+      if (path.empty()) {
+        std::error_code ec;
+        fs::create_directories(fs::path(e->home) / "screenshots", ec);
+        path = (fs::path(e->home) / "screenshots" / screenshot_name()).string();
+      }
+      std::string err = save_region_png(vx, vy, vw, vh, path);
+      if (err.empty()) note_recent(e->recent, path);
+      set_status(*e, err.empty() ? "Screenshot saved to " + path : "Screenshot failed: " + err, !err.empty());
+      e->screenshot_requested = false;
+      e->screenshot_to.clear();
+    }
     glViewport(0, 0, fb_w, fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
     if (e->shown) ++frames_with_tree;
     const bool auto_shot = !o.screenshot_path.empty() && frames_with_tree >= o.frames;
     const double waited = std::chrono::duration<double>(now - started).count();
-    if (e->screenshot_requested || auto_shot || (!o.screenshot_path.empty() && waited > 60)) {
-      std::string path = !o.screenshot_path.empty() ? o.screenshot_path : "sylva_screenshot.png";
+    if (auto_shot || (!o.screenshot_path.empty() && waited > 60)) {   // SYLVA_SCREENSHOT: the whole window
+      const std::string& path = o.screenshot_path;
       std::string err = save_window_png(fb_w, fb_h, path);
       set_status(*e, err.empty() ? "Screenshot saved to " + path : "Screenshot failed: " + err, !err.empty());
-      e->screenshot_requested = false;
-      if (!o.screenshot_path.empty()) {
+      {
         if (!err.empty() || !auto_shot) exit_code = 1;
         if (!auto_shot) std::fprintf(stderr, "sylva: no tree after 60 s; screenshot taken anyway\n");
         glfwSetWindowShouldClose(window, GLFW_TRUE);
       }
     }
+    if (!e->script_shot.empty() && script.frames_left == 1) {
+      if (std::string err = save_window_png(fb_w, fb_h, e->script_shot); !err.empty()) std::fprintf(stderr, "sylva: %s\n", err.c_str());
+      e->script_shot.clear();
+    }
     glfwSwapBuffers(window);
   }
 
+  if (scripted && !script.finished && !script.failed)
+    std::printf("sylva script: the editor closed before line %zu\n", script.next + 1);
+  if (remember_window) {
+    settings.maximized = glfwGetWindowAttrib(window, GLFW_MAXIMIZED) == GLFW_TRUE;
+    if (!settings.maximized) {
+      glfwGetWindowPos(window, &settings.x, &settings.y);
+      glfwGetWindowSize(window, &settings.width, &settings.height);
+    }
+  }
+  if (o.screenshot_path.empty() && !scripted) {
+    settings.node_budget = e->worker.node_budget.load();
+    settings.recent = e->recent;
+    save_settings(e->home, settings);
+  }
   shutdown_export_dialog(e->exporter);
   stop_worker(e->worker);
   shutdown_preset_browser(e->browser);

@@ -10,6 +10,7 @@ struct editor_options {
   std::string screenshot_path;   // non-empty: render `frames` frames after the tree is shown, save, quit
   int frames = 3;
   int width = 1600, height = 1000;
+  bool fit_screen = true;        // size from ~/Sylva/settings.ini, or fit the monitor's work area (else width×height)
   bool overlays = false;         // start with the growth-debug overlays shown
 };
 

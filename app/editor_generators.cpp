@@ -20,6 +20,7 @@ void refresh_check(lsystem_panel_state& s, const std::string& source) {
   s.checked_source = source;
   s.checked = true;
   s.error = lsystem_check(source);
+  s.warnings = lsystem_warnings(source);
   s.constants = lsystem_constants(source);
 }
 
@@ -150,6 +151,14 @@ bool draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed,
       ImGui::TextDisabled("The last good tree stays on screen until the text parses.");
     } else if (shown && shown->report.stop_reason == "evaluation error") {
       ImGui::TextColored(error_colour, "%s", shown->report.message.c_str());
+    } else if (!s.warnings.empty()) {
+      const ImVec4 warn(1, 0.78f, 0.35f, 1);
+      for (const lsystem_error& w : s.warnings) {
+        ImGui::PushStyleColor(ImGuiCol_Text, warn);
+        ImGui::TextWrapped("line %d:%d  warning: %s", w.line, w.column, w.message.c_str());
+        ImGui::PopStyleColor();
+      }
+      ImGui::TextDisabled("The tree grows as written.");
     } else {
       ImGui::TextColored(ImVec4(0.6f, 0.85f, 0.6f, 1), "ok");
     }
@@ -220,11 +229,17 @@ bool draw_step_table(std::vector<step_column>& cols, bool& hold) {
 
 void draw_overlay_menu(overlay_view& view, const overlay_gpu& gpu) {
   if (!ImGui::BeginMenu("Overlay layers")) return;
+  // One layer at a time unless "Combine layers" is on: several at once bury the tree.
   for (int k = 0; k < overlay_kind_count; ++k) {
+    const bool present = (gpu.present >> k) & 1u;
     bool on = (view.kinds >> k) & 1u;
-    if (ImGui::MenuItem(overlay_kind_labels[k], nullptr, &on)) view.kinds = on ? view.kinds | (1u << k) : view.kinds & ~(1u << k);
+    if (ImGui::MenuItem(overlay_kind_labels[k], nullptr, &on, present)) {
+      if (view.combine) view.kinds = on ? view.kinds | (1u << k) : view.kinds & ~(1u << k);
+      else view.kinds = on ? 1u << k : 0u;
+    }
   }
   ImGui::Separator();
+  ImGui::MenuItem("Combine layers", nullptr, &view.combine);
   ImGui::MenuItem("Shadow grid as a slice", nullptr, &view.shadow_slice);
   if (gpu.shadow_max_y > gpu.shadow_min_y) {
     ImGui::SetNextItemWidth(180);

@@ -80,6 +80,7 @@ struct lsystem_panel_state {
   std::string checked_source;
   bool checked = false;
   lsystem_error error;
+  std::vector<lsystem_error> warnings;   // lsystem_warnings(): unbalanced brackets, idle parameters, dead productions
   std::vector<lsystem_constant> constants;
   // The derivation inspector runs off the UI thread; the newest finished one is shown.
   std::future<lsystem_inspection> pending;

@@ -2,6 +2,7 @@
 #include "app/preset_browser.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 
@@ -167,8 +168,14 @@ void update_thumbnails(preset_browser_state& b) {
   renderer_state& r = *b.renderer;
   upload_tree(r, *finished.mesh);
   set_tree_step(r, *finished.skeleton, finished.doc.mesh.min_radius, finished.skeleton->steps);
+  // Framed on the box, not its bounding sphere, from a little above the horizon, so the tree
+  // fills the square rather than sitting small in the sky.
   orbit_camera cam;
-  frame_camera(cam, r.bounds_min, r.bounds_max);
+  const glm::vec3 lo = r.bounds_min, hi = r.bounds_max, extent = hi - lo;
+  cam.pitch = 8;
+  cam.target = 0.5f * (lo + hi);
+  const float half = 0.5f * std::max({extent.x, extent.y, extent.z, 0.05f});
+  cam.distance = half / std::tan(glm::radians(cam.fov) * 0.5f) * 1.08f + 0.5f * std::max(extent.x, extent.z);
   render_params rp = finished.doc.render;
   rp.god_rays = false;   // at thumbnail size they only wash the tree out
   // Written under a temporary name and renamed: a half-written PNG is never taken for a cached one.
@@ -263,14 +270,12 @@ std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
       ImGui::EndTooltip();
     }
     if (pressed && e.error.empty()) clicked = e.path;
-    // The name under the thumbnail, cut to the cell; a * marks the open preset's unsaved changes.
-    std::string label = (current && modified ? "* " : "") + e.name;
-    while (label.size() > 3 && ImGui::CalcTextSize(label.c_str()).x > size.x + 8) {
-      label.pop_back();
-      while (!label.empty() && (static_cast<unsigned char>(label.back()) & 0xC0) == 0x80) label.pop_back();   // whole UTF-8 characters
-    }
+    // The name under the thumbnail, wrapped to the cell's width; a * marks the open preset's unsaved changes.
+    const std::string label = (current && modified ? "* " : "") + e.name;
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x + 8);
     if (current) ImGui::TextColored(modified ? ImVec4(1, 0.7f, 0.2f, 1) : ImVec4(0.5f, 0.75f, 1, 1), "%s", label.c_str());
     else ImGui::TextUnformatted(label.c_str());
+    ImGui::PopTextWrapPos();
     ImGui::EndGroup();
     ImGui::PopID();
   }

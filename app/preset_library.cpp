@@ -38,7 +38,7 @@ bool contains(std::string_view haystack_lower, std::string_view needle_lower) {
 
 std::string thumbnail_key(std::string_view preset_text, int thumbnail_size) {
   // The size goes in too: a thumbnail rendered at another size is another file.
-  const std::string salt = "sylva-thumb-1/" + std::to_string(thumbnail_size) + "/";
+  const std::string salt = "sylva-thumb-2/" + std::to_string(thumbnail_size) + "/";
   const uint64_t h = fnv1a(preset_text, fnv1a(salt));
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));

@@ -14,8 +14,9 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 
 // A growth too large for memory: the tree on screen stays (the previous result, re-published under
 // the new generation) and the status bar says why. The worker's own `last` stays the good result.
+// With `over_budget`, not a failure: the request was not grown because its estimate is over the budget.
 void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& last, const worker_request& req,
-                     const char* why) {
+                     const char* why, const growth_estimate* over_budget = nullptr) {
   std::shared_ptr<const grow_result> keep;
   try {
     auto r = std::make_shared<grow_result>();
@@ -29,8 +30,16 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
       r->skeleton = std::make_shared<tree_skeleton>();
     }
     r->generation = req.generation;
-    r->report.error = true;
-    r->report.message = why;
+    if (over_budget) {
+      r->over_budget = true;
+      r->estimated_nodes = over_budget->nodes;
+      r->estimated_seconds = over_budget->seconds;
+      r->estimated_bytes = over_budget->bytes;
+      r->report = last ? last->report : grow_report{};
+    } else {
+      r->report.error = true;
+      r->report.message = why;
+    }
     keep = std::move(r);
   } catch (const std::bad_alloc&) {
     // Not even the copy fits: publish nothing; the UI keeps what it shows.
@@ -70,14 +79,32 @@ void run_worker(worker_state& w) {
       auto debug = std::make_shared<growth_debug>();
       auto t0 = std::chrono::steady_clock::now();
       std::shared_ptr<tree_skeleton> skeleton;
+      w.progress = 0;
       try {
-        skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+        // A capped trial first: small trees are done by it, large ones get an estimate (issue 14).
+        growth_estimate est = estimate_growth(req.spec, o);
+        if (est.cancelled) {
+          w.busy = false;
+          continue;
+        }
+        if (!est.exact && !req.approved && est.nodes > double(w.node_budget.load())) {
+          publish_failure(w, last, req, "", &est);
+          continue;
+        }
+        if (est.exact) {
+          skeleton = std::make_shared<tree_skeleton>(std::move(est.trial));
+          result->report = std::move(est.report);
+          *debug = std::move(est.debug);
+        } else {
+          o.progress = [&w](float f) { w.progress.store(f, std::memory_order_relaxed); };
+          skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+        }
       } catch (const std::bad_alloc&) {
         publish_failure(w, last, req, "out of memory while growing: lower the node cap or the step count");
         continue;
       }
       result->grow_ms = ms_since(t0);
-      if (o.cancelled()) {   // a newer edit arrived: drop this one unseen
+      if (o.cancelled()) {   // a newer edit or a cancel arrived: drop this one unseen
         w.busy = false;
         continue;
       }
@@ -118,15 +145,21 @@ void stop_worker(worker_state& w) {
   if (w.thread.joinable()) w.thread.join();
 }
 
-uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params& mesh_settings) {
+uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params& mesh_settings, bool approved) {
   uint32_t g;
   {
     std::lock_guard<std::mutex> lock(w.mutex);
     g = ++w.generation;
-    w.pending = worker_request{g, spec, mesh_settings};
+    w.pending = worker_request{g, spec, mesh_settings, approved};
   }
   w.wake.notify_one();
   return g;
+}
+
+uint32_t cancel_growth(worker_state& w) {
+  std::lock_guard<std::mutex> lock(w.mutex);
+  w.pending.reset();
+  return ++w.generation;
 }
 
 std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation) {

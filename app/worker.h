@@ -9,6 +9,7 @@
 #include <optional>
 #include <thread>
 
+#include "generators/estimate.h"
 #include "generators/tree_spec.h"
 #include "render/mesh.h"
 
@@ -24,13 +25,20 @@ struct grow_result {
   grow_report report;
   double grow_ms = 0, mesh_ms = 0;
   bool regrown = true;   // false when only the mesh was rebuilt from the previous skeleton
+  // Over the node budget: nothing was grown; the previous tree is re-published with the estimate
+  // and the editor asks before growing it (post_request with approved = true).
+  bool over_budget = false;
+  double estimated_nodes = 0, estimated_seconds = 0, estimated_bytes = 0;
 };
 
 struct worker_request {
   uint32_t generation = 0;
   tree_spec spec;
   mesh_params mesh_settings;
+  bool approved = false;   // grow even when over the budget
 };
+
+inline constexpr int64_t default_node_budget = 500000;
 
 struct worker_state {
   std::thread thread;
@@ -40,14 +48,20 @@ struct worker_state {
   std::shared_ptr<const grow_result> published;   // newest finished result
   std::atomic<uint32_t> generation{0};            // moves on with every edit; cancels older growth
   std::atomic<bool> busy{false};
+  std::atomic<float> progress{0};                 // of the growth in progress, 0..1 (grow_options::progress)
+  std::atomic<int64_t> node_budget{default_node_budget};   // larger requests ask first (issue 14)
   bool quit = false;
 };
 
 void start_worker(worker_state& w);
 // Stops the worker, cancelling what it is doing; waits for it (the UI's only wait).
 void stop_worker(worker_state& w);
-// ++generation and posts the spec; returns the new generation.
-uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params& mesh_settings);
+// ++generation and posts the spec; returns the new generation. Unless `approved`, a request whose
+// estimate (generators/estimate.h) is over w.node_budget is not grown but answered with over_budget.
+uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params& mesh_settings, bool approved = false);
+// Cancels the growth in progress and any pending request (nothing is published for them); returns
+// the new generation: results older than it are stale.
+uint32_t cancel_growth(worker_state& w);
 // The newest published result if it is newer than `seen_generation`, else nullptr. Never blocks on work.
 std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation);
 

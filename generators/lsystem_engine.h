@@ -207,6 +207,12 @@ std::vector<lsystem_constant> lsystem_constants(const std::string& source);
 bool set_lsystem_constant(std::string& source, const std::string& name, float value);
 // First error of a source, or an ok() error.
 lsystem_error lsystem_check(const std::string& source);
+// Warnings for a source that compiles but probably does not say what was meant, each at its line
+// and column: an unbalanced '[' or ']' in the axiom or a successor; a module with parameters that
+// is neither a turtle command nor the predecessor of a production (its parameters do nothing); a
+// production whose predecessor occurs in neither the axiom nor any successor (it never applies).
+// The tree still grows as written. Empty when the source has an error.
+std::vector<lsystem_error> lsystem_warnings(const std::string& source);
 
 // Derivation inspector: module count per step and the first modules of the last string.
 struct lsystem_inspection {

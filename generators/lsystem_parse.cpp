@@ -1,4 +1,5 @@
 // L-system source language: directives, productions, the expression compiler and editor helpers.
+#include <array>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -526,6 +527,82 @@ lsystem_error compile_lsystem(const std::string& source, lsystem_program& out) {
 lsystem_error lsystem_check(const std::string& source) {
   lsystem_program prog;
   return compile_into(source, prog);
+}
+
+std::vector<lsystem_error> lsystem_warnings(const std::string& source) {
+  std::vector<lsystem_error> out;
+  lsystem_program prog;
+  if (!compile_into(source, prog).ok()) return out;
+  // Symbols that occur in the axiom or a successor, and those that have a production.
+  std::array<bool, 256> occurs{}, produced{};
+  for (const lsystem_module_template& m : prog.axiom.modules) occurs[m.symbol] = true;
+  for (const lsystem_rule& r : prog.rules) {
+    produced[r.pred.symbol] = true;
+    for (const lsystem_successor& s : r.successors)
+      for (const lsystem_module_template& m : s.modules) occurs[m.symbol] = true;
+  }
+  auto turtle = [&](unsigned char c) {
+    return c == 'F' || c == 'f' || c == '+' || c == '-' || c == '&' || c == '^' || c == '/' || c == '\\' ||
+           c == '|' || c == '[' || c == ']' || c == '!' || c == '$' || c == 'L' || c == '\'' || prog.draws[c];
+  };
+  int line_no = 0;
+  for (const source_line& l : split_lines(source)) {
+    ++line_no;
+    std::string text = source.substr(l.start, l.length);
+    size_t first = 0;
+    while (first < text.size() && is_space(text[first])) ++first;
+    if (first == text.size() || text.compare(first, 2, "//") == 0) continue;
+    // The module text: after "#axiom", or after "->" (with a stochastic "(p)" before it or not).
+    size_t b = std::string::npos;
+    size_t pred_at = std::string::npos;
+    if (text.compare(first, 6, "#axiom") == 0) {
+      b = first + 6;
+    } else if (text[first] != '#') {
+      const size_t arrow = text.find("->", first);
+      if (arrow == std::string::npos) continue;
+      b = arrow + 2;
+      // The predecessor: the symbol before '>' (context) or the first symbol, before ':' or '('.
+      const size_t head = find_top(text, first, arrow, ':');   // a condition may hold '<' and '>'
+      const size_t lt = find_top(text, first, head, '<');
+      // left < pred > right, left < pred, pred > right or pred.
+      size_t p = lt < head ? lt + 1 : first;
+      while (p < head && is_space(text[p])) ++p;
+      pred_at = p;
+    } else {
+      continue;
+    }
+    size_t e = text.find("//", b);
+    if (e == std::string::npos) e = text.size();
+    if (pred_at != std::string::npos) {
+      const unsigned char c = static_cast<unsigned char>(text[pred_at]);
+      if (!occurs[c])
+        out.push_back({line_no, int(pred_at) + 1,
+                       std::string("production for '") + char(c) + "' never applies: '" + char(c) +
+                           "' occurs in neither the axiom nor any successor"});
+    }
+    // Brackets at parenthesis depth 0, and modules with parameters that nothing reads.
+    std::vector<size_t> open;
+    int depth = 0;
+    for (size_t i = b; i < e; ++i) {
+      const char c = text[i];
+      if (c == '(') { ++depth; continue; }
+      if (c == ')') { --depth; continue; }
+      if (depth > 0 || is_space(c)) continue;
+      if (c == '[') open.push_back(i);
+      else if (c == ']') {
+        if (open.empty()) out.push_back({line_no, int(i) + 1, "unbalanced ']': no '[' before it (the turtle ignores it)"});
+        else open.pop_back();
+      }
+      size_t j = i + 1;
+      while (j < e && is_space(text[j])) ++j;
+      const unsigned char u = static_cast<unsigned char>(c);
+      if (j < e && text[j] == '(' && !turtle(u) && !produced[u])
+        out.push_back({line_no, int(i) + 1,
+                       std::string("module '") + c + "' has parameters but no production and no turtle meaning: they do nothing"});
+    }
+    for (size_t i : open) out.push_back({line_no, int(i) + 1, "unbalanced '[': never closed with ']' on this line"});
+  }
+  return out;
 }
 
 std::vector<lsystem_constant> lsystem_constants(const std::string& source) {

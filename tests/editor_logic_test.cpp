@@ -182,3 +182,23 @@ TEST(EditorLogic, ShadowGridLayersFatesAndFlow) {
 
 }  // namespace
 }  // namespace sylva
+
+TEST(EditorLogic, OverlaysShowOneLayerOfTheGeneratorFirstAndKnowWhatIsPresent) {
+  using namespace sylva;
+  overlay_view v;
+  EXPECT_EQ(v.kinds, 1u << overlay_shadow_grid);   // one layer by default
+  EXPECT_FALSE(v.combine);
+  EXPECT_TRUE(v.shadow_slice);                    // a slice, not the whole cloud
+  growth_debug d;
+  d.points = {{0, 0, 0}, {0, 1, 0}};
+  d.point_value = {-1, 0.5f};   // space colonization: one alive, one killed at step 0
+  const overlay_geometry g = build_overlays(d, nullptr, 1);
+  EXPECT_EQ(g.present, (1u << overlay_markers) | (1u << overlay_killed));
+  EXPECT_EQ(overlay_default_kind(1, g.present), int(overlay_markers));
+  EXPECT_EQ(overlay_default_kind(0, 1u << overlay_fates), int(overlay_fates));   // the first present one
+  // The ramp never turns green, the ground's colour.
+  for (float x = 0; x <= 1; x += 0.05f) {
+    const glm::vec3 c = overlay_ramp(x);
+    EXPECT_FALSE(c.y > c.x && c.y > c.z) << x;
+  }
+}

@@ -429,3 +429,30 @@ TEST(LSystemWidths, PipeWidthsThickenFromTheTips) {
   EXPECT_EQ(tips, 3);
   EXPECT_NEAR(t.radius[0], 0.01f * std::sqrt(3.0f), 1e-6f);
 }
+
+TEST(LsystemWarnings, UnbalancedBracketsIdleParametersAndDeadProductions) {
+  // Clean sources warn about nothing (ABOP 1.24d, a parametric one with a condition holding '>').
+  EXPECT_TRUE(lsystem_warnings("#axiom X\nX -> F[+X]F[-X]+X\nF -> FF\n").empty());
+  EXPECT_TRUE(lsystem_warnings("#axiom A(1)\nA(s) : s >= 0 && s < 9 -> F(s)[+A(s*0.5)]A(s+1)\n").empty());
+  // An unbalanced ']' at its column; an unclosed '['.
+  std::vector<lsystem_error> w = lsystem_warnings("#axiom X\nX -> F]+X\n");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].line, 2);
+  EXPECT_EQ(w[0].column, 7);
+  EXPECT_NE(w[0].message.find("']'"), std::string::npos);
+  w = lsystem_warnings("#axiom X\nX -> F[+X\n");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].column, 7);
+  // A module with parameters that nothing reads.
+  w = lsystem_warnings("#axiom X\nX -> F Q(2) X\n");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].column, 8);
+  EXPECT_NE(w[0].message.find("'Q'"), std::string::npos);
+  // A production for a symbol that never occurs.
+  w = lsystem_warnings("#axiom X\nX -> F X\nB -> FF\n");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].line, 3);
+  EXPECT_EQ(w[0].column, 1);
+  // A source with an error has no warnings (the error is shown instead); the tree still grows.
+  EXPECT_TRUE(lsystem_warnings("X -> F]").empty());
+}

@@ -24,7 +24,7 @@ void main() {
   if (kind == 0 && u_slice != 0 && abs(a_position.y - u_slice_y) > u_slice_half) show = false;
   v_color = a_color;
   gl_Position = show ? u_viewproj * vec4(a_position, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
-  gl_PointSize = a_meta.w;
+  gl_PointSize = (kind == 0 && u_slice != 0) ? 3.0 * a_meta.w : a_meta.w;   // a slice shows cells, not a fog
 }
 )";
 const char* overlay_fs = R"(#version 330 core
@@ -37,18 +37,34 @@ overlay_vertex vertex(const glm::vec3& p, const glm::vec3& c, overlay_kind k, fl
   return overlay_vertex{p, c, float(k), born, died, size};
 }
 
-// Cool (low) to warm (high): shade, flow.
-glm::vec3 ramp(float x) {
-  x = std::clamp(x, 0.0f, 1.0f);
-  return x < 0.5f ? glm::mix(glm::vec3(0.15f, 0.35f, 1.0f), glm::vec3(0.2f, 0.95f, 0.4f), 2 * x)
-                  : glm::mix(glm::vec3(0.2f, 0.95f, 0.4f), glm::vec3(1.0f, 0.85f, 0.1f), 2 * x - 1);
-}
-
-const glm::vec3 marker_colour(0.3f, 1.0f, 0.55f), killed_colour(1.0f, 0.15f, 0.15f), source_colour(0.2f, 0.9f, 1.0f),
-    endpoint_colour(1.0f, 0.3f, 0.85f);
-const glm::vec3 fate_colour[3] = {{0.2f, 0.95f, 0.3f}, {0.55f, 0.6f, 0.95f}, {1.0f, 0.25f, 0.2f}};  // grew, dormant, shed
+glm::vec3 ramp(float x) { return overlay_ramp(x); }
+const glm::vec3 &marker_colour = overlay_marker_colour, &killed_colour = overlay_killed_colour,
+                &source_colour = overlay_source_colour, &endpoint_colour = overlay_endpoint_colour;
+const glm::vec3* const fate_colour = overlay_fate_colour;
 
 }  // namespace
+
+// Neither blue nor green, the sky's and the ground's colours, at any value.
+glm::vec3 overlay_ramp(float x) {
+  x = std::clamp(x, 0.0f, 1.0f);
+  const glm::vec3 stops[4] = {{0.28f, 0.0f, 0.65f}, {0.85f, 0.1f, 0.6f}, {1.0f, 0.5f, 0.05f}, {1.0f, 0.95f, 0.1f}};
+  const float f = x * 3;
+  const int i = std::min(int(f), 2);
+  return glm::mix(stops[i], stops[i + 1], f - float(i));
+}
+
+int overlay_default_kind(int generator, uint32_t present) {
+  static const int order[4][4] = {{overlay_shadow_grid, overlay_fates, overlay_flow, overlay_markers},
+                                  {overlay_markers, overlay_killed, overlay_influence, overlay_envelope},
+                                  {overlay_guides, overlay_endpoints, overlay_graph, overlay_fates},
+                                  {overlay_markers, overlay_fates, overlay_flow, overlay_graph}};
+  if (generator >= 0 && generator < 4)
+    for (int k : order[generator])
+      if ((present >> k) & 1u) return k;
+  for (int k = 0; k < overlay_kind_count; ++k)
+    if ((present >> k) & 1u) return k;
+  return overlay_shadow_grid;
+}
 
 overlay_geometry build_overlays(const growth_debug& d, const tree_skeleton* t, int generator) {
   overlay_geometry g;
@@ -116,7 +132,15 @@ overlay_geometry build_overlays(const growth_debug& d, const tree_skeleton* t, i
     g.shadow_layer = gap;
   }
 
-  if (!t) return g;
+  g.max_shade = max_shade;
+  auto mark_present = [&] {
+    for (const overlay_vertex& v : g.lines) g.present |= 1u << int(v.kind);
+    for (const overlay_vertex& v : g.points) g.present |= 1u << int(v.kind);
+  };
+  if (!t) {
+    mark_present();
+    return g;
+  }
   const size_t n = std::min(d.node_fate.size(), t->size());
   for (size_t i = 0; i < n; ++i) {   // fates are those of the last step; shed nodes from their shedding on
     const int f = std::min<int>(d.node_fate[i], 2);
@@ -136,6 +160,8 @@ overlay_geometry build_overlays(const growth_debug& d, const tree_skeleton* t, i
       const glm::vec3 mid = 0.5f * (t->position[i] + t->position[size_t(t->parent[i])]);
       g.points.push_back(vertex(mid, ramp(x), overlay_flow, last, overlay_forever, 2 + 14 * x));
     }
+  g.max_flow = max_flow;
+  mark_present();
   return g;
 }
 
@@ -180,6 +206,11 @@ void upload_overlays(overlay_gpu& g, const overlay_geometry& geo) {
   g.shadow_layer = geo.shadow_layer;
   g.shadow_min_y = geo.shadow_min_y;
   g.shadow_max_y = geo.shadow_max_y;
+  g.max_shade = geo.max_shade;
+  g.max_flow = geo.max_flow;
+  g.present = geo.present;
+  if (g.view.slice_height < 0 || g.view.slice_height > g.shadow_max_y || g.view.slice_height < g.shadow_min_y)
+    g.view.slice_height = 0.5f * (g.shadow_min_y + g.shadow_max_y);
   check_gl("upload overlays");
 }
 

@@ -30,12 +30,23 @@ inline constexpr const char* overlay_kind_labels[] = {
     "Shadow grid",   "Attraction points", "Killed this step", "Influence links", "Envelope outline",
     "Graph edges",   "Guiding vectors",   "Sources / endpoints", "Bud fates",     "Resource flow", nullptr};
 
-// What the user chose to see; render state only (never part of a preset).
+// What the user chose to see; render state only (never part of a preset). One layer at a time
+// by default (overlay_default_kind for the generator); `combine` lets several show together.
 struct overlay_view {
-  uint32_t kinds = (1u << overlay_kind_count) - 1;
-  bool shadow_slice = false;   // show one horizontal layer of the shadow grid instead of the cloud
-  float slice_height = 1.0f;   // metres, the layer shown when shadow_slice is on
+  uint32_t kinds = 1u << overlay_shadow_grid;
+  bool combine = false;
+  bool shadow_slice = true;    // one horizontal layer of the shadow grid, not the whole cloud
+  float slice_height = -1;     // metres; < 0: the middle of the grid once it is known
 };
+
+// High-contrast colours that read against both the sky and the ground (issue 14).
+glm::vec3 overlay_ramp(float x);   // low to high: deep violet, magenta, orange, yellow (plasma-like)
+inline const glm::vec3 overlay_marker_colour(1.0f, 0.25f, 0.95f), overlay_killed_colour(1.0f, 0.1f, 0.05f),
+    overlay_source_colour(0.0f, 0.85f, 1.0f), overlay_endpoint_colour(1.0f, 0.55f, 0.0f);
+inline const glm::vec3 overlay_fate_colour[3] = {{0.0f, 0.9f, 1.0f}, {0.25f, 0.1f, 0.6f}, {1.0f, 0.1f, 0.05f}};  // grew, dormant, shed
+
+// The layer shown first for a generator's tree: the one its paper is about.
+int overlay_default_kind(int generator, uint32_t present);
 
 // Visible while born <= step < died (died = overlay_forever for "to the end").
 inline constexpr float overlay_forever = 1e9f;
@@ -50,6 +61,8 @@ struct overlay_geometry {
   std::vector<overlay_vertex> points;
   float shadow_layer = 0;               // vertical spacing of the shadow grid's layers (0: none)
   float shadow_min_y = 0, shadow_max_y = 0;
+  float max_shade = 0, max_flow = 0;    // the ramps' top values, for the legend
+  uint32_t present = 0;                 // bit k: some vertex of kind k exists
 };
 
 // Splits a generator's debug output into kinds. `generator` is the tree_spec index (0 self-organizing,
@@ -65,6 +78,8 @@ struct overlay_gpu {
   gl_buffer vertices;
   int line_vertices = 0, point_vertices = 0;
   float shadow_layer = 0, shadow_min_y = 0, shadow_max_y = 0;
+  float max_shade = 0, max_flow = 0;
+  uint32_t present = 0;
   overlay_view view;
 };
 

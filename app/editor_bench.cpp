@@ -1,0 +1,145 @@
+// `sylva bench --edit`: slider release to the new tree on screen (editor_bench.h).
+#include "app/editor_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include <epoxy/gl.h>
+
+#include "app/headless.h"
+#include "app/worker.h"
+#include "render/files.h"
+#include "render/gl/renderer.h"
+
+namespace sylva {
+
+namespace {
+
+namespace fs = std::filesystem;
+using clock_type = std::chrono::steady_clock;
+
+double ms_between(clock_type::time_point a, clock_type::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// The generator's first float parameter, as a pointer into `spec` (nullptr if it has none).
+float* first_float(tree_spec& spec) {
+  float* out = nullptr;
+  std::visit([&](auto& p) {
+    visit_params(p, [&](auto& value, const param_info&) {
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value)>, float>)
+        if (!out) out = &value;
+    });
+  }, spec.params);
+  return out;
+}
+
+struct edit_result {
+  double total = 0, worker = 0, upload = 0, frame = 0;
+  size_t nodes = 0;
+  std::string error;
+};
+
+edit_result measure(const preset& p, int repeat, int width, int height) {
+  edit_result out;
+  hidden_gl_context context;
+  if (std::string why = open_hidden_gl_context(context, "sylva bench --edit", false); !why.empty()) {
+    out.error = why;
+    return out;
+  }
+  renderer_state r;
+  worker_state w;
+  if (!init_renderer(r)) out.error = r.error.empty() ? "renderer initialisation failed" : r.error;
+  start_worker(w);
+  w.node_budget = int64_t(1) << 40;   // time the growth, never the question
+  gl_texture color;
+  gl_framebuffer target;
+  if (out.error.empty()) out.error = create_color_target(width, height, color, target);
+  std::vector<double> total, worker, upload, frame;
+  tree_spec spec = p.spec;
+  float* knob = first_float(spec);
+  const float base = knob ? *knob : 0;
+  orbit_camera cam;
+  uint32_t seen = 0;
+  for (int i = 0; i <= repeat && out.error.empty(); ++i) {   // i == 0: the first tree, a warm-up
+    if (knob && i > 0) *knob = base * (i % 2 ? 1.001f : 0.999f) + (base == 0 ? 1e-4f : 0);
+    const auto t0 = clock_type::now();
+    const uint32_t g = post_request(w, spec, p.mesh);
+    std::shared_ptr<const grow_result> res;
+    while (!(res = take_result(w, seen)) || res->generation != g) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    seen = res->generation;
+    const auto t1 = clock_type::now();
+    upload_tree(r, res->mesh);
+    set_tree_step(r, *res->skeleton, res->mesh_settings.min_radius, res->skeleton->steps);
+    glFinish();
+    const auto t2 = clock_type::now();
+    if (i == 0) frame_camera(cam, r.bounds_min, r.bounds_max);
+    draw_frame(r, p.render, cam, width, height, target);
+    glFinish();
+    const auto t3 = clock_type::now();
+    out.nodes = res->skeleton->size();
+    if (res->report.error) out.error = "growth failed: " + res->report.message;
+    if (i == 0) continue;
+    total.push_back(ms_between(t0, t3));
+    worker.push_back(ms_between(t0, t1));
+    upload.push_back(ms_between(t1, t2));
+    frame.push_back(ms_between(t2, t3));
+  }
+  stop_worker(w);
+  delete_gl(target);
+  delete_gl(color);
+  destroy_renderer(r);
+  close_hidden_gl_context(context);
+  out.total = median(total), out.worker = median(worker), out.upload = median(upload), out.frame = median(frame);
+  return out;
+}
+
+}  // namespace
+
+int run_bench_edit(std::vector<std::string> paths, int repeat, bool as_json, int width, int height) {
+  if (std::string why = display_missing("bench --edit"); !why.empty()) {
+    std::fprintf(stderr, "sylva bench --edit: %s\n", why.c_str());
+    return 1;
+  }
+  if (paths.empty())
+    for (const char* name : {"lsystem_honda_a", "self_organizing_default", "space_colonization_seed_cube",
+                             "guiding_vectors_default"})
+      paths.push_back((fs::path(SYLVA_SOURCE_DIR) / "presets" / (std::string(name) + ".json")).string());
+  if (!as_json)
+    std::printf("%-34s %9s %10s %10s %10s %10s\n", "preset", "nodes", "edit_ms", "worker_ms", "upload_ms", "frame_ms");
+  int failures = 0;
+  for (const std::string& path : paths) {
+    preset p;
+    const load_result loaded = load_preset_file(path, p);
+    if (!loaded.ok) {
+      std::fprintf(stderr, "sylva bench --edit: %s\n", loaded.error.c_str());
+      ++failures;
+      continue;
+    }
+    const edit_result r = measure(p, repeat, width, height);
+    if (!r.error.empty()) {
+      std::fprintf(stderr, "sylva bench --edit: %s: %s\n", path.c_str(), r.error.c_str());
+      ++failures;
+      continue;
+    }
+    const std::string name = fs::path(path).stem().string();
+    if (as_json)
+      std::printf("{\"preset\":\"%s\",\"nodes\":%zu,\"edit_ms\":%.2f,\"worker_ms\":%.2f,\"upload_ms\":%.2f,\"frame_ms\":%.2f}\n",
+                  name.c_str(), r.nodes, r.total, r.worker, r.upload, r.frame);
+    else
+      std::printf("%-34s %9zu %10.1f %10.1f %10.1f %10.1f\n", name.c_str(), r.nodes, r.total, r.worker, r.upload, r.frame);
+    std::fflush(stdout);
+  }
+  return failures ? 1 : 0;
+}
+
+}  // namespace sylva

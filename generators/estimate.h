@@ -1,0 +1,45 @@
+// Growth budgets (issue 14): how large will a request grow, before growing it? A cheap trial grows
+// the spec with a small node cap and a time limit; when the trial finishes under both it is the
+// tree itself, otherwise the per-step node counts it reached are extrapolated to the full step count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "generators/tree_spec.h"
+
+namespace sylva {
+
+struct growth_estimate {
+  bool exact = false;      // the trial grew the whole tree: `trial` is the result, nothing to extrapolate
+  bool cancelled = false;  // the caller's cancel fired during the trial
+  double nodes = 0;        // estimated node count of the full request (what the trial grew when it
+                           // did not finish a single step)
+  double seconds = 0;      // estimated time to grow and mesh it
+  double bytes = 0;        // estimated memory for the tree and its mesh
+  tree_skeleton trial;     // the trial tree (the real tree when `exact`)
+  grow_report report;      // the trial's report
+  growth_debug debug;      // the trial's debug output
+  double trial_ms = 0;
+};
+
+struct estimate_limits {
+  int64_t trial_nodes = 20000;   // the trial's node cap (and 8× that as its L-system module cap)
+  double trial_ms = 80;          // the trial stops after about this long (checked once per step)
+};
+
+// Rough cost per node of the tree plus its mesh on the GPU and in memory (triangles, leaves, copies).
+inline constexpr double bytes_per_node = 1500;
+
+// Grows a trial of `spec`. `o.cancel` cancels it; `o.progress` is not called.
+growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, const estimate_limits& limits = {});
+
+// Extrapolates nodes born per step (index = step) over `complete_steps` full steps to
+// `total_steps`: the last increment grows on at the recent step-to-step ratio, and a falling ratio
+// goes on falling (to a constant increment), so growth that is filling its crown levels off and a
+// runaway one explodes. Capped at `cap`.
+// `node_steps`, when given, receives Σ over the steps of the nodes standing then (time goes with it).
+double extrapolate_nodes(const std::vector<double>& born_per_step, int complete_steps, int total_steps, double cap,
+                         double* node_steps = nullptr);
+
+}  // namespace sylva

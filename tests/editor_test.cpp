@@ -1,0 +1,195 @@
+// The editor end to end (issue 14): a real window under Xvfb driven by SYLVA_SCRIPT through an
+// edit, undo and redo from key taps queued between frames, quit with changes (the prompt
+// appears), an over-budget request (the prompt appears, the previous tree stays) and Cancel
+// (Esc) during a long regrow; the autosaved recovery file comes and goes with the changes.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/editor_files.h"
+#include "render/files.h"
+
+namespace {
+
+bool have_display() {
+  const char* d = std::getenv("DISPLAY");
+  return d && *d;
+}
+
+struct run_result {
+  int code = -1;
+  std::string output;
+};
+
+run_result run_script(const std::string& name, const std::string& script, const std::string& preset) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir / "home");
+  std::ofstream(dir / "script.txt") << script;
+  const std::string log = (dir / "log.txt").string();
+  const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
+                          "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" + log +
+                          "' 2>&1";
+  run_result r;
+  const int status = std::system(cmd.c_str());
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  return r;
+}
+
+}  // namespace
+
+TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  // The bush without its leaves: llvmpipe draws frames fast enough for a test that waits on many.
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = (std::filesystem::temp_directory_path() / "sylva_editor_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string script = R"(wait_tree
+remember
+set lambda=0.42
+wait_tree
+expect_new_tree
+expect_modified 1
+expect_recovery 1
+key ctrl+z
+wait_tree
+expect_param lambda=0.46
+expect_modified 0
+expect_recovery 0
+key ctrl+shift+z
+wait_tree
+expect_param lambda=0.42
+set lambda=0.43
+set lambda=0.44
+taps 2 ctrl+z
+expect_param lambda=0.42
+quit
+expect_prompt Unsaved changes
+answer Cancel
+frames 2
+expect_no_prompt
+remember
+budget 100000
+set lambda=1
+expect_prompt Large tree
+expect_same_tree
+answer Keep the current tree
+frames 2
+expect_no_prompt
+expect_param lambda=0.42
+expect_same_tree
+expect_state cancelled
+budget 100000000
+set lambda=1
+wait_progress
+key escape
+expect_state cancelled
+expect_same_tree
+expect_param lambda=0.42
+quit
+expect_prompt Unsaved changes
+answer Discard
+not reached: Discard quits
+)";
+  run_result r = run_script("session", script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the editor closed before line 46"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/.recovery.json"));
+}
+
+TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  namespace fs = std::filesystem;
+  const fs::path home = fs::temp_directory_path() / "sylva_editor_recovery" / "home";
+  // First session: edit, wait for the autosave, then "crash" (the script ends without asking).
+  run_result first = run_script("recovery", "wait_tree\nset derivations=8\nwait_tree\nexpect_recovery 1\n", preset);
+  ASSERT_EQ(first.code, 0) << first.output;
+  ASSERT_TRUE(fs::exists(home / ".recovery.json"));
+  const std::string script = "expect_prompt Restore unsaved work?\nanswer Restore\nframes 2\nwait_tree\n"
+                             "expect_param derivations=8\nexpect_modified 1\n";
+  // run_script clears its folder: keep the recovery file across the second start.
+  const fs::path keep = fs::temp_directory_path() / "sylva_recovery_keep.json";
+  fs::copy_file(home / ".recovery.json", keep, fs::copy_options::overwrite_existing);
+  const std::string cmd_home = home.string();
+  fs::remove_all(home.parent_path());
+  fs::create_directories(home);
+  fs::copy_file(keep, home / ".recovery.json");
+  std::ofstream(home.parent_path() / "script.txt") << script;
+  const std::string cmd = "SYLVA_HOME='" + cmd_home + "' SYLVA_SCRIPT='" + (home.parent_path() / "script.txt").string() +
+                          "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
+
+TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  namespace fs = std::filesystem;
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  // Ctrl+S on a shipped preset is Save as in the user's folder; F12 saves the 3D view there and
+  // says where; Open browses with the recent files.
+  const std::string script = "wait_tree\nkey ctrl+s\nexpect_prompt Save preset as\nanswer Save\nframes 2\n"
+                             "expect_modified 0\nkey f12\nframes 3\nkey ctrl+o\nexpect_prompt Open preset\n"
+                             "answer Cancel\nframes 2\nexpect_no_prompt\n";
+  run_result r = run_script("files", script, preset);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path home = fs::temp_directory_path() / "sylva_editor_files" / "home";
+  int presets = 0, shots = 0;
+  for (const auto& f : fs::directory_iterator(home)) presets += f.path().extension() == ".json";
+  for (const auto& f : fs::directory_iterator(home / "screenshots")) shots += f.path().extension() == ".png";
+  EXPECT_EQ(presets, 1);
+  EXPECT_EQ(shots, 1);
+  EXPECT_FALSE(fs::exists("sylva_screenshot.png"));
+}
+
+TEST(EditorFiles, ListsFoldersFirstAndFiltersByExtension) {
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / "sylva_list_folder";
+  fs::remove_all(d);
+  fs::create_directories(d / "sub");
+  std::ofstream(d / "b.json") << "{}";
+  std::ofstream(d / "a.JSON") << "{}";
+  std::ofstream(d / "c.png") << "";
+  std::ofstream(d / ".hidden.json") << "";
+  std::vector<sylva::file_entry> out;
+  EXPECT_EQ(sylva::list_folder(d.string(), {".json"}, false, out), "");
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_TRUE(out[0].folder);
+  EXPECT_EQ(out[1].name, "a.JSON");
+  EXPECT_EQ(out[2].name, "b.json");
+  EXPECT_EQ(sylva::list_folder(d.string(), {".json"}, true, out), "");
+  EXPECT_EQ(out.size(), 4u);
+  EXPECT_NE(sylva::list_folder((d / "missing").string(), {".json"}, false, out), "");
+  std::vector<std::string> recent = {"x", "y"};
+  sylva::note_recent(recent, "y");
+  EXPECT_EQ(recent, (std::vector<std::string>{"y", "x"}));
+}
+
+TEST(EditorBench, EditLatencyIsReportedPerPreset) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string cmd = "'" + std::string(SYLVA_BINARY) + "' bench --edit --json --repeat 2 --width 64 --height 48 '" +
+                          std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json' 2>&1";
+  FILE* f = popen(cmd.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::string out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, f)) out += buf;
+  EXPECT_EQ(pclose(f), 0) << out;
+  EXPECT_NE(out.find("\"preset\":\"lsystem_honda_a\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"nodes\":1024"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"edit_ms\":"), std::string::npos) << out;
+}
