@@ -7,7 +7,6 @@
 set -euo pipefail
 build=${1:-build-fuzz}
 seconds=${2:-60}
-src=$(cd "$(dirname "$0")/../.." && pwd)
 if ! command -v clang++ >/dev/null 2>&1; then
   if [ "${3:-}" = --if-clang ]; then
     echo "fuzz: clang++ not found, fuzzing skipped (bash scripts/install-deps.sh --fuzz installs it)"
@@ -16,6 +15,7 @@ if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: clang++ not found; run bash scripts/install-deps.sh --fuzz" >&2
   exit 1
 fi
+src=$(cd "$(dirname "$0")/../.." && pwd)
 cmake -S "$src" -B "$build" -DSYLVA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
 cmake --build "$build" -j "$(nproc)" --target fuzz_lsystem fuzz_preset fuzz_set fuzz_obj >/dev/null
