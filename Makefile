@@ -3,7 +3,8 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: run test bench deps build clean sanitize tsan
+.PHONY: run test bench deps build clean sanitize fuzz tsan
+FUZZ_SECONDS ?= 60
 
 deps:
 	@bash scripts/install-deps.sh
@@ -15,8 +16,10 @@ build: deps
 run: build
 	./$(BUILD)/app/sylva $(PRESET)
 
+# The fuzz part: 20 s per harness when clang is installed, skipped with a message otherwise.
 test: build
 	@bash scripts/run-tests.sh $(BUILD)
+	@bash tests/fuzz/run-fuzz.sh build-fuzz 20 --if-clang
 
 bench: build
 	./$(BUILD)/app/sylva bench --repeat 5
@@ -32,6 +35,11 @@ sanitize: deps
 	@cmake --build build-asan -j $(JOBS)
 	ASAN_OPTIONS=alloc_dealloc_mismatch=0 bash scripts/run-tests.sh build-asan -E '$(GL_TESTS)'
 	ASAN_OPTIONS=alloc_dealloc_mismatch=0:detect_leaks=0 bash scripts/run-tests.sh build-asan -R '$(GL_TESTS)'
+
+# libFuzzer harnesses (tests/fuzz/) with clang, ASan and UBSan, FUZZ_SECONDS each.
+fuzz: deps
+	@bash scripts/install-deps.sh --fuzz
+	@bash tests/fuzz/run-fuzz.sh build-fuzz $(FUZZ_SECONDS)
 
 # ThreadSanitizer over the core, the mesher and the growth worker: the worker tests and a stress test.
 tsan: deps

@@ -1,6 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Sylva builds and tests with; installs nothing already present.
+# --fuzz: only clang (with its libFuzzer and sanitizer runtimes), for `make fuzz`.
 set -euo pipefail
+
+if [ "${1:-}" = --fuzz ]; then
+  if command -v clang++ >/dev/null 2>&1; then exit 0; fi
+  if [ "$(id -u)" = 0 ]; then sudo=(); else sudo=(sudo); fi
+  echo "install-deps: installing clang for the fuzz harnesses"
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends clang
+  exit 0
+fi
 
 packages=(
   build-essential cmake pkg-config
