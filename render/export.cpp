@@ -673,13 +673,13 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
   std::vector<std::pair<std::string, std::string>> files;
   if (binary) {
     d.j["buffers"] = json::array({{{"byteLength", d.bin.size()}}});
-    files.emplace_back(path, glb_container(d.j.dump(), d.bin));
+    files.emplace_back(path, glb_container(d.j.dump(-1, ' ', false, json::error_handler_t::replace), d.bin));
   } else {
     d.j["buffers"] = json::array({{{"byteLength", d.bin.size()}, {"uri", uri_of(stem_name + ".bin")}}});
     files.emplace_back(stem + ".bin", std::move(d.bin));
     const std::string dir = std::filesystem::path(path).parent_path().string();
     for (auto& [name, png] : mats.files) files.emplace_back((std::filesystem::path(dir) / name).string(), std::move(png));
-    files.emplace_back(path, d.j.dump(1));
+    files.emplace_back(path, d.j.dump(1, ' ', false, json::error_handler_t::replace));
   }
   r.bytes = files.back().second.size();
   if (o.dry_run) return r;
@@ -823,7 +823,7 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
                       {"died", l.died == never_died ? json(nullptr) : json(l.died)}, {"node", l.node}});
   json doc = {{"sylva_skeleton", 1}, {"generator", info.generator}, {"seed", info.seed}, {"steps", t.steps},
               {"tree_count", t.tree_count}, {"nodes", nodes}, {"leaves", leaves}};
-  return doc.dump();
+  return doc.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 void apply_render_params(export_options& o, const render_params& rp) {

@@ -300,3 +300,20 @@ TEST(BenchCli, MissingFileMessageNamesTheProgram) {
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(r.err.rfind("sylva bench: ", 0), 0u) << r.err;
 }
+
+// An export whose file name is not UTF-8: the glTF's URIs are percent-encoded, the JSON never
+// throws, and every file it names is there.
+TEST(Utf8, GltfExportToANonUtf8NameWritesValidJson) {
+  const fs::path dir = scratch_dir("gltf_name");
+  const std::string preset_path = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  const std::string name = std::string("tr\xFF") + "e.gltf";
+  const sylva_run r = run_sylva("", "export '" + preset_path + "' -o '" + (dir / name).string() + "'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(dir / name, std::ios::binary);
+  const auto j = nlohmann::json::parse(f, nullptr, false);
+  ASSERT_FALSE(j.is_discarded());
+  ASSERT_TRUE(j.contains("buffers"));
+  EXPECT_NE(j["buffers"][0]["uri"].get<std::string>().find("%FF"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / (std::string("tr\xFF") + "e.bin")));
+  fs::remove_all(dir);
+}
