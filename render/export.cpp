@@ -1,7 +1,11 @@
 // Exporters: glTF 2.0 (.glb / .gltf + .bin + PNGs), OBJ + MTL + PNGs, and the skeleton JSON.
 #include "render/export.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <algorithm>
 #include <array>
@@ -164,40 +168,46 @@ std::string stem_path(const std::string& path) {
   return (p.parent_path() / p.stem()).string();
 }
 
-// Writes every (path, bytes) pair all or nothing: each goes to a temporary file beside its target
-// first (write_file_atomic: written, synced), and only when all of them are complete are they
-// renamed into place, the last pair (the main file, which names the others) last. On any failure
-// the temporary files and the files already renamed are removed.
+// Writes every (path, bytes) pair all or nothing: each is staged first (files.h: written and synced
+// under a temporary name beside its target, through symlinks, keeping permissions). A failure while
+// staging removes only the temporaries. Then each existing target is moved aside and the new file
+// renamed in, the main file (which names the others) last; if a rename fails midway, the files
+// moved aside are put back, so the previous export stays whole in either case.
 std::string write_all(const std::vector<std::pair<std::string, std::string>>& files, export_result& r) {
-  namespace fs = std::filesystem;
-  static std::atomic<unsigned> counter{0};
-  std::vector<std::string> temps;
-  std::error_code ec;
-  auto undo = [&] {
-    for (const std::string& t : temps) fs::remove(t, ec);
-    for (const std::string& done : r.files) fs::remove(done, ec);
-    r.files.clear();
-  };
-  for (const auto& [path, bytes] : files) {
-    const fs::path target(path);
-    std::string name = ".";
-    name += target.filename().string();
-    name += ".part-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    const std::string temp = (target.parent_path() / name).string();
-    if (std::string err = write_file_atomic(temp, bytes); !err.empty()) {
-      undo();
-      return "cannot write " + path + " (" + err + ")";
-    }
-    temps.push_back(temp);
-  }
+  std::vector<staged_write> staged(files.size());
   for (size_t k = 0; k < files.size(); ++k) {
-    fs::rename(temps[k], files[k].first, ec);
-    if (ec) {
-      const std::string err = "cannot write " + files[k].first + ": " + ec.message();
-      temps.erase(temps.begin(), temps.begin() + std::ptrdiff_t(k));
-      undo();
+    if (std::string err = stage_file(files[k].first, files[k].second, staged[k]); !err.empty()) {
+      for (size_t j = 0; j < k; ++j) discard_staged(staged[j]);
       return err;
     }
+  }
+  std::vector<std::string> aside(files.size());   // the previous file moved aside, or ""
+  auto roll_back = [&](size_t done) {
+    for (size_t j = 0; j < done; ++j) {
+      if (!aside[j].empty()) ::rename(aside[j].c_str(), staged[j].target.c_str());
+      else ::unlink(staged[j].target.c_str());
+    }
+    for (size_t j = done; j < files.size(); ++j) discard_staged(staged[j]);
+  };
+  for (size_t k = 0; k < files.size(); ++k) {
+    struct stat st {};
+    if (::lstat(staged[k].target.c_str(), &st) == 0) {
+      aside[k] = staged[k].temp + ".previous";
+      if (::rename(staged[k].target.c_str(), aside[k].c_str()) != 0) {
+        const int err = errno;
+        aside[k].clear();
+        roll_back(k);
+        return "cannot write " + files[k].first + ": cannot move the previous file aside: " + std::strerror(err);
+      }
+    }
+    if (std::string err = commit_staged(staged[k]); !err.empty()) {
+      if (!aside[k].empty()) ::rename(aside[k].c_str(), staged[k].target.c_str());
+      roll_back(k);
+      return err;
+    }
+  }
+  for (size_t k = 0; k < files.size(); ++k) {
+    if (!aside[k].empty()) ::unlink(aside[k].c_str());
     r.files.push_back(files[k].first);
   }
   return "";

@@ -675,8 +675,15 @@ preset default_preset() {
   return p;
 }
 
-std::string write_file_atomic(const std::string& path, std::string_view bytes) {
+namespace {
+std::atomic<int> write_fault{-1};   // stage_file calls left before one fails (tests); -1: never
+}  // namespace
+
+void inject_write_failure_for_tests(int n) { write_fault.store(n); }
+
+std::string stage_file(const std::string& path, std::string_view bytes, staged_write& out) {
   namespace fs = std::filesystem;
+  out = {};
   if (path.empty()) return "cannot write: empty path";
   // Through symlinks (as editors do): renaming over the link itself would turn it into a copy.
   fs::path target(path);
@@ -692,7 +699,9 @@ std::string write_file_atomic(const std::string& path, std::string_view bytes) {
   // An existing file keeps its permissions (a 0600 file must not come back 0644) and, where the
   // user may, its owner; a new file gets 0666 less the umask, as open() would give it.
   struct stat old_st {};
-  const bool existed = ::stat(target.c_str(), &old_st) == 0 && S_ISREG(old_st.st_mode);
+  const bool present = ::stat(target.c_str(), &old_st) == 0;
+  if (present && S_ISDIR(old_st.st_mode)) return "cannot write " + path + ": it is a folder";
+  const bool existed = present && S_ISREG(old_st.st_mode);
   static std::atomic<unsigned> counter{0};
   const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                                std::to_string(counter.fetch_add(1)));
@@ -711,8 +720,9 @@ std::string write_file_atomic(const std::string& path, std::string_view bytes) {
     }
   }
   size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+  const bool injected = write_fault.load() >= 0 && write_fault.fetch_sub(1) == 0;
+  while (done < bytes.size() || injected) {
+    const ssize_t n = injected ? (errno = ENOSPC, -1) : ::write(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       const int err = n < 0 ? errno : EIO;
@@ -734,16 +744,36 @@ std::string write_file_atomic(const std::string& path, std::string_view bytes) {
     ::unlink(temp.c_str());
     return fail("close failed", err);
   }
-  if (::rename(temp.c_str(), target.c_str()) != 0) {
+  out.path = path;
+  out.temp = temp.string();
+  out.target = target.string();
+  return "";
+}
+
+std::string commit_staged(const staged_write& s) {
+  namespace fs = std::filesystem;
+  if (::rename(s.temp.c_str(), s.target.c_str()) != 0) {
     const int err = errno;
-    ::unlink(temp.c_str());
-    return fail("rename failed", err);
+    ::unlink(s.temp.c_str());
+    return "cannot write " + s.path + ": rename failed: " + std::strerror(err);
   }
+  const fs::path target(s.target);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
     ::fsync(dfd);  // makes the rename itself durable; failure here loses nothing already written
     ::close(dfd);
   }
   return "";
+}
+
+void discard_staged(const staged_write& s) {
+  if (!s.temp.empty()) ::unlink(s.temp.c_str());
+}
+
+std::string write_file_atomic(const std::string& path, std::string_view bytes) {
+  staged_write s;
+  if (std::string err = stage_file(path, bytes, s); !err.empty()) return err;
+  return commit_staged(s);
 }
 
 std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes) {

@@ -15,6 +15,7 @@
 #include "generators/lsystem.h"
 #include "render/export.h"
 #include "render/textures.h"
+#include "render/files.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -597,4 +598,63 @@ TEST(Export, ApplyRenderParamsCopiesEveryMaterialSetting) {
   EXPECT_EQ(o.leaf_texture, "l.png");
   EXPECT_EQ(o.leaf_opacity, "o.png");
   EXPECT_EQ(export_options{}.texture_size, 512);
+}
+
+// Issue 15, item 1: a multi-file export that fails at any one of its files leaves the previous
+// export byte-identical and no temporary behind.
+TEST(Export, FailedMultiFileExportLeavesThePreviousOneWhole) {
+  scratch dir;
+  honda_tree older(4), newer(6);
+  newer.o.mesh.leaves.archetype = leaf_archetype::lobed;   // other bytes in every file
+  for (const std::string name : {"tree.obj", "tree.gltf"}) {
+    const export_result first = export_tree(older.t, older.m, {"lsystem", 1}, dir / name, older.o);
+    ASSERT_EQ(first.error, "");
+    ASSERT_GE(first.files.size(), size_t(4)) << name;
+    std::map<std::string, std::string> before;
+    for (const std::string& f : first.files) before[f] = slurp(f);
+    for (size_t k = 0; k < first.files.size(); ++k) {
+      inject_write_failure_for_tests(int(k));
+      const export_result failed = export_tree(newer.t, newer.m, {"lsystem", 1}, dir / name, newer.o);
+      inject_write_failure_for_tests(-1);
+      EXPECT_NE(failed.error, "") << name << ", failure at file " << k;
+      EXPECT_NE(failed.error.find("No space left"), std::string::npos) << failed.error;
+      for (const auto& [f, bytes] : before) EXPECT_EQ(slurp(f), bytes) << f << " after a failure at file " << k;
+      size_t entries = 0;
+      for (const auto& e : fs::directory_iterator(dir.dir)) entries += e.path().filename().string()[0] == '.';
+      EXPECT_EQ(entries, size_t(0)) << "a temporary was left behind";
+    }
+    // Without a failure the new export replaces every file.
+    const export_result second = export_tree(newer.t, newer.m, {"lsystem", 1}, dir / name, newer.o);
+    ASSERT_EQ(second.error, "");
+    EXPECT_NE(slurp(dir / name), before[dir / name]);
+  }
+}
+
+// The same on a real full disk: a small tmpfs (needs the right to mount; skipped otherwise).
+TEST(Export, FullDiskLeavesThePreviousExportWhole) {
+  scratch dir;
+  const fs::path mnt = dir.dir / "small";
+  fs::create_directories(mnt);
+  const std::string mount = "mount -t tmpfs -o size=12m tmpfs '" + mnt.string() + "' 2>/dev/null";
+  if (std::system(mount.c_str()) != 0) GTEST_SKIP() << "cannot mount a tmpfs here (needs CAP_SYS_ADMIN)";
+  struct unmount {
+    std::string cmd;
+    ~unmount() { if (std::system(cmd.c_str()) != 0) {} }
+  } guard{"umount '" + mnt.string() + "'"};
+  honda_tree older(4), newer(9);
+  const std::string obj = (mnt / "tree.obj").string();
+  const export_result first = export_tree(older.t, older.m, {"lsystem", 1}, obj, older.o);
+  ASSERT_EQ(first.error, "");
+  std::map<std::string, std::string> before;
+  for (const std::string& f : first.files) before[f] = slurp(f);
+  // Fill the disk, leaving less room than the new export needs.
+  const std::string filler = (mnt / "filler").string();
+  ASSERT_EQ(std::system(("dd if=/dev/zero of='" + filler + "' bs=64k 2>/dev/null; true").c_str()), 0);
+  fs::resize_file(filler, fs::file_size(filler) - 200 * 1024);
+  const export_result failed = export_tree(newer.t, newer.m, {"lsystem", 1}, obj, newer.o);
+  EXPECT_NE(failed.error, "");
+  for (const auto& [f, bytes] : before) EXPECT_EQ(slurp(f), bytes) << f;
+  size_t temps = 0;
+  for (const auto& e : fs::directory_iterator(mnt)) temps += e.path().filename().string()[0] == '.';
+  EXPECT_EQ(temps, size_t(0));
 }
