@@ -73,9 +73,9 @@ struct editor_state {
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
-  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false;
+  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
   file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as
-  enum class browsing { open, save_as, screenshot } browse = browsing::open;
+  enum class browsing { open, save_as, screenshot, export_to } browse = browsing::open;
   std::vector<std::string> recent;
   std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
   std::string script_shot;        // the scripted test's screenshot path, taken at the end of the frame
@@ -570,7 +570,15 @@ void draw_menu(editor_state& e) {
     ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_command(e);
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
-    ImGui::MenuItem("Export...", nullptr, &e.exporter.open);
+    if (ImGui::MenuItem("Export...", nullptr, e.exporter.open)) {
+      e.exporter.open = !e.exporter.open;
+      // Exports land in the user's folder, named after the tree, unless a place was chosen already.
+      std::error_code ec;
+      if (e.exporter.open) fs::create_directories(e.home, ec);
+      if (e.exporter.open && fs::path(e.exporter.path).is_relative())
+        e.exporter.path = (fs::path(e.home) / (fs::path(default_save_path(e)).stem().string() + fs::path(e.exporter.path).extension().string())).string();
+    }
+    if (ImGui::MenuItem("Export as...")) e.browse_export = true;
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("The 3D view, without menus, to %s/screenshots/", e.home.c_str());
     if (ImGui::MenuItem("Screenshot as...")) e.browse_screenshot = true;
@@ -954,6 +962,16 @@ void draw_dialogs(editor_state& e) {
     e.browse = editor_state::browsing::screenshot;
     e.browse_screenshot = false;
   }
+  if (e.browse_export) {   // the export dialog then opens on the chosen path
+    places(e.files);
+    const fs::path current = fs::path(e.exporter.path).is_relative() ? fs::path(e.home) / e.exporter.path : fs::path(e.exporter.path);
+    const std::string stem = fs::path(default_save_path(e)).stem().string();
+    open_file_browser(e.files, "Export as", true, current.parent_path().string(),
+                      stem + (current.has_extension() ? current.extension().string() : ".glb"),
+                      {".glb", ".gltf", ".obj", ".json", ".png"});
+    e.browse = editor_state::browsing::export_to;
+    e.browse_export = false;
+  }
   if (!e.files.title.empty()) e.prompts_shown.push_back(e.files.title);
   const bool was_open = !e.files.title.empty();
   if (const std::string chosen = draw_file_browser(e.files, e.recent, e.script_answer); !chosen.empty()) {
@@ -963,6 +981,9 @@ void draw_dialogs(editor_state& e) {
       const bool saved = save_to(e, chosen);
       if (saved && e.continue_after_save) perform_pending(e);
       e.continue_after_save = false;
+    } else if (e.browse == editor_state::browsing::export_to) {
+      e.exporter.path = chosen;
+      e.exporter.open = true;
     } else {
       e.screenshot_to = chosen;
     }
