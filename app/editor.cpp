@@ -52,6 +52,10 @@ struct editor_state {
   preset undo_base;               // doc as of the last undo step
   std::vector<preset> undo, redo;
   std::string path;               // where Save writes ("" until saved or opened)
+  // The document before an Open whose tree has not arrived yet: a cancelled or over-budget open
+  // returns to it whole (name, file, saved state), not only to its tree.
+  struct document { preset doc; std::string path; preset baseline; std::string baseline_path; };
+  std::unique_ptr<document> before_open;
   // Growth.
   worker_state worker;
   tree_spec posted_spec;
@@ -344,6 +348,8 @@ void open_preset(editor_state& e, const std::string& path) {
     set_status(e, "Cannot open " + path + ": " + r.error, true);
     return;
   }
+  if (!e.before_open) e.before_open = std::make_unique<editor_state::document>(
+      editor_state::document{e.doc, e.path, e.browser.baseline, e.browser.baseline_path});
   e.undo.push_back(e.doc);
   e.redo.clear();
   e.doc = loaded;
@@ -549,6 +555,14 @@ std::string seconds_text(double s) {
 // A cancelled or over-budget request: the document goes back to the tree on screen, so what is
 // shown is what would be saved. The edit is dropped from the undo history.
 void keep_shown_tree(editor_state& e, const std::string& why) {
+  if (e.before_open && e.shown && e.shown->skeleton && e.shown->skeleton->size()) {
+    // The opened preset's tree never arrived: back to the document on screen, name and file too.
+    e.doc = e.before_open->doc;
+    e.path = e.before_open->path;
+    e.browser.baseline = e.before_open->baseline;
+    e.browser.baseline_path = e.before_open->baseline_path;
+    e.before_open.reset();
+  }
   if (e.shown && e.shown->skeleton && e.shown->skeleton->size()) {
     e.doc.spec = e.shown->spec;
     e.doc.mesh = e.shown->mesh_settings;
@@ -1197,6 +1211,7 @@ void take_new_tree(editor_state& e) {
     if (!r->report.error && !r->report.message.empty()) e.growth_text += " (" + r->report.message + ")";
   }
   if (e.shown && keeps_last_tree(*r)) return set_status(e, r->report.message, true);
+  if (newest) e.before_open.reset();   // the opened preset's own tree (or a later edit's) is shown
   const int old_steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : -1;
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
@@ -1232,7 +1247,7 @@ void take_new_tree(editor_state& e) {
 //   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
 //   wait_progress              until the progress bar with Cancel shows
 //   remember / expect_same_tree / expect_new_tree
-//   budget N / shot PATH / frames N / quit (as Ctrl+Q)
+//   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
@@ -1341,6 +1356,9 @@ bool run_script(editor_state& e, script_state& sc) {
       sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame
     } else if (cmd == "frames") {
       if (sc.frames_left < 0) sc.frames_left = std::atoi(arg.c_str());
+    } else if (cmd == "open") {
+      request(e, editor_state::then::open, arg);
+      sc.frames_left = 2;
     } else if (cmd == "quit") {
       request(e, editor_state::then::quit);
       sc.frames_left = 2;

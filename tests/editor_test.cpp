@@ -57,7 +57,16 @@ TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
   bush.mesh.leaves_enabled = false;
   const std::string preset = (std::filesystem::temp_directory_path() / "sylva_editor_bush.json").string();
   ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
-  const std::string script = R"(wait_tree
+  // The same bush with every resource sent up the main axes: a runaway growth, over the budget.
+  bush.spec.params = [&] {
+    auto p = std::get<sylva::self_organizing_params>(bush.spec.params);
+    p.lambda = 1;
+    return p;
+  }();
+  bush.name = "Runaway";
+  const std::string runaway = (std::filesystem::temp_directory_path() / "sylva_editor_runaway.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, runaway), "");
+  std::string script = R"(wait_tree
 remember
 set lambda=0.42
 wait_tree
@@ -99,15 +108,26 @@ key escape
 expect_state cancelled
 expect_same_tree
 expect_param lambda=0.42
+budget 100000
+open RUNAWAY
+expect_prompt Unsaved changes
+answer Discard
+expect_prompt Large tree
+expect_same_tree
+answer Keep the current tree
+frames 2
+expect_param lambda=0.42
+expect_modified 1
 quit
 expect_prompt Unsaved changes
 answer Discard
 not reached: Discard quits
 )";
+  script.replace(script.find("RUNAWAY"), 7, runaway);
   run_result r = run_script("session", script, preset);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("the editor closed before line 46"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the editor closed before line 56"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/.recovery.json"));
 }
