@@ -100,6 +100,7 @@ struct editor_state {
   preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
   GLFWwindow* window = nullptr;
+  float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
   // Growth state (issue 14): the status bar shows exactly one of these.
   enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;
   std::string growth_text;        // detail for done / cancelled / failed
@@ -636,7 +637,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   ImGui::Begin("Parameters", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
-  ImGui::PushItemWidth(-205);
+  ImGui::PushItemWidth(-205 * ui_scale);
   tree_spec& spec = e.doc.spec;
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
@@ -1153,6 +1154,22 @@ void load_fonts() {
   io.Fonts->AddFontDefault();
 }
 
+// The style and the font at a content scale (fonts and sizes follow the monitor, issue 14).
+void apply_ui_scale(float scale) {
+  ui_scale = std::clamp(scale, 1.0f, 4.0f);
+  ImGuiStyle& style = ImGui::GetStyle();
+  style = ImGuiStyle();
+  ImGui::StyleColorsDark(&style);
+  style.WindowRounding = 0;
+  // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
+  style.Colors[ImGuiCol_PopupBg].w = 1;
+  style.Colors[ImGuiCol_WindowBg].w = 1;
+  style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
+  style.ScaleAllSizes(ui_scale);
+  ImGui::GetIO().Fonts->Clear();
+  load_fonts();
+}
+
 std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
   std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4), flipped(pixels.size());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -1512,21 +1529,16 @@ int run_editor(const editor_options& o) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;   // the layout is fixed; no imgui.ini litter
-  ImGui::StyleColorsDark();
   {
-    ImGuiStyle& style = ImGui::GetStyle();
-    style.WindowRounding = 0;
-    // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
-    style.Colors[ImGuiCol_PopupBg].w = 1;
-    style.Colors[ImGuiCol_WindowBg].w = 1;
-    style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
     float xs = 1, ys = 1;
     glfwGetWindowContentScale(window, &xs, &ys);
     if (const char* sc = std::getenv("SYLVA_UI_SCALE")) xs = float(std::atof(sc));
-    ui_scale = std::clamp(xs, 1.0f, 4.0f);   // fonts and sizes follow the monitor's content scale
-    style.ScaleAllSizes(ui_scale);
+    apply_ui_scale(xs);
   }
-  load_fonts();
+  // Moved to a monitor with another scale: the style and fonts follow before the next frame.
+  glfwSetWindowContentScaleCallback(window, [](GLFWwindow* w, float xs, float) {
+    if (auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w))) ed->rescale_to = xs;
+  });
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   install_input_queue(window, &e->input);
   ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -1550,6 +1562,12 @@ int run_editor(const editor_options& o) {
     last = now;
     e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
 
+    if (e->rescale_to > 0 && !std::getenv("SYLVA_UI_SCALE")) {
+      apply_ui_scale(e->rescale_to);
+      ImGui_ImplOpenGL3_DestroyFontsTexture();
+      ImGui_ImplOpenGL3_CreateFontsTexture();
+    }
+    e->rescale_to = 0;
     feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
