@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "app/editor_files.h"
 #include "render/files.h"
 
@@ -27,9 +29,14 @@ struct run_result {
   std::string output;
 };
 
+// A folder of this test process's own, so that parallel runs do not share files.
+std::filesystem::path test_dir(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("sylva_editor_" + name + "_" + std::to_string(getpid()));
+}
+
 run_result run_script(const std::string& name, const std::string& script, const std::string& preset) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_" + name);
+  const fs::path dir = test_dir(name);
   fs::remove_all(dir);
   fs::create_directories(dir / "home");
   std::ofstream(dir / "script.txt") << script;
@@ -55,7 +62,7 @@ TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
   sylva::preset bush;
   ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
   bush.mesh.leaves_enabled = false;
-  const std::string preset = (std::filesystem::temp_directory_path() / "sylva_editor_bush.json").string();
+  const std::string preset = test_dir("bush.json").string();
   ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
   // The same bush with every resource sent up the main axes: a runaway growth, over the budget.
   bush.spec.params = [&] {
@@ -64,7 +71,7 @@ TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
     return p;
   }();
   bush.name = "Runaway";
-  const std::string runaway = (std::filesystem::temp_directory_path() / "sylva_editor_runaway.json").string();
+  const std::string runaway = test_dir("runaway.json").string();
   ASSERT_EQ(sylva::save_preset_file(bush, runaway), "");
   std::string script = R"(wait_tree
 remember
@@ -129,14 +136,14 @@ not reached: Discard quits
   EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("the editor closed before line 56"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/.recovery.json"));
+  EXPECT_FALSE(std::filesystem::exists(test_dir("session") / "home" / ".recovery.json"));
 }
 
 TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
   namespace fs = std::filesystem;
-  const fs::path home = fs::temp_directory_path() / "sylva_editor_recovery" / "home";
+  const fs::path home = test_dir("recovery") / "home";
   // First session: edit, wait for the autosave, then "crash" (the script ends without asking).
   run_result first = run_script("recovery", "wait_tree\nset derivations=8\nwait_tree\nexpect_recovery 1\n", preset);
   ASSERT_EQ(first.code, 0) << first.output;
@@ -144,7 +151,7 @@ TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   const std::string script = "expect_prompt Restore unsaved work?\nanswer Restore\nframes 2\nwait_tree\n"
                              "expect_param derivations=8\nexpect_modified 1\n";
   // run_script clears its folder: keep the recovery file across the second start.
-  const fs::path keep = fs::temp_directory_path() / "sylva_recovery_keep.json";
+  const fs::path keep = test_dir("recovery_keep.json");
   fs::copy_file(home / ".recovery.json", keep, fs::copy_options::overwrite_existing);
   const std::string cmd_home = home.string();
   fs::remove_all(home.parent_path());
@@ -167,7 +174,7 @@ TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
                              "answer Cancel\nframes 2\nexpect_no_prompt\n";
   run_result r = run_script("files", script, preset);
   ASSERT_EQ(r.code, 0) << r.output;
-  const fs::path home = fs::temp_directory_path() / "sylva_editor_files" / "home";
+  const fs::path home = test_dir("files") / "home";
   int presets = 0, shots = 0;
   for (const auto& f : fs::directory_iterator(home)) presets += f.path().extension() == ".json";
   for (const auto& f : fs::directory_iterator(home / "screenshots")) shots += f.path().extension() == ".png";
@@ -178,7 +185,7 @@ TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
 
 TEST(EditorFiles, ListsFoldersFirstAndFiltersByExtension) {
   namespace fs = std::filesystem;
-  const fs::path d = fs::temp_directory_path() / "sylva_list_folder";
+  const fs::path d = test_dir("list_folder");
   fs::remove_all(d);
   fs::create_directories(d / "sub");
   std::ofstream(d / "b.json") << "{}";
