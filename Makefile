@@ -29,7 +29,7 @@ bench: build
 # global operator new/delete, which makes Mesa's LLVM (llvmpipe) pair allocators ASan cannot match.
 # The tests that open a GL context run without leak checking: Mesa's unloaded driver modules leave
 # allocations LeakSanitizer reports against "<unknown module>"; every other test checks leaks.
-GL_TESTS = HeadlessRender|EditorSmoke|RenderBench
+GL_TESTS = HeadlessRender|EditorSmoke|EditorSession|EditorBench|RenderBench
 sanitize: deps
 	@cmake -S . -B build-asan -DSYLVA_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 	@cmake --build build-asan -j $(JOBS)

@@ -52,6 +52,10 @@ struct editor_state {
   preset undo_base;               // doc as of the last undo step
   std::vector<preset> undo, redo;
   std::string path;               // where Save writes ("" until saved or opened)
+  // The document before an Open whose tree has not arrived yet: a cancelled or over-budget open
+  // returns to it whole (name, file, saved state), not only to its tree.
+  struct document { preset doc; std::string path; preset baseline; std::string baseline_path; };
+  std::unique_ptr<document> before_open;
   // Growth.
   worker_state worker;
   tree_spec posted_spec;
@@ -73,9 +77,9 @@ struct editor_state {
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
-  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false;
+  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
   file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as
-  enum class browsing { open, save_as, screenshot } browse = browsing::open;
+  enum class browsing { open, save_as, screenshot, export_to } browse = browsing::open;
   std::vector<std::string> recent;
   std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
   std::string script_shot;        // the scripted test's screenshot path, taken at the end of the frame
@@ -96,6 +100,7 @@ struct editor_state {
   preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
   GLFWwindow* window = nullptr;
+  float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
   // Growth state (issue 14): the status bar shows exactly one of these.
   enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;
   std::string growth_text;        // detail for done / cancelled / failed
@@ -344,6 +349,8 @@ void open_preset(editor_state& e, const std::string& path) {
     set_status(e, "Cannot open " + path + ": " + r.error, true);
     return;
   }
+  if (!e.before_open) e.before_open = std::make_unique<editor_state::document>(
+      editor_state::document{e.doc, e.path, e.browser.baseline, e.browser.baseline_path});
   e.undo.push_back(e.doc);
   e.redo.clear();
   e.doc = loaded;
@@ -549,6 +556,14 @@ std::string seconds_text(double s) {
 // A cancelled or over-budget request: the document goes back to the tree on screen, so what is
 // shown is what would be saved. The edit is dropped from the undo history.
 void keep_shown_tree(editor_state& e, const std::string& why) {
+  if (e.before_open && e.shown && e.shown->skeleton && e.shown->skeleton->size()) {
+    // The opened preset's tree never arrived: back to the document on screen, name and file too.
+    e.doc = e.before_open->doc;
+    e.path = e.before_open->path;
+    e.browser.baseline = e.before_open->baseline;
+    e.browser.baseline_path = e.before_open->baseline_path;
+    e.before_open.reset();
+  }
   if (e.shown && e.shown->skeleton && e.shown->skeleton->size()) {
     e.doc.spec = e.shown->spec;
     e.doc.mesh = e.shown->mesh_settings;
@@ -570,7 +585,15 @@ void draw_menu(editor_state& e) {
     ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_command(e);
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
-    ImGui::MenuItem("Export...", nullptr, &e.exporter.open);
+    if (ImGui::MenuItem("Export...", nullptr, e.exporter.open)) {
+      e.exporter.open = !e.exporter.open;
+      // Exports land in the user's folder, named after the tree, unless a place was chosen already.
+      std::error_code ec;
+      if (e.exporter.open) fs::create_directories(e.home, ec);
+      if (e.exporter.open && fs::path(e.exporter.path).is_relative())
+        e.exporter.path = (fs::path(e.home) / (fs::path(default_save_path(e)).stem().string() + fs::path(e.exporter.path).extension().string())).string();
+    }
+    if (ImGui::MenuItem("Export as...")) e.browse_export = true;
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("The 3D view, without menus, to %s/screenshots/", e.home.c_str());
     if (ImGui::MenuItem("Screenshot as...")) e.browse_screenshot = true;
@@ -614,7 +637,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   ImGui::Begin("Parameters", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
-  ImGui::PushItemWidth(-205);
+  ImGui::PushItemWidth(-205 * ui_scale);
   tree_spec& spec = e.doc.spec;
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
@@ -954,6 +977,16 @@ void draw_dialogs(editor_state& e) {
     e.browse = editor_state::browsing::screenshot;
     e.browse_screenshot = false;
   }
+  if (e.browse_export) {   // the export dialog then opens on the chosen path
+    places(e.files);
+    const fs::path current = fs::path(e.exporter.path).is_relative() ? fs::path(e.home) / e.exporter.path : fs::path(e.exporter.path);
+    const std::string stem = fs::path(default_save_path(e)).stem().string();
+    open_file_browser(e.files, "Export as", true, current.parent_path().string(),
+                      stem + (current.has_extension() ? current.extension().string() : ".glb"),
+                      {".glb", ".gltf", ".obj", ".json", ".png"});
+    e.browse = editor_state::browsing::export_to;
+    e.browse_export = false;
+  }
   if (!e.files.title.empty()) e.prompts_shown.push_back(e.files.title);
   const bool was_open = !e.files.title.empty();
   if (const std::string chosen = draw_file_browser(e.files, e.recent, e.script_answer); !chosen.empty()) {
@@ -963,6 +996,9 @@ void draw_dialogs(editor_state& e) {
       const bool saved = save_to(e, chosen);
       if (saved && e.continue_after_save) perform_pending(e);
       e.continue_after_save = false;
+    } else if (e.browse == editor_state::browsing::export_to) {
+      e.exporter.path = chosen;
+      e.exporter.open = true;
     } else {
       e.screenshot_to = chosen;
     }
@@ -1118,6 +1154,22 @@ void load_fonts() {
   io.Fonts->AddFontDefault();
 }
 
+// The style and the font at a content scale (fonts and sizes follow the monitor, issue 14).
+void apply_ui_scale(float scale) {
+  ui_scale = std::clamp(scale, 1.0f, 4.0f);
+  ImGuiStyle& style = ImGui::GetStyle();
+  style = ImGuiStyle();
+  ImGui::StyleColorsDark(&style);
+  style.WindowRounding = 0;
+  // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
+  style.Colors[ImGuiCol_PopupBg].w = 1;
+  style.Colors[ImGuiCol_WindowBg].w = 1;
+  style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
+  style.ScaleAllSizes(ui_scale);
+  ImGui::GetIO().Fonts->Clear();
+  load_fonts();
+}
+
 std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
   std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4), flipped(pixels.size());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -1176,6 +1228,7 @@ void take_new_tree(editor_state& e) {
     if (!r->report.error && !r->report.message.empty()) e.growth_text += " (" + r->report.message + ")";
   }
   if (e.shown && keeps_last_tree(*r)) return set_status(e, r->report.message, true);
+  if (newest) e.before_open.reset();   // the opened preset's own tree (or a later edit's) is shown
   const int old_steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : -1;
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
@@ -1211,7 +1264,7 @@ void take_new_tree(editor_state& e) {
 //   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
 //   wait_progress              until the progress bar with Cancel shows
 //   remember / expect_same_tree / expect_new_tree
-//   budget N / shot PATH / frames N / quit (as Ctrl+Q)
+//   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
@@ -1320,6 +1373,9 @@ bool run_script(editor_state& e, script_state& sc) {
       sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame
     } else if (cmd == "frames") {
       if (sc.frames_left < 0) sc.frames_left = std::atoi(arg.c_str());
+    } else if (cmd == "open") {
+      request(e, editor_state::then::open, arg);
+      sc.frames_left = 2;
     } else if (cmd == "quit") {
       request(e, editor_state::then::quit);
       sc.frames_left = 2;
@@ -1473,21 +1529,16 @@ int run_editor(const editor_options& o) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;   // the layout is fixed; no imgui.ini litter
-  ImGui::StyleColorsDark();
   {
-    ImGuiStyle& style = ImGui::GetStyle();
-    style.WindowRounding = 0;
-    // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
-    style.Colors[ImGuiCol_PopupBg].w = 1;
-    style.Colors[ImGuiCol_WindowBg].w = 1;
-    style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
     float xs = 1, ys = 1;
     glfwGetWindowContentScale(window, &xs, &ys);
     if (const char* sc = std::getenv("SYLVA_UI_SCALE")) xs = float(std::atof(sc));
-    ui_scale = std::clamp(xs, 1.0f, 4.0f);   // fonts and sizes follow the monitor's content scale
-    style.ScaleAllSizes(ui_scale);
+    apply_ui_scale(xs);
   }
-  load_fonts();
+  // Moved to a monitor with another scale: the style and fonts follow before the next frame.
+  glfwSetWindowContentScaleCallback(window, [](GLFWwindow* w, float xs, float) {
+    if (auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w))) ed->rescale_to = xs;
+  });
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   install_input_queue(window, &e->input);
   ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -1511,6 +1562,12 @@ int run_editor(const editor_options& o) {
     last = now;
     e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
 
+    if (e->rescale_to > 0 && !std::getenv("SYLVA_UI_SCALE")) {
+      apply_ui_scale(e->rescale_to);
+      ImGui_ImplOpenGL3_DestroyFontsTexture();
+      ImGui_ImplOpenGL3_CreateFontsTexture();
+    }
+    e->rescale_to = 0;
     feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();

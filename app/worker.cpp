@@ -80,6 +80,7 @@ void run_worker(worker_state& w) {
       auto t0 = std::chrono::steady_clock::now();
       std::shared_ptr<tree_skeleton> skeleton;
       w.progress = 0;
+      o.progress = [&w](float f) { w.progress.store(f, std::memory_order_relaxed); };
       try {
         // A capped trial first: small trees are done by it, large ones get an estimate (issue 14).
         growth_estimate est = estimate_growth(req.spec, o);
@@ -87,7 +88,7 @@ void run_worker(worker_state& w) {
           w.busy = false;
           continue;
         }
-        if (!est.exact && !req.approved && est.nodes > double(w.node_budget.load())) {
+        if (!est.exact && !est.uncertain && !req.approved && est.nodes > double(w.node_budget.load())) {
           publish_failure(w, last, req, "", &est);
           continue;
         }
@@ -96,7 +97,6 @@ void run_worker(worker_state& w) {
           result->report = std::move(est.report);
           *debug = std::move(est.debug);
         } else {
-          o.progress = [&w](float f) { w.progress.store(f, std::memory_order_relaxed); };
           skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
         }
       } catch (const std::bad_alloc&) {

@@ -67,7 +67,8 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
   to.cancel = &stop;
   to.cancel_value = 0;
   // Generators report progress once per step: the time limit and the caller's cancel are checked there.
-  to.progress = [&](float) {
+  to.progress = [&](float f) {
+    if (o.progress) o.progress(f);
     if (o.cancelled() || elapsed_ms() > limits.trial_ms) stop.store(1);
   };
   e.trial = grow(trial, to, &e.report, &e.debug);
@@ -77,6 +78,7 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
   const bool node_capped = e.report.hit_node_cap && trial_node_cap < real_node_cap;
   const bool module_capped = e.report.stop_reason == "module cap" && trial_module_cap < real_module_cap;
   e.exact = !e.cancelled && !timed_out && !node_capped && !module_capped;
+  e.uncertain = !e.exact && !e.cancelled && !node_capped && !module_capped;
   const double n = double(e.trial.size());
   double ms_per_node = e.trial_ms / std::max(n, 1.0);
   if (e.exact) {

@@ -13,6 +13,8 @@ namespace sylva {
 struct growth_estimate {
   bool exact = false;      // the trial grew the whole tree: `trial` is the result, nothing to extrapolate
   bool cancelled = false;  // the caller's cancel fired during the trial
+  bool uncertain = false;  // the trial ran out of time before its node cap: a slow start (or a busy
+                           // machine) is no evidence of a large tree, so this estimate asks nothing
   double nodes = 0;        // estimated node count of the full request (what the trial grew when it
                            // did not finish a single step)
   double seconds = 0;      // estimated time to grow and mesh it
@@ -25,13 +27,14 @@ struct growth_estimate {
 
 struct estimate_limits {
   int64_t trial_nodes = 20000;   // the trial's node cap (and 8× that as its L-system module cap)
-  double trial_ms = 80;          // the trial stops after about this long (checked once per step)
+  double trial_ms = 1000;        // a safety net for slow generators (checked once per step): the node
+                                 // cap, not the clock, should end a trial, so a busy machine changes nothing
 };
 
 // Rough cost per node of the tree plus its mesh on the GPU and in memory (triangles, leaves, copies).
 inline constexpr double bytes_per_node = 1500;
 
-// Grows a trial of `spec`. `o.cancel` cancels it; `o.progress` is not called.
+// Grows a trial of `spec`. `o.cancel` cancels it; `o.progress` hears the trial's progress.
 growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, const estimate_limits& limits = {});
 
 // Extrapolates nodes born per step (index = step) over `complete_steps` full steps to

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "app/editor_files.h"
 #include "render/files.h"
 
@@ -27,9 +29,14 @@ struct run_result {
   std::string output;
 };
 
+// A folder of this test process's own, so that parallel runs do not share files.
+std::filesystem::path test_dir(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("sylva_editor_" + name + "_" + std::to_string(getpid()));
+}
+
 run_result run_script(const std::string& name, const std::string& script, const std::string& preset) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_" + name);
+  const fs::path dir = test_dir(name);
   fs::remove_all(dir);
   fs::create_directories(dir / "home");
   std::ofstream(dir / "script.txt") << script;
@@ -55,9 +62,18 @@ TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
   sylva::preset bush;
   ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
   bush.mesh.leaves_enabled = false;
-  const std::string preset = (std::filesystem::temp_directory_path() / "sylva_editor_bush.json").string();
+  const std::string preset = test_dir("bush.json").string();
   ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
-  const std::string script = R"(wait_tree
+  // The same bush with every resource sent up the main axes: a runaway growth, over the budget.
+  bush.spec.params = [&] {
+    auto p = std::get<sylva::self_organizing_params>(bush.spec.params);
+    p.lambda = 1;
+    return p;
+  }();
+  bush.name = "Runaway";
+  const std::string runaway = test_dir("runaway.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, runaway), "");
+  std::string script = R"(wait_tree
 remember
 set lambda=0.42
 wait_tree
@@ -99,24 +115,35 @@ key escape
 expect_state cancelled
 expect_same_tree
 expect_param lambda=0.42
+budget 100000
+open RUNAWAY
+expect_prompt Unsaved changes
+answer Discard
+expect_prompt Large tree
+expect_same_tree
+answer Keep the current tree
+frames 2
+expect_param lambda=0.42
+expect_modified 1
 quit
 expect_prompt Unsaved changes
 answer Discard
 not reached: Discard quits
 )";
+  script.replace(script.find("RUNAWAY"), 7, runaway);
   run_result r = run_script("session", script, preset);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("the editor closed before line 46"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the editor closed before line 56"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "sylva_editor_session/home/.recovery.json"));
+  EXPECT_FALSE(std::filesystem::exists(test_dir("session") / "home" / ".recovery.json"));
 }
 
 TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
   namespace fs = std::filesystem;
-  const fs::path home = fs::temp_directory_path() / "sylva_editor_recovery" / "home";
+  const fs::path home = test_dir("recovery") / "home";
   // First session: edit, wait for the autosave, then "crash" (the script ends without asking).
   run_result first = run_script("recovery", "wait_tree\nset derivations=8\nwait_tree\nexpect_recovery 1\n", preset);
   ASSERT_EQ(first.code, 0) << first.output;
@@ -124,7 +151,7 @@ TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   const std::string script = "expect_prompt Restore unsaved work?\nanswer Restore\nframes 2\nwait_tree\n"
                              "expect_param derivations=8\nexpect_modified 1\n";
   // run_script clears its folder: keep the recovery file across the second start.
-  const fs::path keep = fs::temp_directory_path() / "sylva_recovery_keep.json";
+  const fs::path keep = test_dir("recovery_keep.json");
   fs::copy_file(home / ".recovery.json", keep, fs::copy_options::overwrite_existing);
   const std::string cmd_home = home.string();
   fs::remove_all(home.parent_path());
@@ -147,7 +174,7 @@ TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
                              "answer Cancel\nframes 2\nexpect_no_prompt\n";
   run_result r = run_script("files", script, preset);
   ASSERT_EQ(r.code, 0) << r.output;
-  const fs::path home = fs::temp_directory_path() / "sylva_editor_files" / "home";
+  const fs::path home = test_dir("files") / "home";
   int presets = 0, shots = 0;
   for (const auto& f : fs::directory_iterator(home)) presets += f.path().extension() == ".json";
   for (const auto& f : fs::directory_iterator(home / "screenshots")) shots += f.path().extension() == ".png";
@@ -158,7 +185,7 @@ TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
 
 TEST(EditorFiles, ListsFoldersFirstAndFiltersByExtension) {
   namespace fs = std::filesystem;
-  const fs::path d = fs::temp_directory_path() / "sylva_list_folder";
+  const fs::path d = test_dir("list_folder");
   fs::remove_all(d);
   fs::create_directories(d / "sub");
   std::ofstream(d / "b.json") << "{}";

@@ -62,3 +62,22 @@ TEST(GrowthEstimate, ShippedPresetsAreWithinTheDefaultBudget) {
   }
   std::printf("%d presets needed an extrapolation\n", checked);
 }
+
+TEST(GrowthEstimate, ATrialStoppedByTimeAsksNothing) {
+  // A busy machine stops the trial early, in the slow trunk phase of a colonization tree: the
+  // steep start must not read as a runaway (it made the editor ask about a 6,000-node tree).
+  tree_spec spec;
+  spec.params = space_colonization_params{};
+  estimate_limits quick;
+  quick.trial_ms = 0;   // stop after the first step
+  growth_estimate e = estimate_growth(spec, {}, quick);
+  EXPECT_FALSE(e.exact);
+  EXPECT_TRUE(e.uncertain);
+  // The runaway still reaches the trial's node cap: certain, and over the budget.
+  self_organizing_params p;
+  p.lambda = 1.0f;
+  spec.params = p;
+  e = estimate_growth(spec, {});
+  EXPECT_FALSE(e.uncertain);
+  EXPECT_GT(e.nodes, 500000.0);
+}
