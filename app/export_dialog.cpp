@@ -96,6 +96,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
                                               (done->animation_steps ? ", " + std::to_string(done->animation_steps) + " steps" : "");
     } else {
       error = !done->error.empty();
+      d.failure = error ? done->error : "";
       status = error ? "Export failed: " + done->error
                      : "Exported " + d.path + " (" + human_bytes(done->bytes) + ", " + std::to_string(done->files.size()) + " file(s))";
       d.warning = error ? "" : done->warning;
@@ -160,6 +161,11 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   }
 
   if (!d.warning.empty()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "Warning: %s", d.warning.c_str());
+  if (!d.failure.empty()) {   // the dialog's own failure, whole, not only the status bar's one line
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 520);
+    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "Export failed: %s", d.failure.c_str());
+    ImGui::PopTextWrapPos();
+  }
 
   if (busy && !d.job_dry) {
     ImGui::ProgressBar(d.progress.load(), ImVec2(400, 0));
@@ -171,9 +177,11 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       if (f == 4) {   // GL: main thread only
         std::string err = save_view_png(c.renderer, c.doc.render, c.camera, 1280, 720, d.path);
         error = !err.empty();
+        d.failure = err;
         status = error ? "Export failed: " + err : "Rendered " + d.path;
       } else {
         if (busy) d.cancel = 1;   // a running estimate gives way to the export
+        d.failure.clear();
         start_job(d, c, false);
         d.estimate_key.clear();
       }

@@ -34,6 +34,7 @@ struct export_dialog_state {
   std::string estimate_key;                // what the shown estimate was computed for
   std::string estimate;                    // "", "estimating...", "about 1.2 MiB, 34,000 triangles"
   std::string warning;                     // the last export's warning (a user texture it could not use)
+  std::string failure;                     // the last export's error, shown in the dialog until the next try
 };
 
 struct export_context {
