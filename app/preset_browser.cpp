@@ -168,9 +168,9 @@ void update_thumbnails(preset_browser_state& b) {
   upload_tree(r, *finished.mesh);
   set_tree_step(r, *finished.skeleton, finished.doc.mesh.min_radius, finished.skeleton->steps);
   orbit_camera cam;
-  frame_camera(cam, r.bounds_min, r.bounds_max);
+  frame_camera(cam, r.bounds_min, r.bounds_max, 1.0f);   // square thumbnails
   render_params rp = finished.doc.render;
-  rp.god_rays = false;   // at thumbnail size they only wash the tree out
+  rp.shafts = light_shafts::off;   // at thumbnail size they only wash the tree out
   // Written under a temporary name and renamed: a half-written PNG is never taken for a cached one.
   const std::string tmp = finished.png_path + ".tmp.png";
   std::string err = save_view_png(r, rp, cam, thumbnail_size, thumbnail_size, tmp);
