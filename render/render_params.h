@@ -53,8 +53,8 @@ struct render_params {
   shadow_filter shadow_pcf = shadow_filter::pcf5;
   // Light shafts and fog.
   light_shafts shafts = light_shafts::volumetric;
-  float fog_density = 0.015f;      // ground fog at y = 0, per metre; it thins with height
-  float fog_height = 6.0f;        // metres over which the ground fog thins by 1/e
+  float fog_density = 0.02f;      // ground fog at y = 0, per metre; it thins with height
+  float fog_height = 8.0f;        // metres over which the ground fog thins by 1/e
   float haze = 0.001f;            // aerial perspective: uniform haze, per metre
   float scattering_g = 0.7f;      // Henyey-Greenstein asymmetry of the fog
   int shaft_samples = 24;         // ray-march samples per pixel (at half resolution)

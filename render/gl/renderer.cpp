@@ -55,21 +55,21 @@ vec3 ambient_light(vec3 n) {
 
 const char* bark_vs = R"(#version 330 core
 layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node;
+layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node; layout(location = 4) in float a_ao;
 uniform mat4 u_viewproj; uniform samplerBuffer u_radius;
-out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive;
+out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive; out float v_ao;
 void main() {
   // (radius the vertex was built with, radius at the shown step or -1 when not alive)
   vec2 r = texelFetch(u_radius, int(a_node)).xy;
   v_alive = r.y >= 0.0 ? 1.0 : 0.0;
   v_world = a_position + a_normal * (max(r.y, 0.0) - r.x);
-  v_normal = a_normal; v_uv = a_uv;
+  v_normal = a_normal; v_uv = a_uv; v_ao = a_ao;
   gl_Position = u_viewproj * vec4(v_world, 1.0);
 }
 )";
 
 const char* bark_fs_body = R"(
-in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive;
+in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive; in float v_ao;
 uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform sampler2D u_bark_rough; uniform vec3 u_bark_color;
 uniform vec3 u_eye;
 out vec4 o_color;
@@ -102,7 +102,7 @@ void main() {
   float s = max(2.0 / a2 - 2.0, 1.0);
   vec3 h = normalize(normalize(u_eye - v_world) + u_sun_dir);
   float spec = 0.04 * (s + 8.0) / 25.1327 * pow(max(dot(n, h), 0.0), s) * ndl;
-  vec3 c = albedo * (u_sun_light * ndl * sh + ambient_light(n)) + u_sun_light * sh * spec;
+  vec3 c = albedo * (u_sun_light * ndl * sh + ambient_light(n) * v_ao) + u_sun_light * sh * spec;
   o_color = vec4(c, 1.0);
 }
 )";
@@ -115,10 +115,10 @@ void main() { if (v_alive < 0.999) discard; }
 const char* leaf_vs = R"(#version 330 core
 layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
-layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture;
+layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers;
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
-flat out vec3 v_tint;
+flat out vec3 v_tint; flat out float v_ao;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
 void main() {
@@ -132,6 +132,7 @@ void main() {
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(i_texture) % u_layers);
+  v_ao = i_ao;
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
@@ -140,7 +141,7 @@ void main() {
 
 const char* leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
-flat in vec3 v_tint;
+flat in vec3 v_tint; flat in float v_ao;
 uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
 uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
@@ -160,7 +161,7 @@ void main() {
   // where the blade is thin (thickness map: white = thin) than through veins and stems.
   float thin = texture(u_leaf_thickness, uvl).r;
   vec3 transmitted = u_translucency * thin * max(-ndl0, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
-  vec3 c = albedo * (u_sun_light * max(ndl, 0.0) * sh + ambient_light(n)) + u_sun_light * sh * transmitted;
+  vec3 c = albedo * (u_sun_light * max(ndl, 0.0) * sh + ambient_light(n) * v_ao) + u_sun_light * sh * transmitted;
   o_color = vec4(c, 1.0);
 }
 )";
@@ -958,8 +959,8 @@ bool init_renderer(renderer_state& r) {
   glGenVertexArrays(1, &r.empty_vao.id);
   glGenVertexArrays(1, &r.bark_vao.id);
   glGenVertexArrays(1, &r.leaf_vao.id);
-  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
-                       &r.leaf_instances, &r.node_radius})
+  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
     glGenBuffers(1, &b->id);
 
   // Bark: one buffer per attribute, matching tree_mesh's arrays so upload is a straight copy.
@@ -976,6 +977,8 @@ bool init_renderer(renderer_state& r) {
   glBindBuffer(GL_ARRAY_BUFFER, r.bark_node.id);
   glEnableVertexAttribArray(3);
   glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_ao.id);
+  glVertexAttribPointer(4, 1, GL_FLOAT, GL_FALSE, 0, nullptr);   // enabled when a mesh brings its occlusion
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.bark_index.id);
 
   // Leaves: a unit quad plus one leaf_instance per instance.
@@ -998,7 +1001,9 @@ bool init_renderer(renderer_state& r) {
   glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
   glEnableVertexAttribArray(5);
   glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
-  for (int i = 1; i <= 5; ++i) glVertexAttribDivisor(i, 1);
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(6, 1, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void*)offsetof(leaf_instance, occlusion));
+  for (int i = 1; i <= 6; ++i) glVertexAttribDivisor(i, 1);
 
   glBindVertexArray(0);
 
@@ -1028,8 +1033,8 @@ void destroy_renderer(renderer_state& r) {
                         &r.march, &r.exposure, &r.composite, &r.fallback})
     delete_gl(*p);
   for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
-  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
-                       &r.leaf_instances, &r.node_radius})
+  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
     delete_gl(*b);
   for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.bark_rough_tex, &r.leaf_tex, &r.leaf_normal_tex,
                         &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex, &r.march_tex,
@@ -1060,13 +1065,24 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBufferData(GL_ARRAY_BUFFER, m.uv.size() * sizeof(glm::vec2), m.uv.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, r.bark_node.id);
   glBufferData(GL_ARRAY_BUFFER, m.node.size() * sizeof(uint32_t), m.node.data(), GL_STATIC_DRAW);
+  // Crown occlusion per vertex; a mesh without it (hand-made ones) reads a constant 1.
+  const bool has_ao = m.occlusion.size() == m.position.size() && !m.position.empty();
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_ao.id);
+  glBufferData(GL_ARRAY_BUFFER, has_ao ? m.occlusion.size() * sizeof(float) : 4, has_ao ? m.occlusion.data() : nullptr,
+               GL_STATIC_DRAW);
   glBindVertexArray(r.bark_vao.id);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, m.index.size() * sizeof(uint32_t), m.index.data(), GL_STATIC_DRAW);
+  if (has_ao) {
+    glEnableVertexAttribArray(4);
+  } else {
+    glDisableVertexAttribArray(4);
+    glVertexAttrib1f(4, 1.0f);
+  }
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
   glBufferData(GL_ARRAY_BUFFER, m.leaves.size() * sizeof(leaf_instance), m.leaves.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  r.uploads_total += 6;
+  r.uploads_total += 7;
 
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;

@@ -53,7 +53,7 @@ struct renderer_state {
   std::string error;
   gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, march, exposure, composite, fallback;
   gl_vertex_array bark_vao, leaf_vao, empty_vao;
-  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius;
+  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_ao, bark_index, leaf_corner, leaf_instances, node_radius;
   gl_texture node_radius_tex, bark_tex, bark_normal_tex, bark_rough_tex, leaf_tex, leaf_normal_tex, leaf_thickness_tex, shadow_tex,
       hdr_color, hdr_depth, occlusion_tex, rays_tex, march_tex, average_tex;
   gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, march_fbo, average_fbo, msaa_fbo;
