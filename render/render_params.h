@@ -55,9 +55,9 @@ struct render_params {
   light_shafts shafts = light_shafts::volumetric;
   float fog_density = 0.02f;      // ground fog at y = 0, per metre; it thins with height
   float fog_height = 8.0f;        // metres over which the ground fog thins by 1/e
-  float haze = 0.001f;            // aerial perspective: uniform haze, per metre
+  float haze = 0.0005f;           // aerial perspective: uniform haze, per metre
   float scattering_g = 0.7f;      // Henyey-Greenstein asymmetry of the fog
-  int shaft_samples = 24;         // ray-march samples per pixel (at half resolution)
+  int shaft_samples = 32;         // ray-march samples per pixel (at half resolution)
   // Radial blur: Mitchell, GPU Gems 3 ch. 13; defaults from seed 001 appendix A.
   int ray_samples = 170;
   float ray_density = 0.9f;
