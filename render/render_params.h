@@ -20,10 +20,10 @@ enum class light_shafts : int { off = 0, radial = 1, volumetric = 2 };
 inline constexpr const char* light_shafts_names[] = {"off", "radial", "volumetric", nullptr};
 
 struct render_params {
-  // The first view: a low sun from the side and a little behind the default camera (yaw 30°), so
-  // that the crown's shadow and the shafts through it both show (issue 13).
-  float sun_azimuth = 175;      // degrees, from +Z toward +X
-  float sun_elevation = 15;     // degrees above the horizon
+  // The first view: a low sun behind the tree, 15° to the side of the default camera's line of sight
+  // (yaw 35°), so that long shadows come toward the viewer and shafts fan out under the crown (issue 13).
+  float sun_azimuth = -160;     // degrees, from +Z toward +X
+  float sun_elevation = 9;      // degrees above the horizon
   // Physical sky (Preetham et al. 1999): the sky, the sun's colour and the ambient light all follow
   // the sun and the turbidity. Off: the colours below are used as given.
   bool physical_sky = true;
@@ -53,7 +53,7 @@ struct render_params {
   shadow_filter shadow_pcf = shadow_filter::pcf5;
   // Light shafts and fog.
   light_shafts shafts = light_shafts::volumetric;
-  float fog_density = 0.02f;      // ground fog at y = 0, per metre; it thins with height
+  float fog_density = 0.035f;      // ground fog at y = 0, per metre; it thins with height
   float fog_height = 8.0f;        // metres over which the ground fog thins by 1/e
   float haze = 0.0005f;           // aerial perspective: uniform haze, per metre
   float scattering_g = 0.7f;      // Henyey-Greenstein asymmetry of the fog

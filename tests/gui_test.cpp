@@ -281,6 +281,9 @@ TEST(HeadlessRender, UserBarkTextureIsUsedAndABadPathIsHarmless) {
   p.render.shadows = false;
   p.render.shafts = light_shafts::off;
   p.render.bark_color = glm::vec3(0.45f);   // neutral tint: the texture's colour shows
+  p.render.sun_azimuth = orbit_camera{}.yaw;   // front-lit and clear, so the bark's colour reads
+  p.render.sun_elevation = 40;
+  p.render.fog_density = p.render.haze = 0;
   auto reddish = [](const picture& im) {
     int n = 0;
     for (int y = 0; y < im.height; ++y)
