@@ -346,6 +346,7 @@ tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const
     ++m.leaf_end[std::min<int>(l.born, step)];
   }
   for (int k = 1; k <= step; ++k) m.leaf_end[k] += m.leaf_end[k - 1];
+  bake_crown_occlusion(m);   // from the crown of this step's leaves
   return m;
 }
 
