@@ -489,14 +489,16 @@ int bench_one(const std::string& path, int repeat, bool as_json, bool with_expor
 
 struct render_bench_result {
   size_t nodes = 0, leaves = 0, triangles = 0;
-  double shadow_ms = 0, lit_ms = 0, occlusion_ms = 0, blur_ms = 0, composite_ms = 0, frame_ms = 0;
+  double shadow_ms = 0, lit_ms = 0, occlusion_ms = 0, blur_ms = 0, march_ms = 0, exposure_ms = 0, composite_ms = 0,
+         frame_ms = 0;
   frame_counts counts;   // of the last measured frame
 };
 
 // Steady-state frames, not the PNG path's single first frame: one warm-up frame allocates the
 // targets and lets the driver compile its shader variants, then `repeat` frames are timed, each
 // pass closed by glFinish (renderer_state::measure_passes). With `all_effects` the sun is put behind
-// the tree as the editor's "Backlit rays" button does, with shadows and god rays on, so that every
+// the tree as the editor's "Backlit rays" button does, with shadows on, and the frames are drawn
+// once with the radial shafts and once with the volumetric ones (the reported frame), so that every
 // pass runs and a regression in any of them shows; otherwise the preset's own light is used.
 std::string measure_render(const preset& p, int repeat, int width, int height, bool all_effects,
                            render_bench_result& out) {
@@ -518,18 +520,31 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
     upload_tree(r, m);
     set_tree_step(r, t, p.mesh.min_radius, t.steps);
     orbit_camera cam;
-    frame_camera(cam, r.bounds_min, r.bounds_max);
+    frame_camera(cam, r.bounds_min, r.bounds_max, float(width) / float(height));
     render_params rp = p.render;
     if (all_effects) {
       rp.sun_azimuth = std::remainder(cam.yaw + 180.0f, 360.0f);
       rp.sun_elevation = 12;
-      rp.shadows = rp.god_rays = true;
+      rp.shadows = true;
     }
+    const bool both = all_effects;
     // The image goes to an off-screen RGBA8 target of the asked size, as for `export x.png`.
     error = create_color_target(width, height, color, target);
     const int errors_before = gl_error_count();
-    std::vector<double> shadow, lit, occlusion, blur, composite, frame;
+    std::vector<double> shadow, lit, occlusion, blur, march, exposure, composite, frame;
     r.measure_passes = true;
+    if (both) {   // the radial shafts' two passes, timed on their own frames
+      render_params radial = rp;
+      radial.shafts = light_shafts::radial;
+      for (int i = 0; i <= repeat && error.empty(); ++i) {
+        draw_frame(r, radial, cam, width, height, target);
+        glFinish();
+        if (i == 0) continue;
+        occlusion.push_back(r.timings.occlusion);
+        blur.push_back(r.timings.blur);
+      }
+      rp.shafts = light_shafts::volumetric;
+    }
     for (int i = 0; i <= repeat && error.empty(); ++i) {
       const auto t0 = clock_type::now();
       draw_frame(r, rp, cam, width, height, target);
@@ -538,8 +553,9 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
       frame.push_back(ms_since(t0));
       shadow.push_back(r.timings.shadow);
       lit.push_back(r.timings.lit);
-      occlusion.push_back(r.timings.occlusion);
-      blur.push_back(r.timings.blur);
+      if (!both) occlusion.push_back(r.timings.occlusion), blur.push_back(r.timings.blur);
+      march.push_back(r.timings.march);
+      exposure.push_back(r.timings.exposure);
       composite.push_back(r.timings.composite);
     }
     check_gl("bench frames");
@@ -551,6 +567,8 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
     out.lit_ms = median(lit);
     out.occlusion_ms = median(occlusion);
     out.blur_ms = median(blur);
+    out.march_ms = median(march);
+    out.exposure_ms = median(exposure);
     out.composite_ms = median(composite);
     out.frame_ms = median(frame);
     out.counts = r.counts;
@@ -572,8 +590,8 @@ if (std::string why = display_missing("rendering"); !why.empty()) return fail(cm
       paths.push_back((fs::path(SYLVA_SOURCE_DIR) / "presets" / (std::string(name) + ".json")).string());
   }
   if (!as_json)
-    std::printf("%-30s %10s %8s %9s %9s %9s %9s %9s %9s %6s %7s\n", "preset", "triangles", "leaves", "shadow_ms",
-                "lit_ms", "occl_ms", "blur_ms", "comp_ms", "frame_ms", "draws", "uploads");
+    std::printf("%-30s %10s %8s %9s %9s %9s %9s %9s %9s %9s %9s %6s %7s\n", "preset", "triangles", "leaves", "shadow_ms",
+                "lit_ms", "occl_ms", "blur_ms", "march_ms", "expo_ms", "comp_ms", "frame_ms", "draws", "uploads");
   int failures = 0;
   for (const std::string& path : paths) {
     preset p;
@@ -605,6 +623,8 @@ if (std::string why = display_missing("rendering"); !why.empty()) return fail(cm
       j["lit_ms"] = r.lit_ms;
       j["occlusion_ms"] = r.occlusion_ms;
       j["blur_ms"] = r.blur_ms;
+      j["march_ms"] = r.march_ms;
+      j["exposure_ms"] = r.exposure_ms;
       j["composite_ms"] = r.composite_ms;
       j["frame_ms"] = r.frame_ms;
       j["draw_calls"] = r.counts.draw_calls;
@@ -613,17 +633,18 @@ if (std::string why = display_missing("rendering"); !why.empty()) return fail(cm
       j["repeat"] = repeat;
       std::printf("%s\n", j.dump().c_str());
     } else {
-      std::printf("%-30s %10zu %8zu %9.2f %9.2f %9.2f %9.2f %9.2f %9.2f %6d %7d\n", name.c_str(), r.triangles, r.leaves,
-                  r.shadow_ms, r.lit_ms, r.occlusion_ms, r.blur_ms, r.composite_ms, r.frame_ms, r.counts.draw_calls,
-                  r.counts.uploads);
+      std::printf("%-30s %10zu %8zu %9.2f %9.2f %9.2f %9.2f %9.2f %9.2f %9.2f %9.2f %6d %7d\n", name.c_str(), r.triangles,
+                  r.leaves, r.shadow_ms, r.lit_ms, r.occlusion_ms, r.blur_ms, r.march_ms, r.exposure_ms, r.composite_ms,
+                  r.frame_ms, r.counts.draw_calls, r.counts.uploads);
     }
     std::fflush(stdout);
   }
   if (!as_json)
     std::printf("%dx%d, medians over %d frames after one warm-up; each pass ends in glFinish; %s\n", width, height,
                 repeat,
-                preset_light ? "the presets' own light (occlusion and blur are 0 when the sun is out of view)"
-                             : "sun behind the tree, shadows and god rays on (--preset-light: the presets' own)");
+                preset_light ? "the presets' own light (a pass that does not run reads 0)"
+                             : "sun behind the tree, shadows on; occl+blur: radial shafts, timed on their own frames; "
+                               "march: volumetric shafts, in the frame reported (--preset-light: the presets' own)");
   return failures ? 1 : 0;
 }
 

@@ -130,7 +130,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
     upload_tree(r, mesh);
     set_tree_step(r, tree, p.mesh.min_radius, step < 0 ? tree.steps : std::min(step, tree.steps));
     orbit_camera cam;
-    frame_camera(cam, r.bounds_min, r.bounds_max);
+    frame_camera(cam, r.bounds_min, r.bounds_max, float(width) / float(height));
 
     double frame_ms = 0;
     r.measure_passes = stats && stats->measure_passes;

@@ -168,16 +168,11 @@ void update_thumbnails(preset_browser_state& b) {
   renderer_state& r = *b.renderer;
   upload_tree(r, *finished.mesh);
   set_tree_step(r, *finished.skeleton, finished.doc.mesh.min_radius, finished.skeleton->steps);
-  // Framed on the box, not its bounding sphere, from a little above the horizon, so the tree
-  // fills the square rather than sitting small in the sky.
+  // Framed as the editor and PNG export frame it (frame_camera), for a square picture.
   orbit_camera cam;
-  const glm::vec3 lo = r.bounds_min, hi = r.bounds_max, extent = hi - lo;
-  cam.pitch = 8;
-  cam.target = 0.5f * (lo + hi);
-  const float half = 0.5f * std::max({extent.x, extent.y, extent.z, 0.05f});
-  cam.distance = half / std::tan(glm::radians(cam.fov) * 0.5f) * 1.08f + 0.5f * std::max(extent.x, extent.z);
+  frame_camera(cam, r.bounds_min, r.bounds_max, 1.0f);   // square thumbnails
   render_params rp = finished.doc.render;
-  rp.god_rays = false;   // at thumbnail size they only wash the tree out
+  rp.shafts = light_shafts::off;   // at thumbnail size they only wash the tree out
   // Written under a temporary name and renamed: a half-written PNG is never taken for a cached one.
   const std::string tmp = finished.png_path + ".tmp.png";
   std::string err = save_view_png(r, rp, cam, thumbnail_size, thumbnail_size, tmp);

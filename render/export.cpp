@@ -40,6 +40,7 @@ struct geometry {
   std::vector<glm::vec3> position, normal;
   std::vector<glm::vec2> uv;
   std::vector<glm::vec4> tangent;  // +u direction, w = handedness (written when a normal map is)
+  std::vector<glm::vec3> color;    // crown occlusion as a grey vertex colour (COLOR_0), when the mesh has it
   std::vector<uint32_t> index;
   bool empty() const { return index.empty(); }
 };
@@ -78,6 +79,7 @@ void bake_leaf(geometry& g, const leaf_instance& l) {
     g.normal.push_back(n);
     g.uv.push_back(uv[k]);
     g.tangent.push_back(t);
+    g.color.push_back(glm::vec3(float(l.occlusion) / 255.0f));
   }
   for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
 }
@@ -138,6 +140,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       const float len = glm::length(tan);
       tan = len > 1e-12f ? tan / len : glm::vec3(1, 0, 0);
       g.tangent.push_back(glm::vec4(tan, 1.0f));
+      if (m.occlusion.size() == nv) g.color.push_back(glm::vec3(m.occlusion[v]));
     }
     g.index.push_back(local[v]);
   }
@@ -261,6 +264,8 @@ struct gltf_doc {
                  {"NORMAL", add_vectors(g.normal, "VEC3", array_buffer)},
                  {"TEXCOORD_0", add_vectors(g.uv, "VEC2", array_buffer)}};
     if (tangents && !g.tangent.empty()) attr["TANGENT"] = add_vectors(g.tangent, "VEC4", array_buffer);
+    // Crown occlusion (issue 13), so the tree's inside is darker in other tools too.
+    if (g.color.size() == g.position.size()) attr["COLOR_0"] = add_vectors(g.color, "VEC3", array_buffer);
     const int idx = add_indices(g.index, g.position.size());
     return {{"attributes", attr}, {"indices", idx}, {"material", material}};
   }

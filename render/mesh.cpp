@@ -245,7 +245,22 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     m.bounds_min = lo;
     m.bounds_max = hi;
   }
+  bake_crown_occlusion(m);
   return m;
+}
+
+void bake_crown_occlusion(tree_mesh& m) {
+  m.occlusion.assign(m.position.size(), 1.0f);
+  if (m.leaves.empty()) return;   // no crown: nothing shades the sky
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const leaf_instance& l : m.leaves) { lo = glm::min(lo, l.position); hi = glm::max(hi, l.position); }
+  const glm::vec3 c = 0.5f * (lo + hi), inv = 1.0f / glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
+  auto visibility = [&](const glm::vec3& p) {
+    const float d = glm::length((p - c) * inv);
+    return std::isfinite(d) ? 0.35f + 0.65f * std::min(d, 1.0f) : 1.0f;
+  };
+  for (size_t i = 0; i < m.position.size(); ++i) m.occlusion[i] = visibility(m.position[i]);
+  for (leaf_instance& l : m.leaves) l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
 }
 
 std::string validate_mesh(const tree_mesh& m) {
@@ -331,6 +346,7 @@ tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const
     ++m.leaf_end[std::min<int>(l.born, step)];
   }
   for (int k = 1; k <= step; ++k) m.leaf_end[k] += m.leaf_end[k - 1];
+  bake_crown_occlusion(m);   // from the crown of this step's leaves
   return m;
 }
 

@@ -50,6 +50,7 @@ struct leaf_instance {
   uint16_t born, died;
   uint32_t node;
   uint8_t texture;         // leaf archetype of the card (generators/archetypes.h)
+  uint8_t occlusion = 255; // sky visibility baked from the depth inside the crown (255: open sky)
 };
 
 struct tree_mesh {
@@ -58,6 +59,7 @@ struct tree_mesh {
   std::vector<glm::vec3> normal;     // unit, radial for tube vertices
   std::vector<glm::vec2> uv;         // u around, v along by length (metres * uv_repeat)
   std::vector<uint32_t> node;        // skeleton node of the vertex (for per-step radii/visibility)
+  std::vector<float> occlusion;      // per vertex: sky visibility from the depth inside the crown (1: open)
   std::vector<uint32_t> index;       // triangles, sorted by the born step of the internode
   // index_end[s] = number of indices to draw for step s (size steps+1, monotone).
   std::vector<uint32_t> index_end;
@@ -72,6 +74,12 @@ struct tree_mesh {
 };
 
 tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1);
+
+// Crown ambient occlusion (issue 13): bark vertices and leaves deep inside the crown see less sky.
+// The crown is the ellipsoid spanned by the leaves' box; the visibility of a point at normalised
+// depth d (0 at the centre, 1 on the surface) is 0.35 + 0.65 d, and 1 outside. Fills
+// m.occlusion and each leaf's occlusion; O(vertices + leaves). mesh_tree calls it.
+void bake_crown_occlusion(tree_mesh& m);
 
 // Checks the mesh invariants (indices in range, offsets monotone, no NaN); "" when valid.
 std::string validate_mesh(const tree_mesh& m);

@@ -13,15 +13,28 @@ namespace sylva {
 enum class shadow_filter : int { pcf3 = 0, pcf5 = 1, poisson = 2 };
 inline constexpr const char* shadow_filter_names[] = {"3x3", "5x5", "poisson", nullptr};
 
+// Light shafts (DESIGN §8 pass 3): none, the screen-space radial blur (Mitchell, GPU Gems 3 ch. 13;
+// cheap, only while the sun is on screen) or single scattering ray-marched through the sun's shadow
+// map (light in the air wherever the sun is).
+enum class light_shafts : int { off = 0, radial = 1, volumetric = 2 };
+inline constexpr const char* light_shafts_names[] = {"off", "radial", "volumetric", nullptr};
+
 struct render_params {
-  float sun_azimuth = 35;       // degrees, from +Z toward +X
-  float sun_elevation = 40;     // degrees above the horizon
+  // The first view: a low sun behind the tree, 15° to the side of the default camera's line of sight
+  // (yaw 35°), so that long shadows come toward the viewer and shafts fan out under the crown (issue 13).
+  float sun_azimuth = -160;     // degrees, from +Z toward +X
+  float sun_elevation = 9;      // degrees above the horizon
+  // Physical sky (Preetham et al. 1999): the sky, the sun's colour and the ambient light all follow
+  // the sun and the turbidity. Off: the colours below are used as given.
+  bool physical_sky = true;
+  float turbidity = 3.0f;
   glm::vec3 sun_color{1.0f, 0.95f, 0.85f};
   float sun_intensity = 2.2f;
   glm::vec3 sky_zenith{0.25f, 0.45f, 0.85f};
   glm::vec3 sky_horizon{0.75f, 0.85f, 0.95f};
-  float ambient = 0.35f;
+  float ambient = 1.0f;
   float exposure = 1.0f;
+  bool auto_exposure = true;
   bark_archetype bark = bark_archetype::furrowed;   // procedural bark texture set
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};
@@ -38,8 +51,14 @@ struct render_params {
   float shadow_slope_bias = 2.0f;
   float shadow_normal_offset = 1.5f;
   shadow_filter shadow_pcf = shadow_filter::pcf5;
-  // God rays: Mitchell, GPU Gems 3 ch. 13; defaults from seed 001 appendix A.
-  bool god_rays = true;
+  // Light shafts and fog.
+  light_shafts shafts = light_shafts::volumetric;
+  float fog_density = 0.035f;      // ground fog at y = 0, per metre; it thins with height
+  float fog_height = 8.0f;        // metres over which the ground fog thins by 1/e
+  float haze = 0.0005f;           // aerial perspective: uniform haze, per metre
+  float scattering_g = 0.7f;      // Henyey-Greenstein asymmetry of the fog
+  int shaft_samples = 32;         // ray-march samples per pixel (at half resolution)
+  // Radial blur: Mitchell, GPU Gems 3 ch. 13; defaults from seed 001 appendix A.
   int ray_samples = 170;
   float ray_density = 0.9f;
   float ray_weight = 1.5f;
@@ -57,12 +76,15 @@ template <params_of<render_params> P, class V>
 void visit_params(P& p, V&& v) {
   v(p.sun_azimuth, param_info{"sun_azimuth", "Sun azimuth", "", -180, 180, "Compass direction of the sun", param_degrees, "Sun and sky"});
   v(p.sun_elevation, param_info{"sun_elevation", "Sun elevation", "", -10, 90, "Height of the sun above the horizon", param_degrees});
-  v(p.sun_color, param_info{"sun_color", "Sun colour", "", 0, 1, "Colour of direct sunlight (linear RGB)"});
-  v(p.sun_intensity, param_info{"sun_intensity", "Sun intensity", "", 0, 20, "Strength of direct sunlight"});
-  v(p.sky_zenith, param_info{"sky_zenith", "Sky zenith", "", 0, 1, "Sky colour overhead (linear RGB)"});
-  v(p.sky_horizon, param_info{"sky_horizon", "Sky horizon", "", 0, 1, "Sky colour at the horizon (linear RGB)"});
-  v(p.ambient, param_info{"ambient", "Ambient", "", 0, 2, "Hemispheric sky light"});
-  v(p.exposure, param_info{"exposure", "Exposure", "", 0.05f, 8, "Exposure before tonemapping", param_log});
+  v(p.physical_sky, param_info{"physical_sky", "Physical sky", "", 0, 1, "Analytic daylight sky (Preetham et al. 1999): it also sets the sun's colour and the sky light; off: the colours below"});
+  v(p.turbidity, param_info{"turbidity", "Turbidity", "", 1.7f, 10, "Haziness of the air: 2 clear, 3 typical, 6+ hazy (physical sky)"});
+  v(p.sun_color, param_info{"sun_color", "Sun colour", "", 0, 1, "Colour of direct sunlight (linear RGB; without the physical sky)"});
+  v(p.sun_intensity, param_info{"sun_intensity", "Sun intensity", "", 0, 20, "Strength of direct sunlight (above the atmosphere with the physical sky)"});
+  v(p.sky_zenith, param_info{"sky_zenith", "Sky zenith", "", 0, 1, "Sky colour overhead (linear RGB; without the physical sky)"});
+  v(p.sky_horizon, param_info{"sky_horizon", "Sky horizon", "", 0, 1, "Sky colour at the horizon (linear RGB; without the physical sky)"});
+  v(p.ambient, param_info{"ambient", "Ambient", "", 0, 2, "Strength of the sky light on the tree and ground (1: the sky's own)"});
+  v(p.exposure, param_info{"exposure", "Exposure", "", 0.05f, 8, "Exposure before tonemapping (times the automatic one when on)", param_log});
+  v(p.auto_exposure, param_info{"auto_exposure", "Auto exposure", "", 0, 1, "Expose for the frame's mean log luminance, so noon and golden hour both read"});
   v(p.bark, param_info{"bark_archetype", "Bark", "", 0, 4, "Procedural bark: furrowed (oak), plated (pine), smooth with lenticels (birch, beech), peeling strips (cedar), ringed leaf scars (palm)", 0, "Materials", bark_archetype_names});
   v(p.bark_color, param_info{"bark_color", "Bark colour", "", 0, 1, "Bark tint (linear RGB)"});
   v(p.leaf_color, param_info{"leaf_color", "Leaf colour", "", 0, 1, "Leaf tint (linear RGB)"});
@@ -81,12 +103,28 @@ void visit_params(P& p, V&& v) {
   v(p.shadow_slope_bias, param_info{"shadow_slope_bias", "Slope bias", "", 0, 10, "Slope-scaled bias (glPolygonOffset factor)", param_advanced});
   v(p.shadow_normal_offset, param_info{"shadow_normal_offset", "Normal offset", "", 0, 5, "Lookups move this many texels along the normal: less acne, little peter-panning", param_advanced});
   v(p.shadow_pcf, param_info{"shadow_pcf", "Filter", "", 0, 2, "Percentage-closer filtering kernel: 3x3, 5x5 or a 16-tap Poisson disc (soft)", 0, nullptr, shadow_filter_names});
-  v(p.god_rays, param_info{"god_rays", "God rays", "", 0, 1, "Radial blur of the sun's occlusion image (Mitchell, GPU Gems 3 ch. 13)", 0, "God rays"});
-  v(p.ray_samples, param_info{"ray_samples", "Samples", "", 8, 256, "Samples along each ray toward the sun"});
-  v(p.ray_density, param_info{"ray_density", "Density", "", 0, 1, "Fraction of the way to the sun the samples span"});
-  v(p.ray_weight, param_info{"ray_weight", "Weight", "", 0, 5, "Weight of each sample"});
-  v(p.ray_decay, param_info{"ray_decay", "Decay", "", 0.9f, 1, "Per-sample falloff of the samples' weight"});
-  v(p.ray_exposure, param_info{"ray_exposure", "Exposure", "", 0, 0.5f, "Overall strength of the rays"});
+  v(p.shafts, param_info{"light_shafts", "Light shafts", "", 0, 2, "off; radial: screen-space blur toward the sun (Mitchell; cheap, sun on screen only); volumetric: sunlight scattered by the fog, ray-marched through the shadow map", 0, "Light shafts and fog", light_shafts_names});
+  v(p.fog_density, param_info{"fog_density", "Fog density", "", 0, 1, "Ground fog at the ground, per metre (it thins with height); what the shafts light up", param_log});
+  v(p.fog_height, param_info{"fog_height", "Fog height", "", 0.1f, 100, "Height over which the ground fog thins by 1/e (metres)", param_log});
+  v(p.haze, param_info{"haze", "Haze", "", 0, 0.1f, "Aerial perspective: uniform haze per metre, tinted by the sky, so distance fades", param_log});
+  v(p.scattering_g, param_info{"scattering_g", "Forward scattering", "", -0.9f, 0.95f, "Henyey-Greenstein g of the fog: 0 scatters evenly, toward 1 the light stays near the sun's direction"});
+  v(p.shaft_samples, param_info{"shaft_samples", "Shaft samples", "", 4, 128, "Volumetric: shadow-map samples along each view ray (half resolution)"});
+  v(p.ray_samples, param_info{"ray_samples", "Radial samples", "", 8, 256, "Radial: samples along each ray toward the sun"});
+  v(p.ray_density, param_info{"ray_density", "Radial density", "", 0, 1, "Radial: fraction of the way to the sun the samples span"});
+  v(p.ray_weight, param_info{"ray_weight", "Radial weight", "", 0, 5, "Radial: weight of each sample"});
+  v(p.ray_decay, param_info{"ray_decay", "Radial decay", "", 0.9f, 1, "Radial: per-sample falloff of the samples' weight"});
+  v(p.ray_exposure, param_info{"ray_exposure", "Radial exposure", "", 0, 0.5f, "Radial: overall strength of the rays"});
+}
+
+// Sliders that do not apply to the chosen sky or shaft mode are hidden (presets still save them).
+inline bool param_relevant(const render_params& p, const void* field, const param_info&) {
+  if (field == &p.turbidity) return p.physical_sky;
+  if (field == &p.sun_color || field == &p.sky_zenith || field == &p.sky_horizon) return !p.physical_sky;
+  if (field == &p.shaft_samples) return p.shafts == light_shafts::volumetric;
+  if (field == &p.ray_samples || field == &p.ray_density || field == &p.ray_weight || field == &p.ray_decay ||
+      field == &p.ray_exposure)
+    return p.shafts == light_shafts::radial;
+  return true;
 }
 
 }  // namespace sylva

@@ -150,6 +150,21 @@ TEST(Export, GlbReimportsWithMeshCounts) {
   EXPECT_EQ(model.accessors[bp.indices].count, h.m.index.size());
   EXPECT_EQ(model.accessors[bp.indices].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   EXPECT_TRUE(bp.attributes.count("TANGENT") && bp.attributes.count("NORMAL") && bp.attributes.count("TEXCOORD_0"));
+  // Crown occlusion as a grey vertex colour: open sky (1) on the trunk's base, darker inside the crown.
+  ASSERT_TRUE(bp.attributes.count("COLOR_0"));
+  {
+    const tinygltf::Accessor& c = model.accessors[bp.attributes.at("COLOR_0")];
+    EXPECT_EQ(c.count, h.m.position.size());
+    const tinygltf::BufferView& view = model.bufferViews[size_t(c.bufferView)];
+    const auto* f = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + c.byteOffset);
+    float lo = 1;
+    for (size_t k = 0; k < 3 * c.count; ++k) {
+      ASSERT_TRUE(f[k] >= 0.0f && f[k] <= 1.0f) << f[k];
+      lo = std::min(lo, f[k]);
+    }
+    EXPECT_FLOAT_EQ(f[0], 1.0f);
+    EXPECT_LT(lo, 1.0f);
+  }
   const tinygltf::Material& bm = model.materials[size_t(bp.material)];
   EXPECT_EQ(bm.name, "bark_furrowed");
   EXPECT_GE(bm.normalTexture.index, 0);

@@ -116,7 +116,9 @@ TEST(HeadlessRender, ShadowDarkensTheGroundUnderTheTree) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   preset p = honda_a();
   p.render.sun_elevation = 65;   // a high sun puts the shadow right under the crown
-  p.render.god_rays = false;
+  p.render.shafts = light_shafts::off;
+  p.render.auto_exposure = false;   // the same exposure for both images
+  p.render.fog_density = p.render.haze = 0;
   p.render.shadows = false;
   picture off = load(render(p, "shadow_off.png"));
   p.render.shadows = true;
@@ -140,19 +142,21 @@ TEST(HeadlessRender, ShadowDarkensTheGroundUnderTheTree) {
 TEST(HeadlessRender, GodRaysBrightenARingAroundTheSun) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   preset p = honda_a();
-  // Sun behind the crown: opposite the camera's default yaw (30°), low enough to be in view.
-  p.render.sun_azimuth = 30 - 180;
+  // Sun behind the crown: opposite the camera's default yaw, low enough to be in view.
+  p.render.sun_azimuth = orbit_camera{}.yaw - 180;
   p.render.sun_elevation = 5;
   p.render.exposure = 0.3f;   // keep the tonemap out of saturation so brightness adds up near the sun
+  p.render.auto_exposure = false;
+  p.render.fog_density = p.render.haze = 0;   // the radial blur alone
   const int w = 320, h = 240;
   glm::vec2 sun = sun_pixel(p, w, h);
   ASSERT_GT(sun.x, 0);
   ASSERT_LT(sun.x, w);
   ASSERT_GT(sun.y, 0);
   ASSERT_LT(sun.y, h);
-  p.render.god_rays = false;
+  p.render.shafts = light_shafts::off;
   picture off = load(render(p, "rays_off.png", w, h));
-  p.render.god_rays = true;
+  p.render.shafts = light_shafts::radial;
   picture on = load(render(p, "rays_on.png", w, h));
   const float inner_on = ring_mean(on, sun, 10, 30), inner_off = ring_mean(off, sun, 10, 30);
   const float outer_on = ring_mean(on, sun, 60, 90), outer_off = ring_mean(off, sun, 60, 90);
@@ -238,7 +242,11 @@ TEST(HeadlessRender, ScrubbingShowsTheYoungerTree) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   preset p = honda_a();
   p.render.shadows = false;
-  p.render.god_rays = false;
+  p.render.shafts = light_shafts::off;
+  p.render.ground = false;   // brown soil would count as bark
+  p.render.physical_sky = false;
+  p.render.sun_azimuth = orbit_camera{}.yaw;   // front-lit, so the bark shows its colour
+  p.render.sun_elevation = 40;
   // Pixels that differ from the empty scene (no tree: step rendering of a tree with no leaves
   // is not empty, so compare against a render at the final step instead): the tree at step 3 has
   // 2^3 = 8 internodes and no more, so it covers far fewer pixels than the full tree of step 10.
@@ -269,8 +277,12 @@ TEST(HeadlessRender, UserBarkTextureIsUsedAndABadPathIsHarmless) {
   ASSERT_EQ(save_png_rgba(red, 8, 8, reinterpret_cast<const unsigned char*>(pixels.data())), "");
   preset p = honda_a();
   p.mesh.leaves_enabled = false;
-  p.render.shadows = p.render.god_rays = false;
+  p.render.shadows = false;
+  p.render.shafts = light_shafts::off;
   p.render.bark_color = glm::vec3(0.45f);   // neutral tint: the texture's colour shows
+  p.render.sun_azimuth = orbit_camera{}.yaw;   // front-lit and clear, so the bark's colour reads
+  p.render.sun_elevation = 40;
+  p.render.fog_density = p.render.haze = 0;
   auto reddish = [](const picture& im) {
     int n = 0;
     for (int y = 0; y < im.height; ++y)

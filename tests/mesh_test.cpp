@@ -230,3 +230,24 @@ TEST(Mesh, BarkTexelDensityIsTheSameOnTrunkAndTwig) {
   // Texels per metre around: wraps / circumference, within 20% on the trunk's rings.
   EXPECT_NEAR(6.0f / (6.2831853f * 0.5f), 2.0f, 0.2f * 2.0f);
 }
+
+TEST(Mesh, CrownOcclusionDarkensTheInsideOfTheCrownOnly) {
+  const tree_skeleton t = grow_honda(lsystem_params{}, {});
+  tree_mesh m = mesh_tree(t, mesh_params{});
+  ASSERT_FALSE(m.leaves.empty());
+  ASSERT_EQ(m.occlusion.size(), m.position.size());
+  // The trunk's base ring lies below the crown: open sky.
+  EXPECT_FLOAT_EQ(m.occlusion[0], 1.0f);
+  float lo = 1, hi = 0;
+  for (float o : m.occlusion) {
+    ASSERT_TRUE(std::isfinite(o));
+    lo = std::min(lo, o), hi = std::max(hi, o);
+  }
+  EXPECT_GE(lo, 0.35f);
+  EXPECT_LT(lo, 0.9f);   // something inside the crown is shaded
+  // Leaves: the outermost ones see open sky, the innermost are darker.
+  int open = 0, shaded = 0;
+  for (const leaf_instance& l : m.leaves) open += l.occlusion > 240, shaded += l.occlusion < 200;
+  EXPECT_GT(open, 0);
+  EXPECT_GT(shaded, 0);
+}

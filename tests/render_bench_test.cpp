@@ -198,9 +198,10 @@ TEST(RenderBench, BenchRenderReportsEveryPassAndTheFrameCounts) {
   EXPECT_EQ(j["nodes"], 1024);
   EXPECT_GT(j["leaves"].get<int>(), 0);
   // Backlit by default: every pass runs and takes time.
-  for (const char* pass : {"shadow_ms", "lit_ms", "occlusion_ms", "blur_ms", "composite_ms"})
+  for (const char* pass : {"shadow_ms", "lit_ms", "occlusion_ms", "blur_ms", "march_ms", "exposure_ms", "composite_ms"})
     EXPECT_GT(j[pass].get<double>(), 0.0) << pass;
-  // Shadow: bark + leaves; lit: sky, ground, bark, leaves; then occlusion, blur, composite.
+  // The reported (volumetric) frame. Shadow: bark + leaves; lit: sky, ground, bark, leaves; then the
+  // shafts' march, the auto-exposure reduction and the composite.
   EXPECT_EQ(j["draw_calls"], 9);
   EXPECT_EQ(j["leaf_draw_calls"], 2);
   EXPECT_EQ(j["uploads"], 0);   // the measured frames repeat the warm-up frame

@@ -95,7 +95,8 @@ struct offscreen {
 render_params plain() {
   render_params rp;
   rp.msaa = 0;
-  rp.shadows = rp.god_rays = false;
+  rp.shadows = false;
+  rp.shafts = light_shafts::off;
   rp.ground = false;
   rp.sky_zenith = rp.sky_horizon = glm::vec3(0, 0, 0.5f);   // blue: leaf texels are told apart by green
   rp.sun_azimuth = 0, rp.sun_elevation = 30;   // in front of the card (+Z): its lit side faces us

@@ -19,8 +19,7 @@ namespace {
 
 // Shared lighting: sun + hemispheric ambient, shadow lookups with normal offset and PCF.
 const char* lighting_glsl = R"(
-uniform vec3 u_sun_dir; uniform vec3 u_sun_light; uniform vec3 u_sky_zenith; uniform vec3 u_ground_color;
-uniform float u_ambient;
+uniform vec3 u_sun_dir; uniform vec3 u_sun_light; uniform vec3 u_sh[4];
 uniform sampler2DShadow u_shadow; uniform mat4 u_light_viewproj; uniform int u_shadows; uniform int u_pcf;
 uniform float u_bias; uniform float u_normal_offset; uniform float u_shadow_texel;
 const vec2 poisson16[16] = vec2[](
@@ -48,28 +47,29 @@ float shadow_at(vec3 world, vec3 n) {
   }
   return sum / count;
 }
+// Sky light: irradiance / pi from the sky's first two SH bands (render/sky.h; Ramamoorthi & Hanrahan 2001).
 vec3 ambient_light(vec3 n) {
-  return mix(u_ground_color * 0.6, u_sky_zenith, 0.5 + 0.5 * n.y) * u_ambient;
+  return max(u_sh[0] + u_sh[1] * n.x + u_sh[2] * n.y + u_sh[3] * n.z, vec3(0.0));
 }
 )";
 
 const char* bark_vs = R"(#version 330 core
 layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node;
+layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node; layout(location = 4) in float a_ao;
 uniform mat4 u_viewproj; uniform samplerBuffer u_radius;
-out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive;
+out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive; out float v_ao;
 void main() {
   // (radius the vertex was built with, radius at the shown step or -1 when not alive)
   vec2 r = texelFetch(u_radius, int(a_node)).xy;
   v_alive = r.y >= 0.0 ? 1.0 : 0.0;
   v_world = a_position + a_normal * (max(r.y, 0.0) - r.x);
-  v_normal = a_normal; v_uv = a_uv;
+  v_normal = a_normal; v_uv = a_uv; v_ao = a_ao;
   gl_Position = u_viewproj * vec4(v_world, 1.0);
 }
 )";
 
 const char* bark_fs_body = R"(
-in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive;
+in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive; in float v_ao;
 uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform sampler2D u_bark_rough; uniform vec3 u_bark_color;
 uniform vec3 u_eye;
 out vec4 o_color;
@@ -102,7 +102,7 @@ void main() {
   float s = max(2.0 / a2 - 2.0, 1.0);
   vec3 h = normalize(normalize(u_eye - v_world) + u_sun_dir);
   float spec = 0.04 * (s + 8.0) / 25.1327 * pow(max(dot(n, h), 0.0), s) * ndl;
-  vec3 c = albedo * (u_sun_light * ndl * sh + ambient_light(n)) + u_sun_light * sh * spec;
+  vec3 c = albedo * (u_sun_light * ndl * sh + ambient_light(n) * v_ao) + u_sun_light * sh * spec;
   o_color = vec4(c, 1.0);
 }
 )";
@@ -115,10 +115,10 @@ void main() { if (v_alive < 0.999) discard; }
 const char* leaf_vs = R"(#version 330 core
 layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
-layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture;
+layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers;
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
-flat out vec3 v_tint;
+flat out vec3 v_tint; flat out float v_ao;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
 void main() {
@@ -132,6 +132,7 @@ void main() {
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(i_texture) % u_layers);
+  v_ao = i_ao;
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
@@ -140,7 +141,7 @@ void main() {
 
 const char* leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
-flat in vec3 v_tint;
+flat in vec3 v_tint; flat in float v_ao;
 uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
 uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
@@ -160,7 +161,7 @@ void main() {
   // where the blade is thin (thickness map: white = thin) than through veins and stems.
   float thin = texture(u_leaf_thickness, uvl).r;
   vec3 transmitted = u_translucency * thin * max(-ndl0, 0.0) * albedo * vec3(1.1, 1.25, 0.6);
-  vec3 c = albedo * (u_sun_light * max(ndl, 0.0) * sh + ambient_light(n)) + u_sun_light * sh * transmitted;
+  vec3 c = albedo * (u_sun_light * max(ndl, 0.0) * sh + ambient_light(n) * v_ao) + u_sun_light * sh * transmitted;
   o_color = vec4(c, 1.0);
 }
 )";
@@ -191,16 +192,30 @@ vec3 view_dir(vec2 uv) {
 float sun_disc(vec3 d) {   // ~0.8° disc with a soft rim
   return smoothstep(0.99985, 0.99992, dot(d, u_sun_dir));
 }
+// The daylight sky (render/sky.cpp): Preetham et al. 1999 with the Perez et al. 1993 distribution
+// F(θ, γ) = (1 + A e^(B / cos θ)) (1 + C e^(D γ) + E cos² γ), or the hand-set gradient.
+uniform int u_physical; uniform vec3 u_perez[5]; uniform vec3 u_zenith; uniform vec3 u_perez_zenith;
+uniform float u_sky_scale; uniform vec3 u_sky_zenith; uniform vec3 u_sky_horizon;
+vec3 sky_color(vec3 d) {
+  if (u_physical == 0)
+    return d.y >= 0.0 ? mix(u_sky_horizon, u_sky_zenith, pow(d.y, 0.45)) : u_sky_horizon * 0.9;
+  float ct = max(d.y, 0.01), cg = clamp(dot(d, u_sun_dir), -1.0, 1.0), g = acos(cg);
+  vec3 f = (1.0 + u_perez[0] * exp(u_perez[1] / ct)) * (1.0 + u_perez[2] * exp(u_perez[3] * g) + u_perez[4] * cg * cg);
+  vec3 Yxy = u_zenith * f / u_perez_zenith;
+  float Y = Yxy.x, x = Yxy.y, y = max(Yxy.z, 1e-4);
+  vec3 XYZ = vec3(x / y * Y, Y, (1.0 - x - y) / y * Y);
+  vec3 rgb = mat3(3.2406, -0.9689, 0.0557, -1.5372, 1.8758, -0.2040, -0.4986, 0.0415, 1.0570) * XYZ;
+  return max(rgb, vec3(0.0)) * u_sky_scale;
+}
 )";
 
 const char* sky_fs_body = R"(
 in vec2 v_uv;
-uniform vec3 u_sky_zenith; uniform vec3 u_sky_horizon; uniform vec3 u_ground_color; uniform vec3 u_sun_light;
+uniform vec3 u_sun_light;
 out vec4 o_color;
 void main() {
   vec3 d = view_dir(v_uv);
-  vec3 c = d.y >= 0.0 ? mix(u_sky_horizon, u_sky_zenith, pow(d.y, 0.45))
-                      : u_sky_horizon * 0.9;   // below the horizon: the haze the ground fades into
+  vec3 c = sky_color(d);
   float cs = max(dot(d, u_sun_dir), 0.0);
   c += u_sun_light * (0.03 * pow(cs, 64.0) + 0.15 * pow(cs, 800.0));   // glow around the sun
   c += u_sun_light * 8.0 * sun_disc(d);
@@ -218,17 +233,42 @@ void main() {
 }
 )";
 
+// Ground: procedural grass and soil with normal detail from the same noise, the sun's shadow,
+// darker sky light under the crown and where the trunk meets it (no seam), faded into the horizon.
 const char* ground_fs_body = R"(
 in vec3 v_world;
-uniform vec3 u_center; uniform float u_extent; uniform vec3 u_sky_horizon;
+uniform vec3 u_center; uniform float u_extent; uniform vec3 u_sky_horizon; uniform vec3 u_ground_color;
+uniform vec3 u_root; uniform float u_root_radius; uniform vec2 u_crown_radius;
 out vec4 o_color;
+float hash2(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
+float vnoise(vec2 p) {
+  vec2 i = floor(p), f = fract(p), u = f * f * (3.0 - 2.0 * f);
+  return mix(mix(hash2(i), hash2(i + vec2(1, 0)), u.x), mix(hash2(i + vec2(0, 1)), hash2(i + vec2(1, 1)), u.x), u.y);
+}
+float fbm(vec2 p) { return 0.5 * vnoise(p) + 0.25 * vnoise(p * 2.03 + 7.1) + 0.125 * vnoise(p * 4.01 + 3.3); }
 void main() {
-  vec3 n = vec3(0.0, 1.0, 0.0);
-  float sh = shadow_at(v_world, n);
-  vec3 c = u_ground_color * (u_sun_light * max(u_sun_dir.y, 0.0) * sh + ambient_light(n));
-  // Fade into the horizon haze so the plane's edge never shows.
-  float f = smoothstep(0.3, 0.95, length(v_world.xz - u_center.xz) / u_extent);
-  o_color = vec4(mix(c, u_sky_horizon * 0.9, f), 1.0);
+  vec2 xz = v_world.xz;
+  // Patches of grass over soil (metres), fine blades as a high-frequency height.
+  float patches = smoothstep(0.35, 0.65, fbm(xz * 0.35));
+  float blades = vnoise(xz * 37.0) * 0.6 + vnoise(xz * 91.0) * 0.4;
+  vec3 grass = u_ground_color * (0.75 + 0.5 * blades);
+  vec3 soil = vec3(0.20, 0.15, 0.10) * (0.8 + 0.4 * vnoise(xz * 9.0));
+  vec3 albedo = mix(soil, grass, patches);
+  // Normal detail: the gradient of the height field h = patches + blades (finite differences),
+  // faded with the pixel footprint so distant ground does not shimmer.
+  float e = 0.01, fw = length(fwidth(xz));
+  float hb = vnoise(xz * 37.0), hx = vnoise((xz + vec2(e, 0)) * 37.0), hz = vnoise((xz + vec2(0, e)) * 37.0);
+  float amp = 0.004 * (1.0 - smoothstep(0.005, 0.05, fw));
+  vec3 n = normalize(vec3(-(hx - hb) / e * amp * 20.0, 1.0, -(hz - hb) / e * amp * 20.0));
+  float sh = shadow_at(v_world, vec3(0.0, 1.0, 0.0));
+  // Sky occlusion: under the crown's footprint, and a contact shadow around the trunk's base.
+  vec2 q = (xz - u_center.xz) / max(u_crown_radius, vec2(0.01));
+  float under = 1.0 - 0.45 * (1.0 - smoothstep(0.3, 1.3, length(q)));
+  float contact = 1.0 - 0.6 * exp(-pow(length(xz - u_root.xz) / max(u_root_radius * 2.5, 0.01), 2.0));
+  vec3 c = albedo * (u_sun_light * max(dot(n, u_sun_dir), 0.0) * sh + ambient_light(n) * under * contact);
+  // Blend into the sky already drawn behind it, so the plane's edge never shows.
+  float f = smoothstep(0.25, 0.9, length(v_world.xz - u_center.xz) / u_extent);
+  o_color = vec4(c, 1.0 - f);
 }
 )";
 
@@ -268,19 +308,141 @@ void main() {
 }
 )";
 
-// Composite and tonemap: ACES filmic fit (Narkowicz 2015), then the sRGB transfer curve.
-const char* composite_fs = R"(#version 330 core
+// Volumetric light shafts, at half resolution: how much of the fog's optical depth along each
+// view ray lies in the sun's shadow. The ray is clipped to the shadow map's prism (outside it the
+// tree casts no shadow, so the lit part there is analytic, see the composite) and marched with one
+// hardware-filtered shadow lookup per sample, the start jittered per pixel by interleaved gradient
+// noise (Jimenez 2014) so that few samples give fine noise instead of bands.
+const char* march_fs_body = R"(
 in vec2 v_uv;
-uniform sampler2D u_hdr; uniform sampler2D u_rays; uniform float u_ray_strength; uniform float u_exposure;
+uniform sampler2D u_depth; uniform sampler2DShadow u_shadow; uniform mat4 u_light_viewproj;
+uniform int u_samples; uniform float u_fog_density; uniform float u_fog_height; uniform float u_haze;
+uniform float u_sky_distance; uniform float u_bias;
+out vec4 o_color;
+float fog_at(float y) { return u_haze + u_fog_density * exp(-max(y, 0.0) / u_fog_height); }
+void main() {
+  ivec2 full = textureSize(u_depth, 0);
+  float depth = texelFetch(u_depth, clamp(ivec2(v_uv * vec2(full)), ivec2(0), full - 1), 0).r;
+  vec3 d = view_dir(v_uv);
+  float dist = u_sky_distance;
+  if (depth < 1.0) {
+    vec4 w = u_inv_viewproj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    dist = length(w.xyz / w.w - u_eye);
+  }
+  // The ray in the light's clip space (orthographic: affine in t).
+  vec3 o = (u_light_viewproj * vec4(u_eye, 1.0)).xyz, v = (u_light_viewproj * vec4(d, 0.0)).xyz;
+  float t0 = 0.0, t1 = dist;
+  for (int k = 0; k < 2; ++k) {   // x and y inside [-1, 1]
+    if (abs(v[k]) < 1e-6) { if (abs(o[k]) > 1.0) t1 = -1.0; continue; }
+    float a = (-1.0 - o[k]) / v[k], b = (1.0 - o[k]) / v[k];
+    t0 = max(t0, min(a, b)); t1 = min(t1, max(a, b));
+  }
+  // Beyond the light's near plane (toward the sun) nothing casts a shadow.
+  if (abs(v.z) > 1e-6) { float c = (-1.0 - o.z) / v.z; if (v.z > 0.0) t0 = max(t0, c); else t1 = min(t1, c); }
+  else if (o.z < -1.0) t1 = -1.0;
+  float shadowed = 0.0;
+  if (t1 > t0) {
+    float dt = (t1 - t0) / float(u_samples);
+    float jitter = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    for (int i = 0; i < u_samples; ++i) {
+      float t = t0 + (float(i) + jitter) * dt;
+      vec3 s = (o + v * t) * 0.5 + 0.5;
+      // Past the far plane the map still holds what the sun hits first: shadowed if anything is there.
+      float lit = texture(u_shadow, vec3(s.xy, min(s.z, 1.0) - u_bias));
+      shadowed += fog_at(u_eye.y + d.y * t) * (1.0 - lit) * dt;
+    }
+  }
+  o_color = vec4(shadowed, dist, 0.0, 1.0);
+}
+)";
+
+// Auto exposure: the log-average luminance (Reinhard et al. 2002) of a 16 x 9 grid of the lit
+// image, into a 1 x 1 target the composite reads. One frame, no adaptation: the same scene gives
+// the same image.
+const char* exposure_fs = R"(#version 330 core
+uniform sampler2D u_hdr;
+out vec4 o_color;
+void main() {
+  float sum = 0.0;
+  for (int y = 0; y < 9; ++y)
+    for (int x = 0; x < 16; ++x) {
+      vec3 c = textureLod(u_hdr, (vec2(x, y) + 0.5) / vec2(16.0, 9.0), 0.0).rgb;
+      float l = dot(c, vec3(0.2126, 0.7152, 0.0722));
+      sum += log(max(l, 1e-4));
+    }
+  o_color = vec4(exp(sum / 144.0), 0.0, 0.0, 1.0);
+}
+)";
+
+// Composite: fog (aerial perspective plus the sunlight it scatters, less what the shafts pass found
+// shadowed), the radial rays, exposure, then the ACES filmic fit (Narkowicz 2015) and sRGB.
+const char* composite_fs_body = R"(
+in vec2 v_uv;
+uniform sampler2D u_hdr; uniform sampler2D u_rays; uniform sampler2D u_march; uniform sampler2D u_depth;
+uniform sampler2D u_average;
+uniform float u_ray_strength; uniform float u_exposure; uniform int u_auto_exposure; uniform int u_volumetric;
+uniform float u_fog_density; uniform float u_fog_height; uniform float u_haze; uniform float u_sky_distance;
+uniform float u_g; uniform vec3 u_sun_light; uniform vec3 u_fog_ambient;
 out vec4 o_color;
 vec3 aces(vec3 x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
 vec3 to_srgb(vec3 c) {
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
+// Optical depth from the eye along d over [0, dist] of haze + ground fog σ0 e^(-y / H): closed form,
+// written as dist e^(-y0/H) (1 - e^(-k)) / k, k = dist d.y / H, which stays finite for level rays.
+float optical_depth(vec3 d, float dist) {
+  float H = u_fog_height, y0 = max(u_eye.y, 0.0), k = dist * d.y / H;
+  float f = abs(k) < 1e-3 ? 1.0 - 0.5 * k : (1.0 - exp(-k)) / k;
+  return u_haze * dist + u_fog_density * dist * exp(-y0 / H) * max(f, 0.0);
+}
+// Henyey & Greenstein 1941 phase function, normalised over the sphere.
+float hg(float cos_t, float g) {
+  float d = max(1.0 + g * g - 2.0 * g * cos_t, 1e-4);
+  return (1.0 - g * g) / (4.0 * 3.14159265 * d * sqrt(d));
+}
 void main() {
   vec3 c = texture(u_hdr, v_uv).rgb;
+  ivec2 full = textureSize(u_depth, 0);
+  ivec2 px = clamp(ivec2(v_uv * vec2(full)), ivec2(0), full - 1);
+  float depth = texelFetch(u_depth, px, 0).r;
+  vec3 d = view_dir(v_uv);
+  float dist = u_sky_distance;
+  if (depth < 1.0) {
+    vec4 w = u_inv_viewproj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    dist = length(w.xyz / w.w - u_eye);
+  }
+  if (d.y < 0.0 && depth >= 1.0) dist = min(dist, u_eye.y / -d.y);   // past the ground's edge
+  float tau = optical_depth(d, dist);
+  float trans = exp(-tau);
+  vec3 fog = u_fog_ambient * (1.0 - trans);
+  if (u_volumetric != 0) {
+    // Depth-aware upsample of the half-resolution shadowed depth: a 3 x 3 tent whose weights drop
+    // for samples at another distance, so shafts do not bleed across silhouettes.
+    ivec2 half_size = textureSize(u_march, 0);
+    vec2 hp = v_uv * vec2(half_size) - 0.5;
+    ivec2 base = ivec2(floor(hp + 0.5));
+    float sum = 0.0, wsum = 0.0;
+    for (int y = -1; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x) {
+        ivec2 q = clamp(base + ivec2(x, y), ivec2(0), half_size - 1);
+        vec2 m = texelFetch(u_march, q, 0).rg;
+        vec2 off = vec2(q) - hp;
+        float w = max(1.5 - abs(off.x), 0.0) * max(1.5 - abs(off.y), 0.0);
+        w *= 1.0 / (1e-3 + abs(m.g - dist) / (0.02 * dist + 0.05));
+        sum += m.r * w; wsum += w;
+      }
+    float shadowed = wsum > 0.0 ? sum / wsum : 0.0;
+    float lit = clamp(1.0 - shadowed / max(tau, 1e-6), 0.0, 1.0);
+    // Single scattering, extinction taken as uniform along the ray: radiance E π p(θ) (1 - e^-τ) · lit share.
+    fog += u_sun_light * 3.14159265 * hg(dot(d, u_sun_dir), u_g) * (1.0 - trans) * lit;
+  }
+  c = c * trans + fog;
   if (u_ray_strength > 0.0) c += u_ray_strength * texture(u_rays, v_uv).rgb;   // unused targets may hold NaN
-  o_color = vec4(to_srgb(aces(c * u_exposure)), 1.0);
+  float exposure = u_exposure;
+  if (u_auto_exposure != 0) exposure *= clamp(0.2 / max(texelFetch(u_average, ivec2(0), 0).r, 1e-4), 0.25, 8.0);
+  // Half an 8-bit step of ordered noise before quantisation: no bands in the sky's gradient.
+  float n = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715)))) - 0.5;
+  o_color = vec4(to_srgb(aces(max(c, vec3(0.0)) * exposure)) + n / 255.0, 1.0);
 }
 )";
 
@@ -296,6 +458,7 @@ std::string lit_source(const char* body) {
          lighting_glsl + body;
 }
 std::string sky_source(const char* body) { return std::string("#version 330 core\n") + sky_glsl + body; }
+std::string march_source() { return std::string("#version 330 core\n") + sky_glsl + march_fs_body; }
 
 // ---------------------------------------------------------------- helpers
 
@@ -566,8 +729,8 @@ void resize_targets(renderer_state& r, int w, int h, int samples) {
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) check_gl("incomplete MSAA framebuffer");
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
-  for (gl_framebuffer* f : {&r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo}) delete_gl(*f);
-  for (gl_texture* t : {&r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex}) delete_gl(*t);
+  for (gl_framebuffer* f : {&r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.march_fbo}) delete_gl(*f);
+  for (gl_texture* t : {&r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex, &r.march_tex}) delete_gl(*t);
   r.hdr_color = make_color_target(w, h, GL_RGBA16F);
   r.hdr_depth = make_depth_texture(w, h, false);
   r.hdr_fbo = make_framebuffer(r.hdr_color, r.hdr_depth);
@@ -576,7 +739,9 @@ void resize_targets(renderer_state& r, int w, int h, int samples) {
   r.occlusion_fbo = make_framebuffer(r.occlusion_tex, {});
   r.rays_tex = make_color_target(hw, hh, GL_RGBA16F);
   r.rays_fbo = make_framebuffer(r.rays_tex, {});
-  r.uploads_total += samples > 1 ? 6 : 4;
+  r.march_tex = make_color_target(hw, hh, GL_RGBA16F);   // volumetric shafts at half resolution too
+  r.march_fbo = make_framebuffer(r.march_tex, {});
+  r.uploads_total += samples > 1 ? 7 : 5;
   check_gl("resize targets");
 }
 
@@ -614,12 +779,10 @@ glm::mat4 light_viewproj(const renderer_state& r, const glm::vec3& sun, float* t
 void set_lighting(const renderer_state& r, const gl_program& p, const render_params& rp, const glm::vec3& sun,
                   const glm::mat4& light, float texel_world) {
   set_uniform(p, "u_sun_dir", sun);
-  // The sun dims as it sets: nothing lights the ground from below the horizon.
-  float above = std::clamp((sun.y + 0.05f) / 0.15f, 0.0f, 1.0f);
-  set_uniform(p, "u_sun_light", rp.sun_color * rp.sun_intensity * above);
-  set_uniform(p, "u_sky_zenith", rp.sky_zenith);
-  set_uniform(p, "u_ground_color", rp.ground_color);
-  set_uniform(p, "u_ambient", rp.ambient);
+  // The sun's colour and the sky light come from the sky model (render/sky.h); the sun dims as it sets.
+  set_uniform(p, "u_sun_light", r.daylight.sun_light);
+  static const char* const sh_names[4] = {"u_sh[0]", "u_sh[1]", "u_sh[2]", "u_sh[3]"};
+  for (int k = 0; k < 4; ++k) set_uniform(p, sh_names[k], r.daylight.sh[k]);
   set_uniform(p, "u_shadows", rp.shadows && r.has_tree ? 1 : 0);
   set_uniform(p, "u_pcf", int(rp.shadow_pcf));
   set_uniform(p, "u_bias", rp.shadow_bias);
@@ -627,6 +790,35 @@ void set_lighting(const renderer_state& r, const gl_program& p, const render_par
   set_uniform(p, "u_shadow_texel", texel_world);
   set_uniform(p, "u_light_viewproj", light);
   set_uniform(p, "u_shadow", 1);
+}
+
+// The parameters the sky model reads, compared and copied one by one (no string copies per frame).
+bool same_sky_inputs(const render_params& a, const render_params& b) {
+  return a.sun_azimuth == b.sun_azimuth && a.sun_elevation == b.sun_elevation && a.physical_sky == b.physical_sky &&
+         a.turbidity == b.turbidity && a.sun_color == b.sun_color && a.sun_intensity == b.sun_intensity &&
+         a.sky_zenith == b.sky_zenith && a.sky_horizon == b.sky_horizon && a.ambient == b.ambient &&
+         a.ground_color == b.ground_color;
+}
+
+void update_sky(renderer_state& r, const render_params& rp) {
+  if (r.sky_valid && same_sky_inputs(r.sky_inputs, rp)) return;
+  render_params& k = r.sky_inputs;
+  k.sun_azimuth = rp.sun_azimuth, k.sun_elevation = rp.sun_elevation, k.physical_sky = rp.physical_sky;
+  k.turbidity = rp.turbidity, k.sun_color = rp.sun_color, k.sun_intensity = rp.sun_intensity;
+  k.sky_zenith = rp.sky_zenith, k.sky_horizon = rp.sky_horizon, k.ambient = rp.ambient, k.ground_color = rp.ground_color;
+  compute_sky(rp, r.daylight);
+  r.sky_valid = true;
+}
+
+void set_sky_uniforms(const renderer_state& r, const gl_program& p) {
+  static const char* const perez_names[5] = {"u_perez[0]", "u_perez[1]", "u_perez[2]", "u_perez[3]", "u_perez[4]"};
+  set_uniform(p, "u_physical", r.daylight.physical ? 1 : 0);
+  for (int k = 0; k < 5; ++k) set_uniform(p, perez_names[k], r.daylight.perez[k]);
+  set_uniform(p, "u_zenith", r.daylight.zenith);
+  set_uniform(p, "u_perez_zenith", r.daylight.perez_zenith);
+  set_uniform(p, "u_sky_scale", r.daylight.scale);
+  set_uniform(p, "u_sky_zenith", r.daylight.legacy_zenith);
+  set_uniform(p, "u_sky_horizon", r.daylight.legacy_horizon);
 }
 
 double now_ms() {
@@ -697,10 +889,35 @@ void orbit_camera_zoom(orbit_camera& c, float wheel) {
   c.distance = std::clamp(c.distance * std::pow(0.88f, wheel), 0.01f, 1e5f);
 }
 
-void frame_camera(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi) {
-  c.target = 0.5f * (lo + hi);
-  float radius = std::max(glm::length(hi - lo) * 0.5f, 0.05f);
+void frame_camera(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi, float aspect) {
+  // Keeps the direction; moves the target and the distance until the box's projection spans 75% of
+  // the view height (or 90% of its width, if that is tighter) and sits in the middle (issue 13).
+  aspect = std::isfinite(aspect) && aspect > 0.05f ? std::min(aspect, 20.0f) : 1.6f;
+  const glm::vec3 center = 0.5f * (lo + hi);
+  const float radius = std::max(glm::length(hi - lo) * 0.5f, 0.05f);
+  c.target = center;
   c.distance = radius / std::sin(glm::radians(c.fov) * 0.5f) * 1.05f;
+  const float tan_half = std::tan(glm::radians(c.fov) * 0.5f);
+  for (int it = 0; it < 12; ++it) {
+    const glm::vec3 eye = camera_eye(c);
+    const glm::vec3 fwd = glm::normalize(c.target - eye);
+    const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(right, fwd);
+    glm::vec2 a(1e30f), b(-1e30f);
+    bool behind = false;
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 p((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+      const float z = glm::dot(p - eye, fwd);
+      if (z < 1e-3f * radius) { behind = true; break; }
+      const glm::vec2 ndc(glm::dot(p - eye, right) / (z * tan_half * aspect), glm::dot(p - eye, up) / (z * tan_half));
+      a = glm::min(a, ndc), b = glm::max(b, ndc);
+    }
+    if (behind) { c.distance *= 1.5f; continue; }
+    const glm::vec2 mid = 0.5f * (a + b);
+    c.target += right * (mid.x * tan_half * aspect * c.distance) + up * (mid.y * tan_half * c.distance);
+    const float scale = std::max((b.y - a.y) / 1.7f, (b.x - a.x) / 1.9f);
+    c.distance = std::clamp(c.distance * std::clamp(scale, 0.5f, 2.0f), 0.01f, 1e5f);
+  }
 }
 
 glm::vec3 camera_eye(const orbit_camera& c) {
@@ -727,7 +944,9 @@ bool init_renderer(renderer_state& r) {
   r.ground = compile_program("ground", ground_vs, ground_fs.c_str());
   r.occlusion = compile_program("occlusion", fullscreen_vs, occ_fs.c_str());
   r.radial = compile_program("radial blur", fullscreen_vs, radial_fs);
-  r.composite = compile_program("composite", fullscreen_vs, composite_fs);
+  r.march = compile_program("light shafts", fullscreen_vs, march_source().c_str());
+  r.exposure = compile_program("auto exposure", fullscreen_vs, exposure_fs);
+  r.composite = compile_program("composite", fullscreen_vs, sky_source(composite_fs_body).c_str());
   init_overlays(r.overlay);
   r.fallback = compile_program("fallback", bark_vs, fallback_fs);
   if (r.composite.failed || r.fallback.failed) {
@@ -740,8 +959,8 @@ bool init_renderer(renderer_state& r) {
   glGenVertexArrays(1, &r.empty_vao.id);
   glGenVertexArrays(1, &r.bark_vao.id);
   glGenVertexArrays(1, &r.leaf_vao.id);
-  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
-                       &r.leaf_instances, &r.node_radius})
+  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
     glGenBuffers(1, &b->id);
 
   // Bark: one buffer per attribute, matching tree_mesh's arrays so upload is a straight copy.
@@ -758,6 +977,8 @@ bool init_renderer(renderer_state& r) {
   glBindBuffer(GL_ARRAY_BUFFER, r.bark_node.id);
   glEnableVertexAttribArray(3);
   glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_ao.id);
+  glVertexAttribPointer(4, 1, GL_FLOAT, GL_FALSE, 0, nullptr);   // enabled when a mesh brings its occlusion
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.bark_index.id);
 
   // Leaves: a unit quad plus one leaf_instance per instance.
@@ -780,7 +1001,9 @@ bool init_renderer(renderer_state& r) {
   glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
   glEnableVertexAttribArray(5);
   glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
-  for (int i = 1; i <= 5; ++i) glVertexAttribDivisor(i, 1);
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(6, 1, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void*)offsetof(leaf_instance, occlusion));
+  for (int i = 1; i <= 6; ++i) glVertexAttribDivisor(i, 1);
 
   glBindVertexArray(0);
 
@@ -798,6 +1021,8 @@ bool init_renderer(renderer_state& r) {
   upload_procedural_leaves(r);
 
   resize_shadow(r, 2048);
+  r.average_tex = make_color_target(1, 1, GL_RGBA16F);   // auto exposure's log-average luminance
+  r.average_fbo = make_framebuffer(r.average_tex, {});
   check_gl("init renderer");
   return r.ok;
 }
@@ -805,21 +1030,24 @@ bool init_renderer(renderer_state& r) {
 void destroy_renderer(renderer_state& r) {
   destroy_overlays(r.overlay);
   for (gl_program* p : {&r.bark, &r.bark_depth, &r.leaf, &r.leaf_depth, &r.sky, &r.ground, &r.occlusion, &r.radial,
-                        &r.composite, &r.fallback})
+                        &r.march, &r.exposure, &r.composite, &r.fallback})
     delete_gl(*p);
   for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
-  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_index, &r.leaf_corner,
-                       &r.leaf_instances, &r.node_radius})
+  for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
     delete_gl(*b);
   for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.bark_rough_tex, &r.leaf_tex, &r.leaf_normal_tex,
-                        &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex})
+                        &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex, &r.march_tex,
+                        &r.average_tex})
     delete_gl(*t);
-  for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.msaa_fbo}) delete_gl(*f);
+  for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.march_fbo, &r.average_fbo, &r.msaa_fbo})
+    delete_gl(*f);
   delete_gl(r.msaa_color);
   delete_gl(r.msaa_depth);
   r.width = r.height = r.shadow_size = r.samples = 0;
   r.bark_shown = -1;
   r.leaf_layers = 1;
+  r.sky_valid = false;
   r.user_bark = r.user_leaf = false;
   r.bark_texture_path.clear(), r.leaf_texture_path.clear(), r.leaf_opacity_path.clear();
   r.ok = false;
@@ -837,13 +1065,24 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBufferData(GL_ARRAY_BUFFER, m.uv.size() * sizeof(glm::vec2), m.uv.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, r.bark_node.id);
   glBufferData(GL_ARRAY_BUFFER, m.node.size() * sizeof(uint32_t), m.node.data(), GL_STATIC_DRAW);
+  // Crown occlusion per vertex; a mesh without it (hand-made ones) reads a constant 1.
+  const bool has_ao = m.occlusion.size() == m.position.size() && !m.position.empty();
+  glBindBuffer(GL_ARRAY_BUFFER, r.bark_ao.id);
+  glBufferData(GL_ARRAY_BUFFER, has_ao ? m.occlusion.size() * sizeof(float) : 4, has_ao ? m.occlusion.data() : nullptr,
+               GL_STATIC_DRAW);
   glBindVertexArray(r.bark_vao.id);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, m.index.size() * sizeof(uint32_t), m.index.data(), GL_STATIC_DRAW);
+  if (has_ao) {
+    glEnableVertexAttribArray(4);
+  } else {
+    glDisableVertexAttribArray(4);
+    glVertexAttrib1f(4, 1.0f);
+  }
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
   glBufferData(GL_ARRAY_BUFFER, m.leaves.size() * sizeof(leaf_instance), m.leaves.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  r.uploads_total += 6;
+  r.uploads_total += 7;
 
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;
@@ -860,6 +1099,17 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   if (r.has_tree) {
     r.bounds_min = m.bounds_min;
     r.bounds_max = m.bounds_max;
+    // The trunk's base: the first ring of the bark (the root node's), where the ground meets it.
+    const size_t ring = size_t(std::max(m.radial_segments, 1)) + 1;
+    if (m.position.size() >= ring && !m.final_radius.empty()) {
+      glm::vec3 c(0);
+      for (size_t i = 0; i < ring; ++i) c += m.position[i];
+      r.root = c / float(ring);
+      r.root_radius = std::max(m.final_radius[0], 0.01f);
+    } else {
+      r.root = glm::vec3(0.5f * (m.bounds_min.x + m.bounds_max.x), 0, 0.5f * (m.bounds_min.z + m.bounds_max.z));
+      r.root_radius = 0.05f;
+    }
   } else {
     r.bounds_min = glm::vec3(-1, 0, -1);
     r.bounds_max = glm::vec3(1, 2, 1);
@@ -900,6 +1150,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   resize_targets(r, width, height, rp.msaa);
   update_user_textures(r, rp);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
+  update_sky(r, rp);
   double t0 = now_ms();
   auto mark = [&](double& slot) {
     if (!r.measure_passes) return;
@@ -967,10 +1218,8 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.sky, "u_inv_viewproj", inv_viewproj);
     set_uniform(r.sky, "u_eye", eye);
     set_uniform(r.sky, "u_sun_dir", sun);
-    set_uniform(r.sky, "u_sky_zenith", rp.sky_zenith);
-    set_uniform(r.sky, "u_sky_horizon", rp.sky_horizon);
-    set_uniform(r.sky, "u_ground_color", rp.ground_color);
-    set_uniform(r.sky, "u_sun_light", rp.sun_color * rp.sun_intensity);
+    set_sky_uniforms(r, r.sky);
+    set_uniform(r.sky, "u_sun_light", r.daylight.sun_light);
     glBindVertexArray(r.empty_vao.id);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++r.counts.draw_calls;
@@ -984,9 +1233,17 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     glm::vec3 center = 0.5f * (r.bounds_min + r.bounds_max);
     set_uniform(r.ground, "u_center", center);
     set_uniform(r.ground, "u_extent", ground_extent);
-    set_uniform(r.ground, "u_sky_horizon", rp.sky_horizon);
+    set_uniform(r.ground, "u_sky_horizon", r.daylight.horizon);
+    set_uniform(r.ground, "u_ground_color", rp.ground_color);
+    set_uniform(r.ground, "u_root", r.root);
+    set_uniform(r.ground, "u_root_radius", r.has_tree ? r.root_radius : 0.0f);
+    const glm::vec3 half = 0.5f * (r.bounds_max - r.bounds_min);
+    set_uniform(r.ground, "u_crown_radius", r.has_tree ? glm::vec2(half.x, half.z) : glm::vec2(0.0f));
     glBindVertexArray(r.empty_vao.id);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_BLEND);
     ++r.counts.draw_calls;
   }
   if (r.has_tree) {
@@ -1034,7 +1291,8 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   }
   mark(r.timings.lit);
 
-  // 3 + 4. God rays: occlusion at half resolution, then the radial blur toward the sun.
+  // 3. Light shafts. Radial: occlusion at half resolution, then the blur toward the sun (only while
+  // the sun is in view). Volumetric: the fog's shadowed optical depth per half-resolution pixel.
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(r.empty_vao.id);
   const glm::vec4 sun_clip = viewproj * glm::vec4(eye + sun * far_plane * 0.5f, 1.0f);
@@ -1042,8 +1300,16 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   // Rays fade out as the sun leaves the view or goes behind the camera.
   float ray_fade = std::clamp((glm::dot(fwd, sun) - 0.1f) / 0.4f, 0.0f, 1.0f);
   ray_fade *= std::clamp((sun.y + 0.05f) / 0.1f, 0.0f, 1.0f);
-  const bool rays = rp.god_rays && ray_fade > 0 && sun_clip.w > 0 && !r.occlusion.failed && !r.radial.failed;
+  const bool rays = rp.shafts == light_shafts::radial && ray_fade > 0 && sun_clip.w > 0 && !r.occlusion.failed &&
+                    !r.radial.failed;
+  const bool volumetric = rp.shafts == light_shafts::volumetric && !r.march.failed;
   const int hw = std::max(1, width / 2), hh = std::max(1, height / 2);
+  // Rays that meet no surface cross fog only to a little past the tree: the sky model already holds
+  // the atmosphere beyond.
+  const float sky_distance = cam.distance + scene;
+  const float fog_density = std::clamp(rp.fog_density, 0.0f, 1.0f), haze = std::clamp(rp.haze, 0.0f, 0.1f);
+  const float fog_height = std::clamp(rp.fog_height, 0.1f, 100.0f);
+  r.timings.occlusion = r.timings.blur = r.timings.march = r.timings.exposure = 0;
   if (rays) {
     const glm::vec2 light_uv = glm::vec2(sun_clip.x, sun_clip.y) / sun_clip.w * 0.5f + 0.5f;
     glBindFramebuffer(GL_FRAMEBUFFER, r.occlusion_fbo.id);
@@ -1055,7 +1321,8 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.occlusion, "u_inv_viewproj", inv_viewproj);
     set_uniform(r.occlusion, "u_eye", eye);
     set_uniform(r.occlusion, "u_sun_dir", sun);
-    set_uniform(r.occlusion, "u_sun_color", rp.sun_color);
+    const float sun_max = std::max({r.daylight.sun_light.x, r.daylight.sun_light.y, r.daylight.sun_light.z, 1e-6f});
+    set_uniform(r.occlusion, "u_sun_color", r.daylight.sun_light / sun_max);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++r.counts.draw_calls;
     mark(r.timings.occlusion);
@@ -1073,11 +1340,45 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++r.counts.draw_calls;
     mark(r.timings.blur);
-  } else {
-    r.timings.occlusion = r.timings.blur = 0;
+  }
+  if (volumetric) {
+    glBindFramebuffer(GL_FRAMEBUFFER, r.march_fbo.id);
+    glViewport(0, 0, hw, hh);
+    glUseProgram(r.march.id);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, r.shadow_tex.id);
+    set_uniform(r.march, "u_depth", 0);
+    set_uniform(r.march, "u_shadow", 1);
+    set_uniform(r.march, "u_inv_viewproj", inv_viewproj);
+    set_uniform(r.march, "u_eye", eye);
+    set_uniform(r.march, "u_sun_dir", sun);
+    set_uniform(r.march, "u_light_viewproj", light);
+    // Without shadows nothing is shadowed: zero samples leave the fog uniformly lit.
+    set_uniform(r.march, "u_samples", rp.shadows && r.has_tree ? std::clamp(rp.shaft_samples, 1, 256) : 0);
+    set_uniform(r.march, "u_fog_density", fog_density);
+    set_uniform(r.march, "u_fog_height", fog_height);
+    set_uniform(r.march, "u_haze", haze);
+    set_uniform(r.march, "u_sky_distance", sky_distance);
+    set_uniform(r.march, "u_bias", rp.shadow_bias);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++r.counts.draw_calls;
+    mark(r.timings.march);
+  }
+  if (rp.auto_exposure && !r.exposure.failed) {   // 4. the frame's log-average luminance, 1 x 1
+    glBindFramebuffer(GL_FRAMEBUFFER, r.average_fbo.id);
+    glViewport(0, 0, 1, 1);
+    glUseProgram(r.exposure.id);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
+    set_uniform(r.exposure, "u_hdr", 0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++r.counts.draw_calls;
+    mark(r.timings.exposure);
   }
 
-  // 5. Composite and tonemap into the target.
+  // 5. Composite: fog and shafts, exposure, tonemap, into the target.
   glBindFramebuffer(GL_FRAMEBUFFER, target.id);
   glViewport(origin.x, origin.y, width, height);
   glUseProgram(r.composite.id);
@@ -1085,10 +1386,31 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, r.rays_tex.id);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, r.march_tex.id);
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
+  glActiveTexture(GL_TEXTURE4);
+  glBindTexture(GL_TEXTURE_2D, r.average_tex.id);
   set_uniform(r.composite, "u_hdr", 0);
   set_uniform(r.composite, "u_rays", 1);
+  set_uniform(r.composite, "u_march", 2);
+  set_uniform(r.composite, "u_depth", 3);
+  set_uniform(r.composite, "u_average", 4);
   set_uniform(r.composite, "u_ray_strength", rays ? ray_fade : 0.0f);
   set_uniform(r.composite, "u_exposure", rp.exposure);
+  set_uniform(r.composite, "u_auto_exposure", rp.auto_exposure && !r.exposure.failed ? 1 : 0);
+  set_uniform(r.composite, "u_volumetric", volumetric ? 1 : 0);
+  set_uniform(r.composite, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.composite, "u_eye", eye);
+  set_uniform(r.composite, "u_sun_dir", sun);
+  set_uniform(r.composite, "u_fog_density", fog_density);
+  set_uniform(r.composite, "u_fog_height", fog_height);
+  set_uniform(r.composite, "u_haze", haze);
+  set_uniform(r.composite, "u_sky_distance", sky_distance);
+  set_uniform(r.composite, "u_g", std::clamp(rp.scattering_g, -0.95f, 0.95f));
+  set_uniform(r.composite, "u_sun_light", r.daylight.sun_light);
+  set_uniform(r.composite, "u_fog_ambient", r.daylight.fog_ambient);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++r.counts.draw_calls;
   glActiveTexture(GL_TEXTURE0);

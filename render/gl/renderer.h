@@ -1,4 +1,5 @@
-// The frame renderer: shadow -> lit -> occlusion (half res) -> radial blur -> composite (DESIGN §8).
+// The frame renderer (DESIGN §8): shadow -> lit (physical sky, ground, tree) -> light shafts (volumetric
+// ray march at half resolution, or occlusion + radial blur) -> auto exposure -> composite with fog and tonemap.
 #pragma once
 
 #include <cstdint>
@@ -14,26 +15,30 @@
 #include "render/gl/overlays.h"
 #include "render/mesh.h"
 #include "render/render_params.h"
+#include "render/sky.h"
 
 namespace sylva {
 
 struct orbit_camera {
   glm::vec3 target{0, 2, 0};
   float distance = 8;
-  float yaw = 30;      // degrees around +Y
-  float pitch = 10;    // degrees above the horizon
+  float yaw = 35;      // degrees around +Y: a three-quarter view
+  float pitch = 3;     // degrees above the horizon: the eye a little below the crown
   float fov = 45;      // vertical, degrees
 };
 
 void orbit_camera_rotate(orbit_camera& c, float dx_pixels, float dy_pixels);
 void orbit_camera_pan(orbit_camera& c, float dx_pixels, float dy_pixels, int viewport_height);
 void orbit_camera_zoom(orbit_camera& c, float wheel);
-// Fits the whole box in view from the current direction.
-void frame_camera(orbit_camera& c, const glm::vec3& bounds_min, const glm::vec3& bounds_max);
+// Frames the box from the current direction so that it fills ~75% of the view's height (or 90% of
+// its width when that is tighter) for a view of width / height `aspect`.
+void frame_camera(orbit_camera& c, const glm::vec3& bounds_min, const glm::vec3& bounds_max, float aspect = 16.0f / 9.0f);
 glm::vec3 camera_eye(const orbit_camera& c);
 glm::vec3 sun_direction(const render_params& p);   // unit vector toward the sun
 
-struct pass_timings { double shadow = 0, lit = 0, occlusion = 0, blur = 0, composite = 0; };
+// Milliseconds per pass (with measure_passes): occlusion + blur are the radial shafts, march the
+// volumetric ones, exposure the auto-exposure reduction; a pass that did not run reads 0.
+struct pass_timings { double shadow = 0, lit = 0, occlusion = 0, blur = 0, march = 0, exposure = 0, composite = 0; };
 
 // What the last draw_frame issued, so that tests and `sylva bench --render` can check that leaves
 // stay one instanced call per pass and that an unchanged frame uploads nothing.
@@ -46,12 +51,12 @@ struct frame_counts {
 struct renderer_state {
   bool ok = false;
   std::string error;
-  gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, composite, fallback;
+  gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, march, exposure, composite, fallback;
   gl_vertex_array bark_vao, leaf_vao, empty_vao;
-  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_index, leaf_corner, leaf_instances, node_radius;
+  gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_ao, bark_index, leaf_corner, leaf_instances, node_radius;
   gl_texture node_radius_tex, bark_tex, bark_normal_tex, bark_rough_tex, leaf_tex, leaf_normal_tex, leaf_thickness_tex, shadow_tex,
-      hdr_color, hdr_depth, occlusion_tex, rays_tex;
-  gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, msaa_fbo;
+      hdr_color, hdr_depth, occlusion_tex, rays_tex, march_tex, average_tex;
+  gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, march_fbo, average_fbo, msaa_fbo;
   gl_renderbuffer msaa_color, msaa_depth;   // multisampled lit pass, resolved into hdr_color/hdr_depth
   int shadow_size = 0, width = 0, height = 0, samples = 0, leaf_layers = 1;
   // Textures: the user's PNG paths as last loaded, and why a load failed ("" when none).
@@ -65,6 +70,12 @@ struct renderer_state {
   int steps = 0, step = 0, node_count = 0;
   glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
   bool has_tree = false;
+  glm::vec3 root{0};                  // centre of the trunk's base ring, and its radius (ground contact)
+  float root_radius = 0.1f;
+  // The sky (render/sky.h), recomputed only when the parameters it depends on change.
+  sky_model daylight;
+  render_params sky_inputs;
+  bool sky_valid = false;
   overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); .view is the user's choice
   // Measurements.
   bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
