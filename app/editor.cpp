@@ -71,6 +71,7 @@ struct editor_state {
   // View.
   renderer_state renderer;
   orbit_camera camera;
+  float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
   uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
@@ -668,17 +669,20 @@ void draw_panel(editor_state& e, float top, float bottom) {
   if (ImGui::SmallButton("Noon")) {
     rp.sun_elevation = 70, rp.sun_azimuth = 25, rp.sun_color = {1.0f, 0.97f, 0.92f}, rp.sun_intensity = 2.4f;
     rp.sky_zenith = {0.22f, 0.42f, 0.85f}, rp.sky_horizon = {0.72f, 0.83f, 0.95f};
+    rp.fog_density = 0.005f, rp.haze = 0.0003f;   // a clear midday: little air to light up
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("Golden hour")) {
     rp.sun_elevation = 10, rp.sun_azimuth = std::remainder(e.camera.yaw + 60.0f, 360.0f), rp.sun_color = {1.0f, 0.72f, 0.42f}, rp.sun_intensity = 2.0f;
     rp.sky_zenith = {0.28f, 0.38f, 0.68f}, rp.sky_horizon = {0.95f, 0.76f, 0.55f};
+    rp.fog_density = 0.018f, rp.haze = 0.0005f;
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("Backlit rays")) {   // the sun straight behind the tree as seen now
     rp.sun_azimuth = std::remainder(e.camera.yaw + 180.0f, 360.0f), rp.sun_elevation = 12;
     rp.sun_color = {1.0f, 0.88f, 0.7f}, rp.sun_intensity = 2.2f;
     if (rp.shafts == light_shafts::off) rp.shafts = light_shafts::volumetric;
+    rp.fog_density = std::max(rp.fog_density, 0.025f);   // enough air for the shafts to show
   }
   draw_params(e.doc.render, "Render", e);
   ImGui::PopItemWidth();
@@ -1203,9 +1207,9 @@ void post_if_changed(editor_state& e) {
 }
 
 // Keeps the pitch off the poles, then fits the box from the current direction (never top-down).
-void frame_view(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi) {
+void frame_view(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi, float aspect) {
   if (c.pitch > 50 || c.pitch < -30) c.pitch = 10;
-  frame_camera(c, lo, hi);
+  frame_camera(c, lo, hi, aspect);
 }
 
 // Shows a newer worker result: upload in the same frame it is seen (DESIGN §5).
@@ -1244,7 +1248,7 @@ void take_new_tree(editor_state& e) {
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(e.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);
   if (e.frame_generation != 0 && int32_t(r->generation - e.frame_generation) >= 0) {
-    frame_view(e.camera, e.renderer.bounds_min, e.renderer.bounds_max);
+    frame_view(e.camera, e.renderer.bounds_min, e.renderer.bounds_max, e.view_aspect);
     e.frame_generation = 0;
   }
   if (newest && !r->report.error && int32_t(r->generation - e.error_after) > 0) clear_error(e);
@@ -1631,7 +1635,7 @@ int run_editor(const editor_options& o) {
       e->step = std::clamp(e->step, 0, steps);
       if (e->step != e->renderer.step) set_tree_step(e->renderer, *e->shown->skeleton, e->shown->mesh_settings.min_radius, e->step);
     }
-    if (e->frame_now && e->shown) frame_view(e->camera, e->renderer.bounds_min, e->renderer.bounds_max);
+    if (e->frame_now && e->shown) frame_view(e->camera, e->renderer.bounds_min, e->renderer.bounds_max, e->view_aspect);
     e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
@@ -1642,6 +1646,7 @@ int run_editor(const editor_options& o) {
     const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1, sy = win_h > 0 ? float(fb_h) / float(win_h) : 1;
     const int vx = int(left * sx), vy = int((float(win_h) - bottom) * sy);
     const int vw = std::max(1, fb_w - vx), vh = std::max(1, int((bottom - top) * sy));
+    e->view_aspect = float(vw) / float(vh);   // framing fits the tree to the 3D view's own shape
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);

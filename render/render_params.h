@@ -53,7 +53,7 @@ struct render_params {
   shadow_filter shadow_pcf = shadow_filter::pcf5;
   // Light shafts and fog.
   light_shafts shafts = light_shafts::volumetric;
-  float fog_density = 0.035f;      // ground fog at y = 0, per metre; it thins with height
+  float fog_density = 0.018f;      // ground fog at y = 0, per metre; it thins with height
   float fog_height = 8.0f;        // metres over which the ground fog thins by 1/e
   float haze = 0.0005f;           // aerial perspective: uniform haze, per metre
   float scattering_g = 0.7f;      // Henyey-Greenstein asymmetry of the fog

@@ -249,7 +249,7 @@ float fbm(vec2 p) { return 0.5 * vnoise(p) + 0.25 * vnoise(p * 2.03 + 7.1) + 0.1
 void main() {
   vec2 xz = v_world.xz;
   // Patches of grass over soil (metres), fine blades as a high-frequency height.
-  float patches = smoothstep(0.35, 0.65, fbm(xz * 0.35));
+  float patches = smoothstep(0.18, 0.42, fbm(xz * 0.35));   // mostly grass, soil showing through
   float blades = vnoise(xz * 37.0) * 0.6 + vnoise(xz * 91.0) * 0.4;
   vec3 grass = u_ground_color * (0.75 + 0.5 * blades);
   vec3 soil = vec3(0.20, 0.15, 0.10) * (0.8 + 0.4 * vnoise(xz * 9.0));
