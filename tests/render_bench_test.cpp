@@ -23,6 +23,7 @@
 #include "render/files.h"
 #include "tests/run_sylva.h"
 #include "render/gl/renderer.h"
+#include "tests/gl_test_context.h"
 
 // Counts heap allocations made through operator new, so a test can tell whether a frame allocates.
 // Replacing the global operator is process-wide; it only adds a relaxed counter to the default.
@@ -40,37 +41,12 @@ std::atomic<size_t> g_news{0};
 [[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 using namespace sylva;
+using sylva_test::gl_context;
+using sylva_test::have_display;
 
 namespace {
 
-bool have_display() {
-  const char* d = std::getenv("DISPLAY");
-  return d && *d;
-}
 
-// A hidden 3.3 core context for in-process renderer tests.
-struct gl_context {
-  GLFWwindow* window = nullptr;
-  gl_context() {
-    bool up = glfwInit();
-    if (!up) {   // a display shared with other clients now and then refuses one connection
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      up = glfwInit();
-    }
-    if (!up) return;
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, "render bench test", nullptr, nullptr);
-    if (window) glfwMakeContextCurrent(window);
-  }
-  ~gl_context() {
-    if (window) glfwDestroyWindow(window);
-    glfwTerminate();
-  }
-};
 
 // A leaves-only mesh of n leaves on a 10 m grid, all alive from step 0 on.
 tree_mesh leaf_field(uint32_t n) {

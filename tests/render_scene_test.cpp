@@ -14,41 +14,19 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/gl/renderer.h"
+#include "tests/gl_test_context.h"
 #include "render/sky.h"
 
 using namespace sylva;
+using sylva_test::gl_context;
+using sylva_test::have_display;
+using LightShafts = sylva_test::renderer_test;
 
 namespace {
 
-bool have_display() {
-  const char* d = std::getenv("DISPLAY");
-  return d && *d;
-}
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-struct gl_context {
-  GLFWwindow* window = nullptr;
-  gl_context() {
-    bool up = glfwInit();
-    if (!up) {   // a display shared with other clients now and then refuses one connection
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      up = glfwInit();
-    }
-    if (!up) return;
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, "scene test", nullptr, nullptr);
-    if (window) glfwMakeContextCurrent(window);
-  }
-  ~gl_context() {
-    if (window) glfwDestroyWindow(window);
-    glfwTerminate();
-  }
-};
 
 // A float target, so that NaN survives to the readback.
 struct float_target {
@@ -153,12 +131,7 @@ TEST(PhysicalSky, ExtremesStayFiniteAndNonNegative) {
 // Sun low in +Z, a wall with a hole facing it, seen from the side (the camera in the wall's shadow):
 // the air behind the hole is lit, the air beside it is not, so the beam is brighter than its
 // surroundings.
-TEST(LightShafts, BeamBehindAHoleIsBrighterThanBesideIt) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  gl_context ctx;
-  ASSERT_TRUE(ctx.window);
-  renderer_state r;
-  ASSERT_TRUE(init_renderer(r)) << r.error;
+TEST_F(LightShafts, BeamBehindAHoleIsBrighterThanBesideIt) {
   const tree_mesh m = wall_with_hole();
   upload_tree(r, m);
   const float zero[2] = {0.0f, 0.0f};   // node 0: built at radius 0, shown at radius 0
@@ -230,17 +203,11 @@ TEST(LightShafts, BeamBehindAHoleIsBrighterThanBesideIt) {
   glFinish();
   EXPECT_EQ(check_gl("shaft test"), 0);
   EXPECT_EQ(gl_error_count(), errors);
-  destroy_renderer(r);
 }
 
 // Bad lighting input: a sun below the horizon, turbidity and fog at their extremes, tiny and
 // zero-size views. Every pixel stays finite and GL reports no error.
-TEST(LightShafts, BadLightingInputGivesNoNaNAndNoGLError) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  gl_context ctx;
-  ASSERT_TRUE(ctx.window);
-  renderer_state r;
-  ASSERT_TRUE(init_renderer(r)) << r.error;
+TEST_F(LightShafts, BadLightingInputGivesNoNaNAndNoGLError) {
   const tree_mesh m = wall_with_hole();
   upload_tree(r, m);
   const float zero[2] = {0.0f, 0.0f};
@@ -277,5 +244,4 @@ TEST(LightShafts, BadLightingInputGivesNoNaNAndNoGLError) {
   glFinish();
   EXPECT_EQ(check_gl("bad input"), 0);
   EXPECT_EQ(gl_error_count(), errors);
-  destroy_renderer(r);
 }

@@ -13,39 +13,17 @@
 #include <GLFW/glfw3.h>
 
 #include "render/gl/renderer.h"
+#include "tests/gl_test_context.h"
 #include "render/textures.h"
 
 using namespace sylva;
+using sylva_test::gl_context;
+using sylva_test::have_display;
+using RenderTextures = sylva_test::renderer_test;
 
 namespace {
 
-bool have_display() {
-  const char* d = std::getenv("DISPLAY");
-  return d && *d;
-}
 
-struct gl_window {  // a hidden 3.3 core context
-  GLFWwindow* window = nullptr;
-  gl_window() {
-    bool up = glfwInit();
-    if (!up) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      up = glfwInit();
-    }
-    if (!up) return;
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, "render textures test", nullptr, nullptr);
-    if (window) glfwMakeContextCurrent(window);
-  }
-  ~gl_window() {
-    if (window) glfwDestroyWindow(window);
-    glfwTerminate();
-  }
-};
 
 // One big leaf card facing the camera (+Z), archetype `texture`, filling most of the view.
 tree_mesh one_card(uint8_t texture, float size = 2.0f) {
@@ -116,12 +94,7 @@ std::string temp_file(const std::string& name) {
 
 }  // namespace
 
-TEST(RenderTextures, NineLeafLayersOneDrawAndEachArchetypeShowsItsOwnCard) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  gl_window ctx;
-  ASSERT_TRUE(ctx.window);
-  renderer_state r;
-  ASSERT_TRUE(init_renderer(r)) << r.error;
+TEST_F(RenderTextures, NineLeafLayersOneDrawAndEachArchetypeShowsItsOwnCard) {
   EXPECT_EQ(r.leaf_layers, leaf_archetype_count);
   const render_params rp = plain();
   const orbit_camera cam = facing();
@@ -152,15 +125,9 @@ TEST(RenderTextures, NineLeafLayersOneDrawAndEachArchetypeShowsItsOwnCard) {
       EXPECT_GT(differ, masks[a].size() / 40) << leaf_archetype_names[a] << " vs " << leaf_archetype_names[b];
     }
   EXPECT_EQ(check_gl("leaf layers test"), 0);
-  destroy_renderer(r);
 }
 
-TEST(RenderTextures, BarkArchetypeChangeUploadsItsSetOnce) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  gl_window ctx;
-  ASSERT_TRUE(ctx.window);
-  renderer_state r;
-  ASSERT_TRUE(init_renderer(r)) << r.error;
+TEST_F(RenderTextures, BarkArchetypeChangeUploadsItsSetOnce) {
   render_params rp = plain();
   const orbit_camera cam = facing();
   upload_tree(r, one_card(0));
@@ -174,15 +141,9 @@ TEST(RenderTextures, BarkArchetypeChangeUploadsItsSetOnce) {
   EXPECT_EQ(r.counts.uploads, 3) << "colour, normal and roughness";
   draw_frame(r, rp, cam, 32, 32);
   EXPECT_EQ(r.counts.uploads, 0);
-  destroy_renderer(r);
 }
 
-TEST(RenderTextures, BadUserTexturesSayWhyAndKeepTheProceduralOnes) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  gl_window ctx;
-  ASSERT_TRUE(ctx.window);
-  renderer_state r;
-  ASSERT_TRUE(init_renderer(r)) << r.error;
+TEST_F(RenderTextures, BadUserTexturesSayWhyAndKeepTheProceduralOnes) {
   render_params rp = plain();
   rp.bark = bark_archetype::plated;
   const orbit_camera cam = facing();
@@ -226,6 +187,5 @@ TEST(RenderTextures, BadUserTexturesSayWhyAndKeepTheProceduralOnes) {
   EXPECT_EQ(r.bark_shown, int(bark_archetype::plated));
   EXPECT_EQ(r.leaf_layers, leaf_archetype_count);
   EXPECT_EQ(check_gl("bad user textures test"), 0);
-  destroy_renderer(r);
   for (const std::string& f : {corrupt, wide, npot}) std::filesystem::remove(f);
 }

@@ -1,0 +1,65 @@
+// A hidden OpenGL 3.3 core context for the in-process renderer tests, shared by every GL test file.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <cstdlib>
+#include <thread>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <gtest/gtest.h>
+
+#include "render/gl/renderer.h"
+
+namespace sylva_test {
+
+inline bool have_display() {
+  const char* d = std::getenv("DISPLAY");
+  return d && *d;
+}
+
+struct gl_context {
+  GLFWwindow* window = nullptr;
+  gl_context() {
+    bool up = glfwInit();
+    if (!up) {   // a display shared with other clients now and then refuses one connection
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      up = glfwInit();
+    }
+    if (!up) return;
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    window = glfwCreateWindow(64, 64, "sylva test", nullptr, nullptr);
+    if (window) glfwMakeContextCurrent(window);
+  }
+  ~gl_context() {
+    if (window) glfwDestroyWindow(window);
+    glfwTerminate();
+  }
+  gl_context(const gl_context&) = delete;
+  gl_context& operator=(const gl_context&) = delete;
+};
+
+// A test fixture with a context and an initialised renderer `r` (skipped without a display).
+class renderer_test : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+    ctx = std::make_unique<gl_context>();
+    ASSERT_TRUE(ctx->window);
+    ASSERT_TRUE(sylva::init_renderer(r)) << r.error;
+    ready = true;
+  }
+  void TearDown() override {
+    if (ready) sylva::destroy_renderer(r);   // before the context goes
+  }
+  std::unique_ptr<gl_context> ctx;
+  sylva::renderer_state r;
+  bool ready = false;
+};
+
+}  // namespace sylva_test
