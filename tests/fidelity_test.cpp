@@ -135,3 +135,27 @@ TEST(Fidelity, Seed001PresetsFollowTheSeed) {
   }
   EXPECT_EQ(std::get<self_organizing_params>(load("self_organizing_seed001_fig2").spec.params).steps, 35);
 }
+
+TEST(Fidelity, Seed002PresetSaysItsValuesAreChosen) {
+  const preset pr = load("guiding_vectors_seed002");
+  EXPECT_NE(pr.description.find("chosen"), std::string::npos);
+  EXPECT_EQ(std::get<guiding_vectors_params>(pr.spec.params).search_corridor, 2.0f);
+}
+
+// The 2h corridor is a parameter; 0 is the exact, unbounded search. Both grow a valid tree with
+// every endpoint reached, and the unbounded search's paths are no costlier, so the trees differ
+// little in size.
+TEST(Fidelity, GuidingVectorsCorridorAndExactSearch) {
+  guiding_vectors_params p;
+  p.spacing = 0.3f;
+  grow_report ra, rb;
+  const tree_skeleton bounded = grow_guiding_vectors(p, {}, &ra);
+  p.search_corridor = 0;
+  const tree_skeleton exact = grow_guiding_vectors(p, {}, &rb);
+  EXPECT_FALSE(ra.error) << ra.message;
+  EXPECT_FALSE(rb.error) << rb.message;
+  EXPECT_EQ(validate_skeleton(bounded), "");
+  EXPECT_EQ(validate_skeleton(exact), "");
+  EXPECT_GT(exact.size(), 50u);
+  EXPECT_NEAR(double(exact.size()), double(bounded.size()), 0.5 * double(bounded.size()));
+}
