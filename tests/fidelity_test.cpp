@@ -136,6 +136,23 @@ TEST(Fidelity, Seed001PresetsFollowTheSeed) {
   EXPECT_EQ(std::get<self_organizing_params>(load("self_organizing_seed001_fig2").spec.params).steps, 35);
 }
 
+TEST(Fidelity, Seed004SnowflakeIsTheD0LSystemOfItsFig4) {
+  const preset pr = load("lsystem_seed004_snowflake");
+  const auto& p = std::get<lsystem_params>(pr.spec.params);
+  ASSERT_EQ(p.mode, lsystem_mode::text);
+  // Derivation n has 3·4^n segments, each of length 4/3^n... of side 1/3^n: 3·4^4 = 768 after four.
+  grow_report rep;
+  const tree_skeleton t = grow(pr.spec, {}, &rep);
+  EXPECT_FALSE(rep.error) << rep.message;
+  EXPECT_EQ(t.size(), 1u + 768u);
+  // A closed curve: the last point is back at the start, and every segment has length 1/81.
+  EXPECT_LT(glm::length(t.position.back() - t.position.front()), 1e-4f);
+  for (size_t i = 1; i < t.size(); ++i)
+    ASSERT_NEAR(glm::length(t.position[i] - t.position[size_t(t.parent[i])]), 1.0f / 81.0f, 1e-5f);
+  // Flat: the turns are all about U, so the curve stays in the z = 0 plane.
+  for (const glm::vec3& q : t.position) ASSERT_NEAR(q.z, 0, 1e-5f);
+}
+
 TEST(Fidelity, Seed002PresetSaysItsValuesAreChosen) {
   const preset pr = load("guiding_vectors_seed002");
   EXPECT_NE(pr.description.find("chosen"), std::string::npos);
