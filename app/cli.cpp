@@ -22,6 +22,7 @@
 
 #include "app/cli_textures.h"
 #include "app/headless.h"
+#include "generators/lsystem_engine.h"
 #include "render/export.h"
 #include "render/files.h"
 #include "render/gl/renderer.h"
@@ -108,8 +109,44 @@ void list_params(const P& p, const json& defaults, const char* section, const ch
   });
 }
 
-int run_params(bool as_json) {
+// With --preset: that preset's parameters (its values as "default") and, for a text-mode
+// L-system, one "define" record per #define constant, settable as --set define.NAME=value.
+int list_preset_params(const std::string& path, json& all) {
+  preset p;
+  const load_result loaded = load_preset_file(path, p);
+  if (!loaded.ok) {
+    std::fprintf(stderr, "sylva params: %s\n", loaded.error.c_str());
+    return 1;
+  }
+  const json saved = json::parse(save_preset_json(p));
+  const char* gen = generator_names[p.spec.params.index()];
+  std::visit([&](const auto& gp) { list_params(gp, saved["params"], "params", gen, all); }, p.spec.params);
+  list_params(p.mesh, saved["mesh"], "mesh", nullptr, all);
+  list_params(p.render, saved["render"], "render", nullptr, all);
+  if (const auto* lp = std::get_if<lsystem_params>(&p.spec.params); lp && lp->mode == lsystem_mode::text)
+    for (const lsystem_constant& k : lsystem_constants(lp->source)) {
+      json r;
+      r["section"] = "define";
+      r["generator"] = gen;
+      r["key"] = "define." + k.name;
+      r["label"] = k.name;
+      r["symbol"] = k.name;
+      r["type"] = "float";
+      r["min"] = k.min;
+      r["max"] = k.max;
+      r["default"] = k.value;
+      r["help"] = k.help.empty() ? "#define constant of the L-system text" : k.help;
+      r["flags"] = json::array();
+      all.push_back(std::move(r));
+    }
+  return 0;
+}
+
+int run_params(bool as_json, const std::string& preset_path) {
   json all = json::array();
+  if (!preset_path.empty()) {
+    if (int rc = list_preset_params(preset_path, all)) return rc;
+  } else
   for (int g = 0; g < generator_count; ++g) {
     preset p;
     p.spec.params = default_params(g);
@@ -128,7 +165,8 @@ int run_params(bool as_json) {
   std::string heading;
   for (const json& r : all) {
     const std::string h = r["generator"].is_null() ? r["section"].get<std::string>()
-                                                   : "params of generator " + r["generator"].get<std::string>();
+                          : r["section"] == "define" ? "#define constants (--set define.NAME=value)"
+                                                     : "params of generator " + r["generator"].get<std::string>();
     if (h != heading) {
       std::printf("%s%s\n", heading.empty() ? "" : "\n", h.c_str());
       heading = h;
@@ -663,6 +701,9 @@ int run_cli(int argc, char** argv) {
   bool params_json = false;
   CLI::App* params = app.add_subcommand("params", "List every parameter: generator, key, symbol, range, default, help");
   params->add_flag("--json", params_json, "Print one JSON array");
+  std::string params_preset;
+  params->add_option("--preset", params_preset,
+                     "List this preset's parameters with its values, and a text L-system's #define constants");
 
   export_args ex;
   CLI::App* exp = app.add_subcommand("export", "Grow a preset and write it; OUT's extension picks the format");
@@ -710,7 +751,7 @@ int run_cli(int argc, char** argv) {
     return 2;
   }
   try {
-    if (params->parsed()) return run_params(params_json);
+    if (params->parsed()) return run_params(params_json, params_preset);
     if (exp->parsed()) return run_export(ex);
     if (bench->parsed() && bench_edit) return run_bench_edit(bench_paths, repeat, bench_json, bench_width, bench_height);
     if (bench->parsed() && bench_render) {

@@ -18,6 +18,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generators/lsystem_engine.h"
+
 namespace sylva {
 namespace {
 
@@ -604,11 +606,46 @@ bool valid_utf8(std::string_view s) {
   return true;
 }
 
+namespace {
+constexpr std::string_view define_prefix = "define.";
+bool is_define_key(std::string_view key) {
+  return key.size() > define_prefix.size() && key.substr(0, define_prefix.size()) == define_prefix;
+}
+
+// --set define.NAME=value: rewrites `#define NAME ...` in a text-mode L-system's source. The value
+// must lie in the constant's [min,max] (its comment, or the editor's default range around it).
+std::string set_preset_define(preset& p, std::string_view key, std::string_view text) {
+  auto* lp = std::get_if<lsystem_params>(&p.spec.params);
+  if (!lp || lp->mode != lsystem_mode::text)
+    return std::string(key) + ": define.NAME reaches the #define constants of a text-mode L-system; this preset has none";
+  const std::string name(key.substr(define_prefix.size()));
+  const std::vector<lsystem_constant> ks = lsystem_constants(lp->source);
+  const lsystem_constant* k = nullptr;
+  std::string names;
+  for (const lsystem_constant& c : ks) {
+    if (c.name == name) k = &c;
+    names += (names.empty() ? "" : ", ") + c.name;
+  }
+  if (!k) return std::string(key) + ": the L-system has no #define " + quote_text(name) +
+                (names.empty() ? " (it defines no constants)" : " (it defines " + names + ")");
+  float v;
+  if (!parse_float_text(text, v) || !std::isfinite(v)) return std::string(key) + ": " + quote_text(text) + " is not a number";
+  if (v < k->min || v > k->max) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " is outside [%g, %g]", double(k->min), double(k->max));
+    return std::string(key) + ": " + quote_text(text) + buf;
+  }
+  if (!set_lsystem_constant(lp->source, name, v)) return std::string(key) + ": could not rewrite #define " + name;
+  return "";
+}
+}  // namespace
+
 std::string set_preset_param(preset& p, std::string_view assignment) {
   const size_t eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0)
     return "--set expects key=value, got \"" + std::string(assignment) + "\"";
   const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  if (is_define_key(key)) return set_preset_define(p, key, text);
   std::string error;
   std::string found = with_param(p, key, [&](auto& value, const param_info& info) {
     auto v = value;
@@ -628,8 +665,8 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
   const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   const auto parts = split(text, ':');
   preset copy = p;
-  bool numeric = false, integral = false;
-  std::string found = with_param(copy, key, [&](auto& value, const param_info&) {
+  bool numeric = is_define_key(key), integral = false;
+  std::string found = numeric ? std::string() : with_param(copy, key, [&](auto& value, const param_info&) {
     using T = std::decay_t<decltype(value)>;
     numeric = std::is_same_v<T, float> || std::is_same_v<T, int>;
     integral = std::is_same_v<T, int>;

@@ -176,3 +176,30 @@ TEST(Fidelity, GuidingVectorsCorridorAndExactSearch) {
   EXPECT_GT(exact.size(), 50u);
   EXPECT_NEAR(double(exact.size()), double(bounded.size()), 0.5 * double(bounded.size()));
 }
+
+TEST(Fidelity, SetReachesDefineConstants) {
+  preset pr = load("lsystem_seed004_binary_tree");
+  const tree_skeleton before = grow(pr.spec, {});
+  ASSERT_EQ(set_preset_param(pr, "define.delta=30"), "");
+  const auto& p = std::get<lsystem_params>(pr.spec.params);
+  ASSERT_EQ(lsystem_constants(p.source).at(0).value, 30.0f);
+  EXPECT_NE(p.source.find("#define delta 30 // [0,90]"), std::string::npos) << p.source;  // comment kept
+  const tree_skeleton after = grow(pr.spec, {});
+  EXPECT_EQ(after.size(), before.size());
+  EXPECT_FALSE(same_tree(after, before));
+  // Out of the constant's range, unknown names and non-numbers are refused with the reason.
+  EXPECT_NE(set_preset_param(pr, "define.delta=300").find("outside [0, 90]"), std::string::npos);
+  EXPECT_NE(set_preset_param(pr, "define.nope=1").find("it defines delta"), std::string::npos);
+  EXPECT_NE(set_preset_param(pr, "define.delta=abc").find("not a number"), std::string::npos);
+  EXPECT_NE(set_preset_param(pr, "define.delta=nan").find("not a number"), std::string::npos);
+  // Honda mode has no #define constants to reach.
+  preset honda = load("lsystem_honda_a");
+  EXPECT_NE(set_preset_param(honda, "define.delta=30").find("text-mode"), std::string::npos);
+  // Sweeps expand over a constant like over any number, checked whole.
+  std::vector<std::string> values;
+  ASSERT_EQ(expand_param_sweep(pr, "define.delta=10:40:4", values), "");
+  EXPECT_EQ(values, (std::vector<std::string>{"define.delta=10", "define.delta=20", "define.delta=30", "define.delta=40"}));
+  values.clear();
+  EXPECT_NE(expand_param_sweep(pr, "define.delta=10:100:4", values), "");
+  EXPECT_TRUE(values.empty());
+}
