@@ -30,19 +30,25 @@ constexpr float standard_gravity = 9.80665f;  // m/s² (CGPM 1901)
 constexpr float pi = 3.14159265358979f;
 constexpr float min_beam_radius = 1e-4f;      // metres: a zero radius would have no stiffness
 
-// The rotation by vector v (axis · angle in radians).
+// The rotation by vector v (axis · angle in radians); a Taylor series for the small turns of one step.
 glm::quat rotation_quat(const glm::vec3& v) {
-  const float a = glm::length(v);
-  if (!(a > 1e-12f)) return glm::quat(1, 0, 0, 0);
-  const float s = std::sin(0.5f * a) / a;
-  return glm::quat(std::cos(0.5f * a), v.x * s, v.y * s, v.z * s);
+  const float a2 = glm::dot(v, v);
+  if (!(a2 > 1e-24f)) return glm::quat(1, 0, 0, 0);
+  float c, s;
+  if (a2 < 1e-4f) {   // |v| < 0.01: cos(a/2) and sin(a/2)/a to better than 1e-9
+    c = 1 - a2 / 8;
+    s = 0.5f - a2 / 48;
+  } else {
+    const float a = std::sqrt(a2);
+    c = std::cos(0.5f * a);
+    s = std::sin(0.5f * a) / a;
+  }
+  return glm::quat(c, v.x * s, v.y * s, v.z * s);
 }
 
-// The square root of a unit quaternion: half the rotation about the same axis.
+// The square root of a unit quaternion with w >= 0: half the rotation about the same axis.
 glm::quat half_rotation(const glm::quat& q) {
-  glm::quat h(1 + q.w, q.x, q.y, q.z);
-  if (h.w < 1e-6f) return glm::quat(1, 0, 0, 0);  // a half turn: cannot happen under max_bend
-  return glm::normalize(h);
+  return glm::normalize(glm::quat(1 + q.w, q.x, q.y, q.z));
 }
 
 struct engine {
@@ -51,192 +57,204 @@ struct engine {
   wood_params p;
   size_t n;
   bool recover = true;
+  bool monotone = false;
   const std::vector<float>* point_mass = nullptr;
 
+  // Parents are read at random (a node's parent was often born many steps earlier), so what a
+  // sweep reads of a parent sits in one record; the rest is read in index order.
+  struct pose {
+    glm::quat frame{1, 0, 0, 0};   // the rotation of everything beyond the node
+    glm::vec3 x{0};                // bent position
+  };
+  struct load {
+    glm::vec3 s{0};                // first moment of the mass beyond the node
+    float m = 0;                   // mass beyond the node
+    float pipe = 0;                // Σ r_tip^n of the pipes through it
+  };
+  std::vector<pose> at;
+  std::vector<load> acc;
+  std::vector<glm::vec4> rest_d;   // per internode: unbent vector from its parent (xyz) and length (w)
   std::vector<glm::quat> bend;     // per internode: its turn relative to its parent's end frame
-  std::vector<glm::quat> frame;    // per node: the rotation of everything beyond it
-  std::vector<glm::vec3> x;        // bent positions
-  std::vector<glm::vec3> moment;   // moment at the middle of each internode
-  std::vector<glm::vec3> moment_prev;
-  std::vector<float> r;            // radii at the bend step
-  std::vector<float> pipe_sum;
-  std::vector<float> sub_m;        // mass beyond each node
-  std::vector<glm::vec3> sub_s;    // first moment of that mass
+  std::vector<glm::vec3> moment_prev;  // moment at the middle of each internode at the last bend
   std::vector<uint8_t> clamped;
+  float recovery_share[65] = {};   // 1 - (1 - recovery)^k for k young steps
+  float max_turn = 0, cos_half_max = 1;
 
   engine(const tree_skeleton& tree, const std::vector<glm::vec3>& rest_pos, const wood_params& params)
       : t(tree), rest(rest_pos), p(params), n(tree.size()) {
+    at.resize(n);
+    for (size_t k = 0; k < n; ++k) at[k].x = rest[k];
+    acc.resize(n);
+    rest_d.assign(n, glm::vec4(0));
+    for (size_t k = 0; k < n; ++k)
+      if (t.parent[k] >= 0) {
+        const glm::vec3 d = rest[k] - rest[size_t(t.parent[k])];
+        rest_d[k] = glm::vec4(d, glm::length(d));
+      }
     bend.assign(n, glm::quat(1, 0, 0, 0));
-    frame.assign(n, glm::quat(1, 0, 0, 0));
-    x = rest;
-    moment.assign(n, glm::vec3(0));
     moment_prev.assign(n, glm::vec3(0));
-    r.assign(n, 0.0f);
-    sub_m.assign(n, 0.0f);
-    sub_s.assign(n, glm::vec3(0));
     clamped.assign(n, 0);
+    for (int k = 0; k <= 64; ++k) recovery_share[k] = 1.0f - std::pow(1.0f - p.recovery, float(k));
+    max_turn = p.max_bend * pi / 180.0f;
+    cos_half_max = std::cos(0.5f * max_turn);
+  }
+
+  std::vector<glm::vec3> positions() const {
+    std::vector<glm::vec3> out(n);
+    for (size_t k = 0; k < n; ++k) out[k] = at[k].x;
+    return out;
   }
 
   bool alive(size_t k, int s) const { return t.born[k] <= s && s < t.died[k]; }
 
-  // Positions and frames of nodes [0, end) from the current bends.
+  // The turn of internode k for the bend of step s (previous bend step prev): its moment increase
+  // `m` over its stiffness now (squared radius rr2), plus reaction wood. `fp`: its parent's end frame.
+  void turn_internode(size_t k, const glm::quat& fp, glm::vec3 m, float rr2, int s, int prev) {
+    const glm::vec3 rd(rest_d[k]);
+    const float len = rest_d[k].w;
+    if (!(len > 1e-9f)) return;
+    const glm::vec3 dir = fp * (rd / len);   // the internode's axis (before its own bend)
+    m -= glm::dot(m, dir) * dir;             // the axial part twists; only the rest bends
+    const float ei = p.modulus * 1e9f * pi * rr2 * rr2 * 0.25f;   // E·I, I = π r⁴ / 4
+    glm::vec3 turn = m * (len / ei);
+    // Reaction wood (gravitropic recovery): a young shoot turns its tip back toward its set
+    // direction by `recovery` of the angle between them per step it was young in (prev, s].
+    if (recover && p.recovery > 0) {
+      const int young = std::min(s, int(t.born[k]) + p.recovery_age) - std::max(prev + 1, int(t.born[k])) + 1;
+      if (young > 0) {
+        glm::vec3 target = rd / len;
+        if (p.recovery_up > 0) {
+          const glm::vec3 up = (1 - p.recovery_up) * target + glm::vec3(0, p.recovery_up, 0);
+          const float l = glm::length(up);
+          if (l > 1e-6f) target = up / l;
+        }
+        const glm::vec3 tip = fp * (bend[k] * (rd / len));   // its direction now
+        const glm::vec3 c = glm::cross(tip, target);
+        const float sn = glm::length(c);
+        if (sn > 1e-7f) {
+          const float cs = glm::dot(tip, target);
+          // atan2(sn, cs); below 0.1 rad asin's series is exact to 1e-6 and much cheaper.
+          const float angle = (sn < 0.1f && cs > 0) ? sn * (1 + sn * sn * (1.0f / 6)) : std::atan2(sn, cs);
+          turn += c * (angle * recovery_share[std::min(young, 64)] / sn);
+        }
+      }
+    }
+    const float a2 = glm::dot(turn, turn);
+    if (!(a2 > 1e-24f)) return;
+    if (!(a2 <= max_turn * max_turn)) {  // NaN or a fold: clamp
+      turn = std::isfinite(a2) ? turn * (max_turn / std::sqrt(a2)) : glm::vec3(0);
+      clamped[k] = 1;
+    }
+    // World rotation at the joint -> the parent's end frame: q' = rot(R_p⁻¹ θ) q.
+    glm::quat b = glm::normalize(rotation_quat(glm::conjugate(fp) * turn) * bend[k]);
+    if (b.w < 0) b = -b;
+    if (b.w < cos_half_max) {  // the accumulated bend of one internode stays below max_bend
+      const glm::vec3 v(b.x, b.y, b.z);
+      const float vl = glm::length(v);
+      b = vl > 1e-12f ? glm::angleAxis(max_turn, v / vl) : glm::quat(1, 0, 0, 0);
+      clamped[k] = 1;
+    }
+    bend[k] = b;
+  }
+
+  // One sweep parents-first over [0, end): positions and frames from the bends.
   void forward(size_t end) {
     for (size_t k = 0; k < end; ++k) {
       const int32_t par = t.parent[k];
       if (par < 0) {
-        x[k] = rest[k];
-        frame[k] = bend[k];
+        at[k].x = rest[k];
+        at[k].frame = bend[k];
         continue;
       }
-      const glm::vec3 d = rest[k] - rest[par];
+      const glm::vec3 rd(rest_d[k]);
+      const pose pp = at[size_t(par)];
       const glm::quat& b = bend[k];
       if (b.x == 0 && b.y == 0 && b.z == 0) {  // unbent (young nodes): skip the half rotation
-        x[k] = x[par] + frame[par] * d;
-        frame[k] = frame[par];
+        at[k].x = pp.x + pp.frame * rd;
+        at[k].frame = pp.frame;
       } else {
-        x[k] = x[par] + frame[par] * (half_rotation(b) * d);
-        frame[k] = frame[par] * b;
+        at[k].x = pp.x + pp.frame * (half_rotation(b) * rd);
+        at[k].frame = pp.frame * b;
       }
     }
   }
 
-  // Radii of the nodes alive at s among [0, end): pipe radii of that step, else the fixed ones.
-  void radii(int s, size_t end) {
-    if (t.pipe_exponent > 0) {
-      pipe_sum.assign(end, 0.0f);
-      const float e = t.pipe_exponent, rt = std::pow(t.pipe_tip_radius, e), inv = 1.0f / e;
-      for (size_t k = end; k-- > 0;) {
-        if (!alive(k, s)) continue;
-        const float sum = pipe_sum[k] > 0 ? pipe_sum[k] : rt;  // as compute_pipe_radii (skeleton.cpp)
-        r[k] = std::pow(sum, inv);
-        if (t.parent[k] >= 0) pipe_sum[size_t(t.parent[k])] += sum;
-      }
-    } else {
-      for (size_t k = 0; k < end; ++k) r[k] = t.radius[k];
+  // One sweep tips-first over the nodes alive at s among [0, end): radii of that step (pipe radii
+  // as compute_pipe_radii in skeleton.cpp, else the fixed ones), loads, each internode's moment at
+  // its middle, M = Σ m_i (x_i - c) × g, and its turn from the increase since the last bend. The
+  // turns change the bends only: positions follow in the next forward sweep.
+  void reverse(int s, int prev, size_t end) {
+    std::fill(acc.begin(), acc.begin() + long(end), load{});
+    const bool pipe = t.pipe_exponent > 0;
+    float rt = 0, two_over_e = 0;
+    if (pipe) {
+      rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
+      two_over_e = 2.0f / t.pipe_exponent;
     }
-  }
-
-  // Moments at the middle of every internode alive at s, from the tips down.
-  void moments(int s, size_t end) {
-    std::fill(sub_m.begin(), sub_m.begin() + long(end), 0.0f);
-    std::fill(sub_s.begin(), sub_s.begin() + long(end), glm::vec3(0));
     const glm::vec3 g(0, -standard_gravity * p.gravity, 0);
     const float leaf_kg_per_m = p.leaf_mass * 1e-3f * p.leaves_per_metre;
     for (size_t k = end; k-- > 0;) {
       if (!alive(k, s)) continue;
+      const int32_t par = t.parent[k];
+      load& a = acc[k];
+      const glm::vec3 xk = at[k].x;
+      float sum = 0, r2;
+      if (pipe) {
+        sum = a.pipe > 0 ? a.pipe : rt;
+        r2 = std::pow(sum, two_over_e);
+      } else {
+        r2 = t.radius[k] * t.radius[k];
+      }
+      r2 = std::max(r2, min_beam_radius * min_beam_radius);
       if (point_mass && k < point_mass->size() && (*point_mass)[k] > 0) {
-        sub_m[k] += (*point_mass)[k];
-        sub_s[k] += (*point_mass)[k] * x[k];
+        a.m += (*point_mass)[k];
+        a.s += (*point_mass)[k] * xk;
       }
-      const int32_t par = t.parent[k];
       if (par < 0) continue;
-      const float len = glm::length(rest[k] - rest[par]);
-      const float rr = std::max(0.5f * (r[k] + r[par]), min_beam_radius);
-      float m = p.density * pi * rr * rr * len;   // wood: density × volume
-      if (s - int(t.born[k]) <= p.leaf_age) m += leaf_kg_per_m * len;  // foliage of a young shoot
-      const glm::vec3 c = 0.5f * (x[par] + x[k]);
+      const float len = rest_d[k].w;
+      // Wood (density × volume, the internode at its tip radius) and the foliage of a young shoot.
+      float m = p.density * pi * r2 * len;
+      if (s - int(t.born[k]) <= p.leaf_age) m += leaf_kg_per_m * len;
+      const pose& pp = at[size_t(par)];
+      const glm::vec3 seg = xk - pp.x;
+      const glm::vec3 c = xk - 0.5f * seg;
       // The internode's own outer half acts at its three-quarter point.
-      const float tm = sub_m[k] + 0.5f * m;
-      const glm::vec3 ts = sub_s[k] + (0.5f * m) * (0.25f * x[par] + 0.75f * x[k]);
-      moment[k] = glm::cross(ts - tm * c, g);
-      sub_m[size_t(par)] += sub_m[k] + m;
-      sub_s[size_t(par)] += sub_s[k] + m * c;
+      const float tm = a.m + 0.5f * m;
+      const glm::vec3 ts = a.s + (0.5f * m) * (xk - 0.25f * seg);
+      const glm::vec3 moment = glm::cross(ts - tm * c, g);
+      turn_internode(k, pp.frame, moment - moment_prev[k], r2, s, prev);
+      moment_prev[k] = moment;
+      load& up = acc[size_t(par)];
+      up.m += a.m + m;
+      up.s += a.s + m * c;
+      up.pipe += sum;
     }
   }
 
-  // Turns each internode alive at s by its moment increase over its stiffness, plus reaction wood.
-  // `prev`: the previous bend step; a shoot recovers for each step of (prev, s] in which it was young.
-  void update(int s, int prev, size_t end) {
-    const float E = p.modulus * 1e9f;
-    const float max_turn = p.max_bend * pi / 180.0f;
-    for (size_t k = 0; k < end; ++k) {
-      const int32_t par = t.parent[k];
-      if (par < 0 || !alive(k, s)) continue;
-      const glm::vec3 rd = rest[k] - rest[size_t(par)];
-      const glm::vec3 dv = x[k] - x[size_t(par)];
-      const float len = glm::length(dv);
-      if (!(len > 1e-9f)) continue;
-      const glm::vec3 axis = dv / len;
-      glm::vec3 dm = moment[k] - moment_prev[k];
-      moment_prev[k] = moment[k];
-      dm -= glm::dot(dm, axis) * axis;   // the axial part twists; only the rest bends
-      const float rr = std::max(0.5f * (r[k] + r[size_t(par)]), min_beam_radius);
-      const float ei = E * pi * rr * rr * rr * rr * 0.25f;   // E·I, I = π r⁴ / 4
-      glm::vec3 turn = dm * (len / ei);
-      // Reaction wood (gravitropic recovery): a young shoot turns its tip back toward its set
-      // direction by `recovery` of the angle between them per step.
-      if (recover && p.recovery > 0) {
-        // Steps of (prev, s] in which the shoot was young.
-        const int first = std::max(prev + 1, int(t.born[k]));
-        const int last = std::min(s, int(t.born[k]) + p.recovery_age);
-        const int young = last - first + 1;
-        if (young > 0) {
-          glm::vec3 target = rd / std::max(glm::length(rd), 1e-12f);
-          if (p.recovery_up > 0) {
-            const glm::vec3 up = (1 - p.recovery_up) * target + glm::vec3(0, p.recovery_up, 0);
-            const float l = glm::length(up);
-            if (l > 1e-6f) target = up / l;
-          }
-          const glm::vec3 tip = frame[k] * (rd / std::max(glm::length(rd), 1e-12f));  // its direction now
-          const glm::vec3 c = glm::cross(tip, target);
-          const float sn = glm::length(c);
-          const float angle = std::atan2(sn, glm::dot(tip, target));
-          if (sn > 1e-7f) {
-            const float share = 1.0f - std::pow(1.0f - p.recovery, float(young));
-            turn += c * (angle * share / sn);
-          }
-        }
-      }
-      float a = glm::length(turn);
-      if (!(a > 1e-12f)) continue;
-      if (!(a <= max_turn)) {  // NaN or a fold: clamp
-        turn = std::isfinite(a) ? turn * (max_turn / a) : glm::vec3(0);
-        clamped[k] = 1;
-      }
-      // World rotation at the joint -> the parent's end frame: q' = rot(R_p⁻¹ θ) q.
-      const glm::vec3 local = glm::conjugate(frame[size_t(par)]) * turn;
-      glm::quat b = glm::normalize(rotation_quat(local) * bend[k]);
-      if (b.w < 0) b = -b;
-      const float total = 2.0f * std::acos(std::min(b.w, 1.0f));
-      if (total > max_turn) {  // the accumulated bend of one internode stays below max_bend
-        const glm::vec3 v(b.x, b.y, b.z);
-        const float vl = glm::length(v);
-        b = vl > 1e-12f ? glm::angleAxis(max_turn, v / vl) : glm::quat(1, 0, 0, 0);
-        clamped[k] = 1;
-      }
-      bend[k] = b;
-    }
-  }
-
-  // Replays the bend steps up to `step`, then leaves x as the tree at `step`.
+  // Replays the bend steps up to `step`, then leaves the positions of the tree at `step`.
   void run(const std::vector<uint16_t>& steps, int step) {
     int prev = -1;
     for (uint16_t s : steps) {
       if (int(s) > step) break;
       const size_t reach = prefix_end(s);
       forward(reach);
-      radii(s, reach);
-      moments(s, reach);
-      update(s, prev, reach);
+      reverse(s, prev, reach);
       prev = s;
     }
     forward(n);
   }
 
-  // One past the last node born at or before s.
+  // One past the last node born at or before s (all nodes when they are not born in index order).
   size_t prefix_end(int s) const {
+    if (!monotone) return n;
     size_t lo = 0, hi = n;
-    if (monotone) {
-      while (lo < hi) {
-        const size_t mid = (lo + hi) / 2;
-        if (t.born[mid] <= s) lo = mid + 1;
-        else hi = mid;
-      }
-      return lo;
+    while (lo < hi) {
+      const size_t mid = (lo + hi) / 2;
+      if (t.born[mid] <= s) lo = mid + 1;
+      else hi = mid;
     }
-    return n;
+    return lo;
   }
-  bool monotone = false;
 };
 
 bool born_in_order(const tree_skeleton& t) {
@@ -245,9 +263,9 @@ bool born_in_order(const tree_skeleton& t) {
   return true;
 }
 
-// The steps at which the pass bends the tree. Every step while that costs at most 4 sweeps of the
-// final tree; beyond, a step is kept when the tree has grown by half since the last kept one
-// (counted back from the last step), so a large tree costs about 3 sweeps whatever its step count.
+// The steps at which the pass bends the tree. Every step while that costs at most 3 sweeps of the
+// final tree; beyond, a step is kept when the tree has tripled since the last kept one (counted
+// back from the last step), so a large tree costs about 1.5 sweeps whatever its step count.
 std::vector<uint16_t> choose_bend_steps(const tree_skeleton& t, bool monotone) {
   std::vector<size_t> alive_end(size_t(t.steps) + 1, t.size());
   if (monotone) {
@@ -260,13 +278,13 @@ std::vector<uint16_t> choose_bend_steps(const tree_skeleton& t, bool monotone) {
   double total = 0;
   for (size_t e : alive_end) total += double(e);
   std::vector<uint16_t> steps;
-  if (total <= 4.0 * double(std::max<size_t>(t.size(), 1))) {
+  if (total <= 3.0 * double(std::max<size_t>(t.size(), 1))) {
     for (int s = 0; s <= t.steps; ++s) steps.push_back(uint16_t(s));
     return steps;
   }
   size_t last = 0;
   for (int s = t.steps; s >= 0; --s)
-    if (steps.empty() || double(alive_end[size_t(s)]) * 1.5 <= double(last) || alive_end[size_t(s)] < 64) {
+    if (steps.empty() || double(alive_end[size_t(s)]) * 3 <= double(last) || alive_end[size_t(s)] < 64) {
       steps.push_back(uint16_t(s));
       last = alive_end[size_t(s)];
     }
@@ -305,9 +323,10 @@ void apply_wood(tree_skeleton& t, const wood_params& params, grow_report* report
     add_message(report, "wood: " + std::to_string(folds) + " internode" + (folds == 1 ? "" : "s") +
                             " reached the maximum bend; the load is more than the wood can carry (check gravity, "
                             "wood density, Young's modulus and leaf mass)");
+  std::vector<glm::vec3> x = e.positions();
   for (leaf& l : t.leaves)
-    if (l.node >= 0 && size_t(l.node) < t.size()) l.position += e.x[size_t(l.node)] - h->rest[size_t(l.node)];
-  t.position = std::move(e.x);
+    if (l.node >= 0 && size_t(l.node) < t.size()) l.position += x[size_t(l.node)] - h->rest[size_t(l.node)];
+  t.position = std::move(x);
   t.wood = std::move(h);
 }
 
@@ -317,7 +336,7 @@ std::vector<glm::vec3> positions_at_step(const tree_skeleton& t, int step) {
   engine e(t, t.wood->rest, t.wood->params);
   e.monotone = born_in_order(t);
   e.run(t.wood->bend_steps, std::max(step, 0));
-  return std::move(e.x);
+  return e.positions();
 }
 
 std::vector<glm::vec3> bend_static(const tree_skeleton& t, const wood_params& p, const std::vector<float>* point_mass) {
@@ -325,7 +344,7 @@ std::vector<glm::vec3> bend_static(const tree_skeleton& t, const wood_params& p,
   e.recover = false;
   e.point_mass = point_mass;
   e.run({uint16_t(std::max(t.steps, 0))}, t.steps);
-  return std::move(e.x);
+  return e.positions();
 }
 
 }  // namespace sylva
