@@ -156,6 +156,7 @@ int run_params(bool as_json, const std::string& preset_path) {
     if (g == 0) {
       list_params(p.mesh, saved["mesh"], "mesh", nullptr, all);
       list_params(p.render, saved["render"], "render", nullptr, all);
+      list_params(p.spec.wood, saved["wood"], "wood", nullptr, all);
     }
   }
   if (as_json) {
@@ -176,7 +177,7 @@ int run_params(bool as_json, const std::string& preset_path) {
                 sym.empty() ? "-" : sym.c_str(), r["type"].get<std::string>().c_str(), r["min"].get<double>(),
                 r["max"].get<double>(), r["default"].dump().c_str(), r["help"].get<std::string>().c_str());
   }
-  std::printf("\n--set takes any key above as key=value (vec3 as x,y,z); prefix params., mesh. or render. "
+  std::printf("\n--set takes any key above as key=value (vec3 as x,y,z); prefix params., mesh., render. or wood. "
               "when a key is ambiguous.\n");
   return 0;
 }

@@ -307,6 +307,8 @@ const char* param_source() {
     return "Xu & Mould 2015, Procedural tree modeling with guiding vectors\n";
   else if constexpr (std::is_same_v<P, lsystem_params>)
     return "Honda 1971; Prusinkiewicz & Lindenmayer 1990, The Algorithmic Beauty of Plants (ch. 1-2)\n";
+  else if constexpr (std::is_same_v<P, wood_params>)
+    return "Beam bending with permanent set (Jirasek, Prusinkiewicz & Moulia 2000); green wood from the USDA Wood Handbook 2010\n";
   else
     return nullptr;
 }
@@ -660,6 +662,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
                                     : "This generator is deterministic and leaves are off: the seed changes nothing");
   std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
   draw_generator_panel(e.generator_panels, spec, e.shown.get());
+  draw_params(spec.wood, "Wood", e);
   draw_params(e.doc.mesh, "Mesh", e);
   // Time-of-day presets: a starting point for the lighting sliders below.
   render_params& rp = e.doc.render;

@@ -385,9 +385,11 @@ load_result load_preset_doc(json& doc, preset& out) {
   if (!e.empty()) return fail(e);
   if (e = params_from_json(section("mesh"), "mesh", p.mesh, r.warnings); !e.empty()) return fail(e);
   if (e = params_from_json(section("render"), "render", p.render, r.warnings); !e.empty()) return fail(e);
+  // A preset without a "wood" section (every preset before issue 12) loads with the pass off.
+  if (e = params_from_json(section("wood"), "wood", p.spec.wood, r.warnings); !e.empty()) return fail(e);
 
   static const std::set<std::string> top = {"sylva_preset", "name", "description", "tags", "generator",
-                                            "seed",         "params", "mesh",      "render"};
+                                            "seed",         "params", "mesh",      "render", "wood"};
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (!top.count(it.key())) r.warnings.push_back(it.key() + ": unknown key, ignored");
 
@@ -479,12 +481,12 @@ std::string text_to_value(std::string_view s, T& out, const param_info& info) {
   return check_value_limits(out);
 }
 
-// Calls f(value, info) on the parameter `key` (optionally "params.", "mesh." or "render."
+// Calls f(value, info) on the parameter `key` (optionally "params.", "mesh.", "render." or "wood."
 // qualified). Returns "" or why no single parameter matched.
 template <class F>
 std::string with_param(preset& p, std::string_view key, F&& f) {
   std::string_view only;
-  for (std::string_view s : {"params", "mesh", "render"})
+  for (std::string_view s : {"params", "mesh", "render", "wood"})
     if (key.size() > s.size() && key.substr(0, s.size()) == s && key[s.size()] == '.') {
       only = s;
       key.remove_prefix(s.size() + 1);
@@ -502,6 +504,7 @@ std::string with_param(preset& p, std::string_view key, F&& f) {
   std::visit([&](auto& gp) { look("params", gp); }, p.spec.params);
   look("mesh", p.mesh);
   look("render", p.render);
+  look("wood", p.spec.wood);
   if (hits.empty())
     return "unknown parameter \"" + std::string(key) + "\" for generator " + generator_name(p.spec) +
            " (see `sylva params`)";
@@ -579,6 +582,7 @@ std::string save_preset_json(const preset& p) {
   doc["params"] = std::visit([](const auto& gp) { return params_to_json(gp); }, p.spec.params);
   doc["mesh"] = params_to_json(p.mesh);
   doc["render"] = params_to_json(p.render);
+  doc["wood"] = params_to_json(p.spec.wood);
   return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 

@@ -1,6 +1,7 @@
 // The frame renderer: programs, procedural textures, tree upload, and the passes of DESIGN §8.
 #include "render/gl/renderer.h"
 
+#include "generators/wood.h"
 #include "render/textures.h"
 
 #include <algorithm>
@@ -59,10 +60,11 @@ layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node; layout(l
 uniform mat4 u_viewproj; uniform samplerBuffer u_radius;
 out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive; out float v_ao;
 void main() {
-  // (radius the vertex was built with, radius at the shown step or -1 when not alive)
-  vec2 r = texelFetch(u_radius, int(a_node)).xy;
-  v_alive = r.y >= 0.0 ? 1.0 : 0.0;
-  v_world = a_position + a_normal * (max(r.y, 0.0) - r.x);
+  // Per node: (where the wood pass had the node at the shown step minus where the mesh has it,
+  // radius at the shown step minus the radius the vertex was built with, or -1e30 when not alive)
+  vec4 r = texelFetch(u_radius, int(a_node));
+  v_alive = r.w > -1e29 ? 1.0 : 0.0;
+  v_world = a_position + r.xyz + a_normal * (v_alive > 0.5 ? r.w : 0.0);
   v_normal = a_normal; v_uv = a_uv; v_ao = a_ao;
   gl_Position = u_viewproj * vec4(v_world, 1.0);
 }
@@ -116,7 +118,8 @@ const char* leaf_vs = R"(#version 330 core
 layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
-uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers;
+layout(location = 7) in uint i_node;
+uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
 flat out vec3 v_tint; flat out float v_ao;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
@@ -125,7 +128,7 @@ void main() {
   bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
   // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h).
   vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * i_size;
-  v_world = i_position + rotate(i_rotation, local);
+  v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
   // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
@@ -1003,7 +1006,9 @@ bool init_renderer(renderer_state& r) {
   glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
   glEnableVertexAttribArray(6);
   glVertexAttribPointer(6, 1, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void*)offsetof(leaf_instance, occlusion));
-  for (int i = 1; i <= 6; ++i) glVertexAttribDivisor(i, 1);
+  glEnableVertexAttribArray(7);
+  glVertexAttribIPointer(7, 1, GL_UNSIGNED_INT, stride, (void*)offsetof(leaf_instance, node));
+  for (int i = 1; i <= 7; ++i) glVertexAttribDivisor(i, 1);
 
   glBindVertexArray(0);
 
@@ -1012,7 +1017,7 @@ bool init_renderer(renderer_state& r) {
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferData(GL_TEXTURE_BUFFER, 8, nullptr, GL_DYNAMIC_DRAW);
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, r.node_radius.id);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.node_radius.id);
 
   // Procedural textures (render/textures.h): the app needs no asset files. All archetype sets are
   // made once per process, on two threads.
@@ -1088,7 +1093,7 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   r.leaf_end = m.leaf_end;
   r.final_radius = m.final_radius;
   r.node_count = int(m.final_radius.size());
-  r.radius_upload.assign(size_t(r.node_count) * 2, 0.0f);
+  r.radius_upload.assign(size_t(r.node_count) * 4, 0.0f);
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(8, r.radius_upload.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
@@ -1121,11 +1126,16 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
   r.step = std::clamp(step, 0, std::max(r.steps, 0));
   if (r.node_count == 0) return;
   std::vector<float> radii = radii_at_step(t, r.step);
+  // The bend of that step (generators/wood.h): replayed, never regrown; none when the tree is unbent.
+  const std::vector<glm::vec3> x = t.wood ? positions_at_step(t, r.step) : std::vector<glm::vec3>();
   const size_t n = std::min(radii.size(), size_t(r.node_count));
   for (size_t i = 0; i < size_t(r.node_count); ++i) {
     const bool alive = i < n && i < t.size() && t.alive(i, r.step);
-    r.radius_upload[2 * i] = r.final_radius[i];
-    r.radius_upload[2 * i + 1] = alive ? std::max(radii[i], min_radius) : -1.0f;
+    const glm::vec3 d = alive && i < x.size() ? x[i] - t.position[i] : glm::vec3(0);
+    r.radius_upload[4 * i] = d.x;
+    r.radius_upload[4 * i + 1] = d.y;
+    r.radius_upload[4 * i + 2] = d.z;
+    r.radius_upload[4 * i + 3] = alive ? std::max(radii[i], min_radius) - r.final_radius[i] : -1e30f;
   }
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferSubData(GL_TEXTURE_BUFFER, 0, r.radius_upload.size() * sizeof(float), r.radius_upload.data());
@@ -1197,6 +1207,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
     set_uniform(r.leaf_depth, "u_viewproj", light);
     set_uniform(r.leaf_depth, "u_step", r.step);
+    set_uniform(r.leaf_depth, "u_radius", 2);
     set_uniform(r.leaf_depth, "u_leaf", 3);
     set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
@@ -1265,6 +1276,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_lighting(r, r.leaf, rp, sun, light, texel_world);
       set_uniform(r.leaf, "u_viewproj", viewproj);
       set_uniform(r.leaf, "u_step", r.step);
+      set_uniform(r.leaf, "u_radius", 2);
       set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
       set_uniform(r.leaf, "u_leaf", 3);
       set_uniform(r.leaf, "u_layers", r.leaf_layers);
