@@ -457,8 +457,9 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     const float b = c.budget[size_t(k)] / 100.0f;
     const size_t target = size_t(double(t0) * b);
     c.target[size_t(k)] = target;
-    // The bark's share of the budget is its share of LOD0; the leaves get what the bark leaves.
-    const size_t bark_target = size_t(double(bark0) * b);
+    // The bark gets half its share of LOD0 (most of it hides inside the crown) and the leaves what it
+    // leaves: measured on the oak, LOD1's silhouette IoU goes from 0.83 to 0.99 (docs/LOD.md).
+    const size_t bark_target = size_t(0.5 * double(bark0) * b);
     // Largest mesh within budget: bisect the tolerance (log scale) between 1e-6 and 1x the tree.
     float lo = std::log(1e-6f * size), hi = std::log(size);
     size_t tris = 0;
