@@ -425,7 +425,7 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
   // (triangles per pixel constant, pixels growing as coverage squared).
   for (int k = 0; k + 1 < lod_levels; ++k) c.coverage[size_t(k)] = std::sqrt(c.budget[size_t(k) + 1] / 100.0f);
   c.coverage[3] = 0.5f * c.coverage[2];
-  c.impostor_coverage = c.coverage[3];
+  c.impostor_coverage = 0.1f * c.coverage[3];   // the impostor down to a few pixels, then culled
 
   const size_t t0 = final_triangles(m);
   c.triangles[0] = c.target[0] = t0;

@@ -22,7 +22,7 @@ struct lod_chain {
   // Screen coverage (projected bounding-sphere diameter over the view height) down to which each
   // level is shown; below coverage[3] the impostor stands in.
   std::array<float, lod_levels> coverage{};
-  float impostor_coverage = 0;
+  float impostor_coverage = 0;                        // shown down to this (MSFT_screencoverage's last)
   bool reduced = false;       // false: the tree was too small, every level is a copy of LOD0
   std::string message;        // clamped budgets, a tree too small to reduce ("" when none)
 };
