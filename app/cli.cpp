@@ -1,5 +1,6 @@
 // The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
 #include "app/cli.h"
+#include "app/cli_lods.h"
 #include "app/editor_bench.h"
 
 #include <sys/resource.h>
@@ -190,7 +191,7 @@ struct export_args {
   uint64_t seed = 1;
   int step = -1, width = 1280, height = 720;
   std::vector<std::string> sets;
-  bool instancing = false, animation = false;
+  bool instancing = false, animation = false, lods = false;
   float seconds_per_step = 0.5f;
   CLI::Option* seed_opt = nullptr;
 };
@@ -224,6 +225,8 @@ int run_export(const export_args& a) {
     return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .json or .png");
   if (a.step < -1) return usage_error(cmd, "--step must be -1 (final tree) or a step number");
   if (a.seed_opt->count() && !a.seeds.empty()) return usage_error(cmd, "--seed and --seeds exclude each other");
+  if (a.lods && (ext == ".json" || ext == ".png")) return usage_error(cmd, "--lods writes .glb, .gltf or .obj");
+  if (a.lods && (a.animation || a.step >= 0)) return usage_error(cmd, "--lods exports the final tree; drop --animation and --step");
 
   preset base;
   load_result loaded = load_preset_file(a.preset_path, base);
@@ -308,6 +311,9 @@ int run_export(const export_args& a) {
     o.seconds_per_step = a.seconds_per_step;
     o.mesh = p.mesh;
     apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
+    lod_export_data lods;   // --lods (app/cli_lods.h): LOD1-3 and the impostor
+    if (a.lods)
+      for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
     t0 = clock_type::now();
     const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
     const double export_ms = ms_since(t0);
@@ -718,11 +724,12 @@ int run_cli(int argc, char** argv) {
   exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));
   exp->add_flag("--instancing", ex.instancing, "glTF: leaves as EXT_mesh_gpu_instancing instead of baked quads");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
+  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, OBJ one file per level");
   exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
 
   std::vector<std::string> bench_paths;
   int repeat = 5;
-  bool bench_json = false, bench_export = false, bench_render = false, bench_edit = false;
+  bool bench_json = false, bench_export = false, bench_render = false, bench_edit = false, bench_lods = false;
   int bench_width = 1280, bench_height = 720;
   bool bench_preset_light = false;
   CLI::App* bench = app.add_subcommand("bench", "Time grow and mesh per preset (default: every bench/*.json)");
@@ -732,6 +739,9 @@ int run_cli(int argc, char** argv) {
   bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
   bench->add_flag("--render", bench_render,
                   "Time rendering instead: frame ms per pass (needs DISPLAY; default: one preset per generator)");
+  bench->add_flag("--lods", bench_lods, "LOD triangles against their budgets, LOD build and impostor atlas times (default: every species preset)");
+  std::string bench_sheet;
+  bench->add_option("--sheet", bench_sheet, "--lods: also write each level's render and the impostor atlas as PNGs into this folder");
   bench->add_flag("--edit", bench_edit, "Time a slider release to the new tree on screen (worker, upload, one frame)");
   bench->add_option("--width", bench_width, "--render: image width")->check(CLI::Range(16, 8192));
   bench->add_option("--height", bench_height, "--render: image height")->check(CLI::Range(16, 8192));
@@ -754,6 +764,8 @@ int run_cli(int argc, char** argv) {
   try {
     if (params->parsed()) return run_params(params_json, params_preset);
     if (exp->parsed()) return run_export(ex);
+    if (bench->parsed() && bench_lods)
+      return run_bench_lods(bench_paths, repeat, bench_json, bench_sheet, bench_width, bench_height);
     if (bench->parsed() && bench_edit) return run_bench_edit(bench_paths, repeat, bench_json, bench_width, bench_height);
     if (bench->parsed() && bench_render) {
       if (bench_export) return usage_error("bench", "--render and --export time different things; give one");

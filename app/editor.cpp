@@ -26,6 +26,7 @@
 
 #include "app/editor_files.h"
 #include "app/editor_generators.h"
+#include "app/editor_lod.h"
 #include "app/export_dialog.h"
 #include "app/headless.h"
 #include "app/input_queue.h"
@@ -48,6 +49,7 @@ float timeline_height() { return 38 * ui_scale; }
 float status_height() { return 26 * ui_scale; }
 
 struct editor_state {
+  editor_lod lod;                 // level of detail shown in the viewport (app/editor_lod.h)
   preset doc;                     // the edited copy (DESIGN §9: edit a copy, commit on change)
   preset undo_base;               // doc as of the last undo step
   std::vector<preset> undo, redo;
@@ -919,6 +921,10 @@ void draw_status(editor_state& e, float y, float w) {
   ImGui::SameLine();
   ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
               e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+  if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) {
+    ImGui::SameLine();
+    ImGui::Text("   %s", lod.c_str());
+  }
   if (!e.message.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(e.message_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", e.message.c_str());
@@ -1241,6 +1247,7 @@ void take_new_tree(editor_state& e) {
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
+  editor_lod_new_tree(e.lod);
   upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
@@ -1654,6 +1661,9 @@ int run_editor(const editor_options& o) {
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
+    if (e->renderer.ok && e->shown && e->shown->skeleton)
+      editor_lod_update(e->lod, e->renderer, *e->shown->skeleton, e->shown->mesh, e->shown->mesh_settings, e->doc.render,
+                        e->camera, e->step);
     if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;

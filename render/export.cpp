@@ -618,6 +618,71 @@ std::string glb_container(std::string js, std::string& b) {
   return out;
 }
 
+// --lods (issue 17): one root node per level, LOD0 carrying MSFT_lod with the lower levels' ids and
+// MSFT_screencoverage in its extras; the impostor a textured quad after them. Scene 0 shows LOD0
+// (the levels hang off it through the extension), scene 1 lists every level as its own root, so a
+// viewer without the extension still finds each one. "" or the error.
+std::string add_lod_nodes(gltf_doc& d, gltf_materials& mats, const tree_skeleton& t, const tree_mesh& m,
+                          const export_options& o, size_t& triangles, std::vector<int>& roots, std::vector<int>& all) {
+  const int last = std::max(t.steps, 0);
+  std::vector<const tree_mesh*> levels{&m};
+  std::vector<float> coverage{o.lod0_coverage};
+  for (const export_lod_level& l : o.lods)
+    if (l.mesh) levels.push_back(l.mesh), coverage.push_back(l.coverage);
+  std::vector<int> ids;
+  for (size_t k = 0; k < levels.size(); ++k) {
+    step_view v;
+    v.skeleton = &t;
+    v.mesh = levels[k];
+    std::vector<int> kids;
+    size_t tris = 0;
+    const std::string name = "LOD" + std::to_string(k);
+    if (std::string e = add_tree_nodes(d, mats, v, last, false, name + "_", tris, kids); !e.empty()) return e;
+    json node = {{"name", name}, {"extras", {{"sylva_lod", k}, {"triangles", tris}}}};
+    if (k > 0 && k - 1 < o.lods.size()) node["extras"]["budget_triangles"] = o.lods[k - 1].budget;
+    if (!kids.empty()) node["children"] = kids;
+    ids.push_back(d.add_node(node));
+    triangles += k == 0 ? tris : 0;   // the export's count is LOD0's; the levels are in extras
+  }
+  if (o.impostor && !o.impostor->color_png.empty()) {
+    const export_impostor& im = *o.impostor;
+    // Cell 0 (view from +Z) on a quad facing +Z, centred on the tree; the whole atlas is the texture
+    // so an engine can pick the cell for the view direction (extras: the layout).
+    geometry q;
+    const float hw = 0.5f * im.width, hh = 0.5f * im.height;
+    const float cu = 1.0f / float(std::max(im.columns, 1)), cv = 1.0f / float(std::max(im.rows, 1));
+    const glm::vec3 c = im.centre;
+    q.position = {c + glm::vec3(-hw, -hh, 0), c + glm::vec3(hw, -hh, 0), c + glm::vec3(hw, hh, 0), c + glm::vec3(-hw, hh, 0)};
+    q.normal.assign(4, glm::vec3(0, 0, 1));
+    q.uv = {{0, cv}, {cu, cv}, {cu, 0}, {0, 0}};   // glTF uv origin: the image's top-left corner
+    q.tangent.assign(4, glm::vec4(1, 0, 0, 1));
+    q.index = {0, 1, 2, 0, 2, 3};
+    json pbr = {{"baseColorTexture", {{"index", mats.texture(im.color_png, false, "impostor")}}},
+                {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}};
+    json mat = {{"name", "impostor"}, {"pbrMetallicRoughness", pbr}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.5}, {"doubleSided", true}};
+    const bool normals = !im.normal_png.empty();
+    if (normals) mat["normalTexture"] = {{"index", mats.texture(im.normal_png, false, "impostor_normal")}};
+    const int mesh = d.add_mesh("impostor", json::array({d.add_primitive(q, mats.add_material(mat), normals)}));
+    json layout = {{"views", im.views}, {"columns", im.columns}, {"rows", im.rows}, {"cell_width_m", im.width},
+                   {"cell_height_m", im.height}, {"first_view", "+Z"}, {"turn", "view k at 360*k/views degrees from +Z toward +X"}};
+    ids.push_back(d.add_node({{"name", "impostor"}, {"mesh", mesh}, {"extras", {{"sylva_impostor", layout}}}}));
+    coverage.push_back(im.coverage);
+  }
+  if (ids.size() > 1) {
+    json lower = json::array();
+    for (size_t k = 1; k < ids.size(); ++k) lower.push_back(ids[k]);
+    json& lod0 = d.j["nodes"][size_t(ids[0])];
+    lod0["extensions"] = {{"MSFT_lod", {{"ids", lower}}}};
+    lod0["extras"]["MSFT_screencoverage"] = coverage;
+    json& used = d.j["extensionsUsed"];
+    if (!used.is_array()) used = json::array();
+    used.push_back("MSFT_lod");
+  }
+  roots.push_back(ids[0]);
+  all = ids;
+  return "";
+}
+
 export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
                           const export_options& o, bool binary) {
   export_result r;
@@ -633,7 +698,10 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
 
   const int final_step = std::max(t.steps, 0);
   std::vector<int> roots;
-  if (!o.growth_animation) {
+  std::vector<int> lod_roots;
+  if (!o.lods.empty() || o.impostor) {
+    if (r.error = add_lod_nodes(d, mats, t, m, o, r.triangles, roots, lod_roots); !r.error.empty()) return r;
+  } else if (!o.growth_animation) {
     const int s = o.step < 0 ? final_step : std::min(o.step, final_step);
     step_view v;
     view_at(v, t, m, o.mesh, s);
@@ -684,6 +752,7 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
   }
   if (cancelled(o)) { r.error = "export cancelled"; return r; }
   d.j["scenes"] = json::array({{{"name", "sylva"}, {"nodes", roots}}});
+  if (lod_roots.size() > 1) d.j["scenes"].push_back({{"name", "sylva_all_lods"}, {"nodes", lod_roots}});
   d.j["scene"] = 0;
   std::vector<std::pair<std::string, std::string>> files;
   if (binary) {
@@ -710,17 +779,21 @@ void put_float(std::string& s, float v) {
   s.append(buf, res.ptr);
 }
 
+// `collect` (--lods): the files are appended there, not written, for one all-or-nothing write of
+// every level; `png_stem` then names the PNGs (shared by the levels), and `m` is used as is.
 export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
-                         const export_options& o) {
+                         const export_options& o, std::vector<std::pair<std::string, std::string>>* collect = nullptr,
+                         const std::string& png_stem = "") {
   export_result r;
-  const std::string stem = stem_path(path), stem_name = file_name(stem);
-  const int s = o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
+  const std::string stem = stem_path(path), stem_name = png_stem.empty() ? file_name(stem) : png_stem;
+  const int s = collect ? std::max(t.steps, 0) : o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
   material_source src(o, r.warning);
   step_view v;
-  view_at(v, t, m, o.mesh, s);
+  if (collect) v.skeleton = &t, v.mesh = &m;
+  else view_at(v, t, m, o.mesh, s);
   std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material());
   std::string text = "# Sylva tree: generator " + info.generator + ", seed " + std::to_string(info.seed) +
-                     ", step " + std::to_string(s) + "\nmtllib " + stem_name + ".mtl\n";
+                     ", step " + std::to_string(s) + "\nmtllib " + file_name(stem) + ".mtl\n";
   size_t verts = 0;
   for (const tree_part& p : parts) {
     verts += p.bark.position.size();
@@ -809,6 +882,12 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   files.emplace_back(stem + ".mtl", std::move(mtl));
   files.emplace_back(path, std::move(text));
   r.bytes = files.back().second.size();
+  if (collect) {
+    for (auto& f : files)
+      if (std::none_of(collect->begin(), collect->end(), [&](const auto& c) { return c.first == f.first; }))
+        collect->push_back(std::move(f));
+    return r;
+  }
   if (o.dry_run) return r;
   r.error = write_all(files, r);
   return r;
@@ -857,6 +936,23 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   export_result r;
   if (ext == ".glb" || ext == ".gltf") return export_gltf(t, m, info, path, o, ext == ".glb");
+  if (ext == ".obj" && !o.lods.empty()) {
+    // One OBJ (and MTL) per level, PNGs shared: tree.obj is LOD0, tree_lod1.obj ... All or nothing.
+    const std::string stem = stem_path(path), ext_text = std::filesystem::path(path).extension().string();
+    std::vector<std::pair<std::string, std::string>> files;
+    r = export_obj(t, m, info, path, o, &files, file_name(stem));
+    for (size_t k = 0; k < o.lods.size() && r.error.empty(); ++k) {
+      if (!o.lods[k].mesh) continue;
+      const export_result l = export_obj(t, *o.lods[k].mesh, info, stem + "_lod" + std::to_string(k + 1) + ext_text, o,
+                                         &files, file_name(stem));
+      if (!l.error.empty()) r.error = l.error;
+    }
+    if (!r.error.empty() || o.dry_run) return r;
+    // The main OBJ last: write_all commits the last file last.
+    std::stable_partition(files.begin(), files.end(), [&](const auto& f) { return f.first != path; });
+    r.error = write_all(files, r);
+    return r;
+  }
   if (ext == ".obj") return export_obj(t, m, info, path, o);
   if (ext == ".json") {
     const std::string text = skeleton_json(t, info, o.step);

@@ -7,6 +7,7 @@
 
 #include "generators/archetypes.h"
 #include "generators/params.h"
+#include "render/lod_params.h"
 
 namespace sylva {
 
@@ -69,6 +70,7 @@ struct render_params {
   std::string bark_texture;
   std::string leaf_texture;
   std::string leaf_opacity;
+  lod_params lod;                 // level of detail (render/lod.h): budgets, viewport choice, impostor
   bool operator==(const render_params&) const = default;
 };
 
@@ -114,6 +116,7 @@ void visit_params(P& p, V&& v) {
   v(p.ray_weight, param_info{"ray_weight", "Radial weight", "", 0, 5, "Radial: weight of each sample"});
   v(p.ray_decay, param_info{"ray_decay", "Radial decay", "", 0.9f, 1, "Radial: per-sample falloff of the samples' weight"});
   v(p.ray_exposure, param_info{"ray_exposure", "Radial exposure", "", 0, 0.5f, "Radial: overall strength of the rays"});
+  visit_params(p.lod, v);
 }
 
 // Sliders that do not apply to the chosen sky or shaft mode are hidden (presets still save them).
