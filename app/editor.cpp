@@ -1238,6 +1238,7 @@ void take_new_tree(editor_state& e) {
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
+  upload_wind(e.renderer, *r->skeleton);
   upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
@@ -1651,6 +1652,8 @@ int run_editor(const editor_options& o) {
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
+    // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
+    if (e->doc.render.wind.enabled) e->renderer.wind_time = float(std::fmod(double(e->renderer.wind_time) + dt, 3600.0));
     if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;
