@@ -38,6 +38,9 @@ struct export_options {
   // leaf) becomes its alpha. A missing, corrupt or huge file is a warning and the export falls back
   // to the procedural texture.
   std::string bark_texture, bark_normal_texture, leaf_texture, leaf_opacity;
+  // glTF: > 0 bakes the wind (render/export_wind.h) as a skin and a loop of this many seconds.
+  float wind_seconds = 0;
+  wind_params wind;                     // from the preset's render section (apply_render_params)
 };
 
 // The material settings of a preset's render params: bark archetype, tints, alpha cutoff and the
