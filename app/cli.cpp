@@ -193,7 +193,9 @@ struct export_args {
   std::vector<std::string> sets;
   bool instancing = false, animation = false, lods = false;
   float seconds_per_step = 0.5f;
+  float wind = 0;                  // --wind SECONDS: glTF loop length, or the .png's moment
   CLI::Option* seed_opt = nullptr;
+  CLI::Option* wind_opt = nullptr;
 };
 
 struct variant {
@@ -282,8 +284,16 @@ int run_export(const export_args& a) {
     std::string what = "seed " + std::to_string(v.seed);
     for (const std::string& set : v.sets) what += ", " + set;
 
+    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0 && std::isfinite(a.wind)))
+      return usage_error(cmd, "--wind needs a loop length (glTF) or a moment (.png) in seconds > 0");
+    const bool wind = a.wind_opt && a.wind_opt->count();
+    if (wind) {
+      p.render.wind.enabled = true;
+      if (std::string msg = clamp_wind(p.render.wind); !msg.empty()) warn(path, msg);
+    }
     if (ext == ".png") {
       headless_stats stats;
+      stats.wind_time = wind ? a.wind : 0.0f;
       const auto t0 = clock_type::now();
       if (std::string e = render_preset_png(p, a.step, path, a.width, a.height, &stats); !e.empty())
         return fail(cmd, path + ": " + e);
@@ -314,6 +324,8 @@ int run_export(const export_args& a) {
     lod_export_data lods;   // --lods (app/cli_lods.h): LOD1-3 and the impostor
     if (a.lods)
       for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
+    if (wind && (ext == ".glb" || ext == ".gltf")) o.wind_seconds = a.wind;
+    else if (wind && ext != ".png") warn(path, "--wind applies to .glb, .gltf and .png; ignored");
     t0 = clock_type::now();
     const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
     const double export_ms = ms_since(t0);
@@ -563,6 +575,8 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
   if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
   if (error.empty()) {
     upload_tree(r, m);
+    upload_wind(r, t);
+    r.wind_time = 1.0f;
     set_tree_step(r, t, p.mesh.min_radius, t.steps);
     orbit_camera cam;
     frame_camera(cam, r.bounds_min, r.bounds_max, float(width) / float(height));
@@ -726,6 +740,9 @@ int run_cli(int argc, char** argv) {
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
   exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, OBJ one file per level");
   exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
+  ex.wind_opt = exp->add_option("--wind", ex.wind,
+                                "glTF: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
+                                "(0.5-60); .png: render the wind's motion at SECONDS");
 
   std::vector<std::string> bench_paths;
   int repeat = 5;

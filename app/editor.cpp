@@ -1248,6 +1248,7 @@ void take_new_tree(editor_state& e) {
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
   editor_lod_new_tree(e.lod);
+  upload_wind(e.renderer, *r->skeleton);
   upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
@@ -1664,6 +1665,8 @@ int run_editor(const editor_options& o) {
     if (e->renderer.ok && e->shown && e->shown->skeleton)
       editor_lod_update(e->lod, e->renderer, *e->shown->skeleton, e->shown->mesh, e->shown->mesh_settings, e->doc.render,
                         e->camera, e->step);
+    // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
+    if (e->doc.render.wind.enabled) e->renderer.wind_time = float(std::fmod(double(e->renderer.wind_time) + dt, 3600.0));
     if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;

@@ -1,5 +1,6 @@
 // Exporters: glTF 2.0 (.glb / .gltf + .bin + PNGs), OBJ + MTL + PNGs, and the skeleton JSON.
 #include "render/export.h"
+#include "render/export_wind.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -42,6 +43,7 @@ struct geometry {
   std::vector<glm::vec4> tangent;  // +u direction, w = handedness (written when a normal map is)
   std::vector<glm::vec3> color;    // crown occlusion as a grey vertex colour (COLOR_0), when the mesh has it
   std::vector<uint32_t> index;
+  std::vector<uint32_t> node;      // skeleton node per vertex (the wind skin's weights)
   bool empty() const { return index.empty(); }
 };
 
@@ -80,6 +82,7 @@ void bake_leaf(geometry& g, const leaf_instance& l) {
     g.uv.push_back(uv[k]);
     g.tangent.push_back(t);
     g.color.push_back(glm::vec3(float(l.occlusion) / 255.0f));
+    g.node.push_back(l.node);
   }
   for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
 }
@@ -141,6 +144,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       tan = len > 1e-12f ? tan / len : glm::vec3(1, 0, 0);
       g.tangent.push_back(glm::vec4(tan, 1.0f));
       if (m.occlusion.size() == nv) g.color.push_back(glm::vec3(m.occlusion[v]));
+      g.node.push_back(node);
     }
     g.index.push_back(local[v]);
   }
@@ -223,6 +227,7 @@ constexpr int array_buffer = 34962, element_array_buffer = 34963;
 struct gltf_doc {
   json j = json::object();
   std::string bin;
+  const wind_bake* wind = nullptr;   // set: primitives get JOINTS_0 / WEIGHTS_0 of its skin
 
   int add_view(const void* data, size_t bytes, int target) {
     while (bin.size() % 4) bin.push_back('\0');  // accessors need aligned offsets
@@ -266,6 +271,7 @@ struct gltf_doc {
     if (tangents && !g.tangent.empty()) attr["TANGENT"] = add_vectors(g.tangent, "VEC4", array_buffer);
     // Crown occlusion (issue 13), so the tree's inside is darker in other tools too.
     if (g.color.size() == g.position.size()) attr["COLOR_0"] = add_vectors(g.color, "VEC3", array_buffer);
+    if (wind && g.node.size() == g.position.size()) attr.update(wind_skin_attributes(j, bin, *wind, g.node));
     const int idx = add_indices(g.index, g.position.size());
     return {{"attributes", attr}, {"indices", idx}, {"material", material}};
   }
@@ -539,7 +545,7 @@ struct gltf_materials {
 // primitive per leaf material). Returns the node ids to put under the parent; counts triangles.
 // "" or the error.
 std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v, int step, bool instanced,
-                           const std::string& prefix, size_t& triangles, std::vector<int>& out) {
+                           const std::string& prefix, size_t& triangles, std::vector<int>& out, int skin = -1) {
   const bool one = mats.src.one_leaf_material();
   std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one);
   for (size_t k = 0; k < parts.size(); ++k) {
@@ -563,6 +569,14 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
       triangles += g.index.size() / 3;
     }
     if (!prims.empty()) children.push_back(d.add_node({{"name", "leaves"}, {"mesh", d.add_mesh("leaves", std::move(prims))}}));
+    if (skin >= 0) {   // skinned meshes must be scene roots without transforms (glTF 2.0 §3.7.3)
+      for (const json& c : children) {
+        d.j["nodes"][c.get<size_t>()]["skin"] = skin;
+        d.j["nodes"][c.get<size_t>()]["name"] = prefix + d.j["nodes"][c.get<size_t>()]["name"].get<std::string>();
+        out.push_back(c.get<int>());
+      }
+      continue;
+    }
     if (!children.empty()) tree["children"] = children;
     out.push_back(d.add_node(tree));
   }
@@ -705,7 +719,20 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     const int s = o.step < 0 ? final_step : std::min(o.step, final_step);
     step_view v;
     view_at(v, t, m, o.mesh, s);
-    if (r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "", r.triangles, roots); !r.error.empty()) return r;
+    wind_bake wind;
+    int skin = -1;
+    json wind_channels = json::array(), wind_samplers = json::array();
+    if (o.wind_seconds > 0) {   // issue 17: the wind as a skin and a seamless loop
+      wind = bake_wind(*v.skeleton, o.wind, o.wind_seconds);
+      d.wind = &wind;
+      skin = wind_add_skin(d.j, d.bin, wind, "", roots, wind_channels, wind_samplers);
+      r.warning += (r.warning.empty() ? "" : "\n") + wind.note;
+      if (o.gltf_instancing) r.warning += "\nwind: instanced leaves cannot be skinned and stay still; export without --instancing to sway them";
+    }
+    if (r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "", r.triangles, roots, skin); !r.error.empty()) return r;
+    d.wind = nullptr;
+    if (!wind_channels.empty())
+      d.j["animations"] = json::array({{{"name", "wind"}, {"channels", wind_channels}, {"samplers", wind_samplers}}});
   } else {
     // Growth over time: one node per step, shown in turn by STEP scale keyframes.
     int count = std::clamp(std::min(o.max_animation_steps, final_step + 1), 1, final_step + 1);
@@ -723,6 +750,11 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     r.animation_steps = count;
     const float sps = std::max(o.seconds_per_step, 1e-3f);
     json channels = json::array(), samplers = json::array();
+    json wind_channels = json::array(), wind_samplers = json::array();
+    if (o.wind_seconds > 0 && o.gltf_instancing) {
+      r.error = "--wind with --animation needs baked leaves: drop --instancing";
+      return r;
+    }
     for (int j = 0; j < count; ++j) {
       if (cancelled(o)) { r.error = "export cancelled"; return r; }
       const int s = sample(j, count);
@@ -730,8 +762,25 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       view_at(v, t, m, o.mesh, s);
       json node = {{"name", "step_" + std::to_string(s)}};
       std::vector<int> kids;
-      r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles, kids);
+      // With the wind each step gets its own small skin (16 joints); the growth's scale keys then
+      // go on the step's root joint, since a skinned mesh ignores its parents' transforms.
+      wind_bake wind;
+      int skin = -1;
+      std::vector<int> joint_roots;
+      if (o.wind_seconds > 0) {
+        wind = bake_wind(*v.skeleton, o.wind, o.wind_seconds, 16);
+        d.wind = &wind;
+        skin = wind_add_skin(d.j, d.bin, wind, "step_" + std::to_string(s) + "_", joint_roots, wind_channels, wind_samplers);
+        if (j + 1 == count) r.warning += (r.warning.empty() ? "" : "\n") + wind.note;
+      }
+      r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles, kids, skin);
+      d.wind = nullptr;
       if (!r.error.empty()) return r;
+      if (skin >= 0) {
+        roots.insert(roots.end(), kids.begin(), kids.end());
+        kids.clear();
+        node = d.j["nodes"][size_t(joint_roots[0])];
+      }
       if (!kids.empty()) node["children"] = kids;
       std::vector<float> times, scales;
       auto key = [&](float time, float scale) { times.push_back(time); for (int k = 0; k < 3; ++k) scales.push_back(scale); };
@@ -739,7 +788,9 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       key(float(j) * sps, 1);
       if (j + 1 < count) key(float(j + 1) * sps, 0);
       if (j + 1 < count) node["scale"] = {0.0, 0.0, 0.0};  // a still viewer shows the last step
-      const int id = d.add_node(node);
+      int id = 0;
+      if (skin >= 0) d.j["nodes"][size_t(id = joint_roots[0])] = node;
+      else id = d.add_node(node);
       roots.push_back(id);
       const int in = d.add_accessor(d.add_view(times.data(), times.size() * 4, 0), gl_float, times.size(), "SCALAR",
                                     {{"min", {times.front()}}, {"max", {times.back()}}});
@@ -749,6 +800,8 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       if (o.progress) o.progress(0.1f + 0.8f * float(j + 1) / float(count));
     }
     if (count > 1) d.j["animations"] = json::array({{{"name", "growth"}, {"channels", channels}, {"samplers", samplers}}});
+    if (!wind_channels.empty())
+      d.j["animations"].push_back({{"name", "wind"}, {"channels", wind_channels}, {"samplers", wind_samplers}});
   }
   if (cancelled(o)) { r.error = "export cancelled"; return r; }
   d.j["scenes"] = json::array({{{"name", "sylva"}, {"nodes", roots}}});
@@ -928,6 +981,7 @@ void apply_render_params(export_options& o, const render_params& rp) {
   o.bark_texture = rp.bark_texture;
   o.leaf_texture = rp.leaf_texture;
   o.leaf_opacity = rp.leaf_opacity;
+  o.wind = rp.wind;
 }
 
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,

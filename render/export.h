@@ -59,6 +59,9 @@ struct export_options {
   std::vector<export_lod_level> lods;
   float lod0_coverage = 0;
   const export_impostor* impostor = nullptr;   // glTF only: a textured quad node after the levels
+  // glTF: > 0 bakes the wind (render/export_wind.h) as a skin and a loop of this many seconds.
+  float wind_seconds = 0;
+  wind_params wind;                     // from the preset's render section (apply_render_params)
 };
 
 // The material settings of a preset's render params: bark archetype, tints, alpha cutoff and the

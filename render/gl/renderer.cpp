@@ -2,6 +2,7 @@
 #include "render/gl/renderer.h"
 
 #include "generators/wood.h"
+#include "render/gl/wind_gl.h"
 #include "render/textures.h"
 
 #include <algorithm>
@@ -65,6 +66,7 @@ void main() {
   vec4 r = texelFetch(u_radius, int(a_node));
   v_alive = r.w > -1e29 ? 1.0 : 0.0;
   v_world = a_position + r.xyz + a_normal * (v_alive > 0.5 ? r.w : 0.0);
+  v_world = wind_sway(v_world, int(a_node));   // render/wind.h; a no-op while the wind is off
   v_normal = a_normal; v_uv = a_uv; v_ao = a_ao;
   gl_Position = u_viewproj * vec4(v_world, 1.0);
 }
@@ -130,6 +132,8 @@ void main() {
   vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * i_size;
   v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
+  // Wind (render/wind.h): the card follows its branch, and its tip flaps along the normal.
+  v_world = wind_flutter(wind_sway(v_world, int(i_node)), v_normal, a_corner.y, i_size, 6.2831853 * hash(i_position.zxy));
   // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
@@ -939,10 +943,11 @@ bool init_renderer(renderer_state& r) {
   const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
                     ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
                     occ_fs = sky_source(occlusion_fs_body);
-  r.bark = compile_program("bark", bark_vs, bark_fs.c_str());
-  r.bark_depth = compile_program("bark depth", bark_vs, depth_fs);
-  r.leaf = compile_program("leaf", leaf_vs, leaf_fs.c_str());
-  r.leaf_depth = compile_program("leaf depth", leaf_vs, leaf_depth_fs);
+  const std::string bark_vs_wind = with_wind_glsl(bark_vs), leaf_vs_wind = with_wind_glsl(leaf_vs);
+  r.bark = compile_program("bark", bark_vs_wind.c_str(), bark_fs.c_str());
+  r.bark_depth = compile_program("bark depth", bark_vs_wind.c_str(), depth_fs);
+  r.leaf = compile_program("leaf", leaf_vs_wind.c_str(), leaf_fs.c_str());
+  r.leaf_depth = compile_program("leaf depth", leaf_vs_wind.c_str(), leaf_depth_fs);
   r.sky = compile_program("sky", fullscreen_vs, sky_fs.c_str());
   r.ground = compile_program("ground", ground_vs, ground_fs.c_str());
   r.occlusion = compile_program("occlusion", fullscreen_vs, occ_fs.c_str());
@@ -951,7 +956,7 @@ bool init_renderer(renderer_state& r) {
   r.exposure = compile_program("auto exposure", fullscreen_vs, exposure_fs);
   r.composite = compile_program("composite", fullscreen_vs, sky_source(composite_fs_body).c_str());
   init_overlays(r.overlay);
-  r.fallback = compile_program("fallback", bark_vs, fallback_fs);
+  r.fallback = compile_program("fallback", bark_vs_wind.c_str(), fallback_fs);
   if (r.composite.failed || r.fallback.failed) {
     r.error = "renderer: " + gl_last_message();
     r.ok = false;
@@ -1039,8 +1044,10 @@ void destroy_renderer(renderer_state& r) {
     delete_gl(*p);
   for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
-                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius, &r.wind_nodes})
     delete_gl(*b);
+  delete_gl(r.wind_tex);
+  r.wind_node_count = 0;
   for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.bark_rough_tex, &r.leaf_tex, &r.leaf_normal_tex,
                         &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex, &r.march_tex,
                         &r.average_tex})
@@ -1098,6 +1105,7 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(8, r.radius_upload.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   ++r.uploads_total;
+  r.wind_node_count = 0;   // the wind table belongs to the previous tree until upload_wind
   r.steps = m.steps;
   r.step = m.steps;
   r.has_tree = !m.index.empty() || !m.leaves.empty();
@@ -1202,6 +1210,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     glUseProgram(r.bark_depth.id);
     set_uniform(r.bark_depth, "u_viewproj", light);
     set_uniform(r.bark_depth, "u_radius", 2);
+    set_wind_uniforms(r, r.bark_depth, rp);
     draw_bark(r);
     glDisable(GL_CULL_FACE);
     glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
@@ -1211,6 +1220,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.leaf_depth, "u_leaf", 3);
     set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
+    set_wind_uniforms(r, r.leaf_depth, rp);
     draw_leaves(r);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -1270,6 +1280,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.bark, "u_bark_rough", 7);
       set_uniform(r.bark, "u_eye", eye);
       set_uniform(r.bark, "u_bark_color", rp.bark_color);
+      set_wind_uniforms(r, r.bark, rp);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
       glUseProgram(r.leaf.id);
@@ -1285,12 +1296,14 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
+      set_wind_uniforms(r, r.leaf, rp);
       draw_leaves(r);
     } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
       glUseProgram(r.fallback.id);
       set_uniform(r.fallback, "u_viewproj", viewproj);
       set_uniform(r.fallback, "u_radius", 2);
       set_uniform(r.fallback, "u_color", rp.bark_color);
+      set_wind_uniforms(r, r.fallback, rp);
       draw_bark(r);
     }
   }

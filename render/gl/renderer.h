@@ -16,6 +16,7 @@
 #include "render/mesh.h"
 #include "render/render_params.h"
 #include "render/sky.h"
+#include "render/gl/wind_gl.h"   // upload_wind, set by every caller of upload_tree that shows wind
 
 namespace sylva {
 
@@ -83,6 +84,12 @@ struct renderer_state {
   size_t triangles_drawn = 0, leaves_drawn = 0;
   frame_counts counts;                // of the last draw_frame
   uint64_t uploads_total = 0;         // every glBufferData/SubData, glTexImage* and storage call so far
+  // Wind (render/gl/wind_gl.h): per-node sway data uploaded once per tree; the time is a uniform.
+  gl_buffer wind_nodes;
+  gl_texture wind_tex;
+  int wind_node_count = 0;
+  float wind_ground = 0, wind_height = 1;
+  float wind_time = 0;                // seconds; the editor advances it, exports and tests set it
 };
 
 // Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.
