@@ -10,7 +10,7 @@ BUILD=${1:-build}
 OUT=${2:-docs/species.png}
 SIZE=${SIZE:-256}
 SYLVA="$BUILD/app/sylva"
-SPECIES=${SPECIES:-"oak maple beech birch ash poplar willow pine spruce fir cedar palm sapling bush"}
+SPECIES=${SPECIES:-"oak maple beech birch ash poplar willow pine spruce fir cedar cypress palm sapling bush"}
 # One light for every tile, so species are compared like for like: a clear afternoon sun from the
 # camera's side, no light shafts (at tile size they only wash the crowns out).
 LIGHT=(--set light_shafts=off --set sun_elevation=32 --set sun_azimuth=70 --set fog_density=0.004)
