@@ -426,7 +426,7 @@ class material_source {
     material_pngs m;
     if (user_leaf_) {
       m.color = png_of(leaf_);
-    } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, o_.leaf_color, error)) {
+    } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, season_color(slot), error)) {
       m = *p;
     }
     if (!error.empty()) return nullptr;
@@ -437,6 +437,12 @@ class material_source {
   std::string error;  // a PNG that could not be encoded
 
  private:
+  // A deciduous archetype's material is tinted with the middle of the season's per-leaf range.
+  glm::vec3 season_color(int slot) const {
+    const season_look& s = o_.season;
+    if (slot < 32 && (s.deciduous_mask >> slot) & 1u) return 0.5f * (s.deciduous_color_a + s.deciduous_color_b);
+    return o_.leaf_color;
+  }
   void warn(const std::string& line) { warning_ += (warning_.empty() ? "" : "\n") + line; }
   bool load(const std::string& what, const std::string& path, const std::string& fallback, user_image& out) {
     if (path.empty()) return false;
@@ -976,7 +982,8 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
 void apply_render_params(export_options& o, const render_params& rp) {
   o.bark = rp.bark;
   o.bark_color = rp.bark_color;
-  o.leaf_color = rp.leaf_color;
+  o.season = season_leaf_look(rp);
+  o.leaf_color = o.season.evergreen_color;
   o.alpha_cutoff = rp.alpha_cutoff;
   o.bark_texture = rp.bark_texture;
   o.leaf_texture = rp.leaf_texture;
@@ -989,6 +996,11 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   export_result r;
+  if ((ext == ".glb" || ext == ".gltf" || ext == ".obj") && season_changes_leaves(o.season)) {
+    const tree_mesh seasonal = apply_season(m, o.season);   // fallen leaves out, spring's smaller
+    if (ext == ".obj") return export_obj(t, seasonal, info, path, o);
+    return export_gltf(t, seasonal, info, path, o, ext == ".glb");
+  }
   if (ext == ".glb" || ext == ".gltf") return export_gltf(t, m, info, path, o, ext == ".glb");
   if (ext == ".obj" && !o.lods.empty()) {
     // One OBJ (and MTL) per level, PNGs shared: tree.obj is LOD0, tree_lod1.obj ... All or nothing.

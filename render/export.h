@@ -12,6 +12,7 @@
 #include "generators/tree_spec.h"
 #include "render/mesh.h"
 #include "render/render_params.h"
+#include "render/season.h"
 
 namespace sylva {
 
@@ -50,6 +51,9 @@ struct export_options {
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
   float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
+  // The season (render/season.h): deciduous archetypes' materials take the middle of its colour
+  // range, and its fallen leaves are left out. The default changes nothing (leaf_color is used).
+  season_look season;
   // The user's PNGs instead of the procedural textures ("" = procedural). A user leaf texture
   // replaces every archetype's colour (one leaf material); leaf_opacity (same size, grey: white is
   // leaf) becomes its alpha. A missing, corrupt or huge file is a warning and the export falls back

@@ -3,6 +3,7 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
+#include "render/season.h"
 #include "render/textures.h"
 
 #include <algorithm>
@@ -122,18 +123,34 @@ layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
 layout(location = 7) in uint i_node;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
+// The season (render/season.h season_look): deciduous archetypes' colour range, share kept, size.
+uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uint u_deciduous;
+uniform float u_keep; uniform float u_season_scale;
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
-flat out vec3 v_tint; flat out float v_ao;
+flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
+float leaf_random(uint i, uint salt) {   // season_leaf_random (render/season.cpp), line for line
+  uint x = i ^ (salt * 0x9e3779b9u);
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return float(x >> 8) * (1.0 / 16777216.0);
+}
 void main() {
   bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
+  bool deciduous = i_texture < 32u && ((u_deciduous >> i_texture) & 1u) != 0u;
+  float size = i_size;
+  v_color = u_leaf_color;
+  if (deciduous) {
+    alive = alive && leaf_random(uint(gl_InstanceID), 0u) < u_keep;
+    size *= u_season_scale;
+    v_color = mix(u_autumn_a, u_autumn_b, leaf_random(uint(gl_InstanceID), 1u));
+  }
   // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h).
-  vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * i_size;
+  vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * size;
   v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
   // Wind (render/wind.h): the card follows its branch, and its tip flaps along the normal.
-  v_world = wind_flutter(wind_sway(v_world, int(i_node)), v_normal, a_corner.y, i_size, 6.2831853 * hash(i_position.zxy));
+  v_world = wind_flutter(wind_sway(v_world, int(i_node)), v_normal, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
   // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
@@ -148,9 +165,9 @@ void main() {
 
 const char* leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
-flat in vec3 v_tint; flat in float v_ao;
+flat in vec3 v_tint; flat in float v_ao; flat in vec3 v_color;
 uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
-uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
+uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
 void main() {
   vec3 uvl = vec3(v_uv, v_layer);
@@ -162,7 +179,7 @@ void main() {
   if (!gl_FrontFacing) { n = -n; n0 = -n0; }   // two-sided: light the side we see
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
   // tinted_texture's formula (render/textures.h), then the per-leaf variation.
-  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_leaf_color * t.rgb) * v_tint;
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * v_color * t.rgb) * v_tint;
   float sh = shadow_at(v_world, ndl0 >= 0.0 ? n0 : -n0);
   // Transmission: sunlight arriving on the far side glows through the blade, tinted by it, more
   // where the blade is thin (thickness map: white = thin) than through veins and stems.
@@ -865,6 +882,16 @@ uint32_t leaf_count(const renderer_state& r) {
 }
 
 // All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
+// The season's leaf colours, fallen share and size (render/season.h), for the leaf vertex shader.
+void set_season_uniforms(const gl_program& p, const season_look& s) {
+  set_uniform(p, "u_leaf_color", s.evergreen_color);
+  set_uniform(p, "u_autumn_a", s.deciduous_color_a);
+  set_uniform(p, "u_autumn_b", s.deciduous_color_b);
+  glUniform1ui(glGetUniformLocation(p.id, "u_deciduous"), s.deciduous_mask);
+  set_uniform(p, "u_keep", s.deciduous_keep);
+  set_uniform(p, "u_season_scale", s.deciduous_scale);
+}
+
 void draw_leaves(renderer_state& r) {
   uint32_t n = leaf_count(r);
   if (!n) return;
@@ -1202,6 +1229,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
+  const season_look season = season_leaf_look(rp);
   if (rp.shadows && r.has_tree && lit_ok) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(rp.shadow_slope_bias, 1.0f);
@@ -1221,6 +1249,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
     set_wind_uniforms(r, r.leaf_depth, rp);
+    set_season_uniforms(r.leaf_depth, season);
     draw_leaves(r);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -1293,7 +1322,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.leaf, "u_layers", r.leaf_layers);
       set_uniform(r.leaf, "u_leaf_normal", 5);
       set_uniform(r.leaf, "u_leaf_thickness", 6);
-      set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
+      set_season_uniforms(r.leaf, season);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
       set_wind_uniforms(r, r.leaf, rp);
