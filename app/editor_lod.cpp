@@ -47,7 +47,8 @@ std::string editor_lod_status(const editor_lod& s) {
   const auto& n = s.chain->triangles;
   std::snprintf(buf, sizeof buf, "LOD%d%s   LOD0-3 triangles %zu / %zu / %zu / %zu", std::max(s.uploaded, 0),
                 s.wanted >= lod_levels ? " (impostor distance)" : "", n[0], n[1], n[2], n[3]);
-  return buf;
+  // Clamped budgets or a tree too small to reduce (build_lods says which).
+  return s.chain->message.empty() ? std::string(buf) : std::string(buf) + "   (" + s.chain->message + ")";
 }
 
 }  // namespace sylva
