@@ -7,6 +7,8 @@
 
 #include "generators/archetypes.h"
 #include "generators/params.h"
+#include "render/lod_params.h"
+#include "render/wind.h"
 
 namespace sylva {
 
@@ -83,6 +85,8 @@ struct render_params {
   std::string bark_texture;
   std::string leaf_texture;
   std::string leaf_opacity;
+  lod_params lod;                 // level of detail (render/lod.h): budgets, viewport choice, impostor
+  wind_params wind;   // issue 17: sway in the viewport, baked by `sylva export --wind` (render/wind.h)
   bool operator==(const render_params&) const = default;
 };
 
@@ -132,10 +136,15 @@ void visit_params(P& p, V&& v) {
   v(p.ray_weight, param_info{"ray_weight", "Radial weight", "", 0, 5, "Radial: weight of each sample"});
   v(p.ray_decay, param_info{"ray_decay", "Radial decay", "", 0.9f, 1, "Radial: per-sample falloff of the samples' weight"});
   v(p.ray_exposure, param_info{"ray_exposure", "Radial exposure", "", 0, 0.5f, "Radial: overall strength of the rays"});
+  visit_params(p.lod, v);
+  visit_params(p.wind, v);
 }
 
 // Sliders that do not apply to the chosen sky or shaft mode are hidden (presets still save them).
-inline bool param_relevant(const render_params& p, const void* field, const param_info&) {
+inline bool param_relevant(const render_params& p, const void* field, const param_info& info) {
+  const char* w = reinterpret_cast<const char*>(&p.wind);
+  if (static_cast<const char*>(field) >= w && static_cast<const char*>(field) < w + sizeof(wind_params))
+    return param_relevant(p.wind, field, info);
   if (field == &p.turbidity) return p.physical_sky;
   if (field == &p.sun_color || field == &p.sky_zenith || field == &p.sky_horizon) return !p.physical_sky;
   if (field == &p.shaft_samples) return p.shafts == light_shafts::volumetric;
