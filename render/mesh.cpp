@@ -213,7 +213,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   // Root flare (issue 12): arc length up the trunk from its root (-1 off the trunk) and the flare's
   // height for that tree (flare_height, at most 6 root radii so a sapling's flare stays low).
   const float flare_strength = std::isfinite(p.flare_strength) ? std::clamp(p.flare_strength, 0.0f, 4.0f) : 0.0f;
-  const int lobes = std::max(1, std::min(std::clamp(p.flare_lobes, 3, 6), seg / 2));
+  // Lobes need two ring vertices each; rings too coarse for three (a reduced LOD) flare round.
+  const int lobes = seg / 2 >= 3 ? std::min(std::clamp(p.flare_lobes, 3, 6), seg / 2) : 0;
   std::vector<float> trunk_h(n, -1.0f), flare_h(n, 0.0f);
   std::vector<float> flare_phase(n, 0.0f);
   if (flare_strength > 0) {
@@ -288,7 +289,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
       if (flared) {
         // Lobe profile: a fifth of the swell all round, the rest in lobes (0.5 + 0.5 cos)^2.
         const float phi = 6.2831853f * u_of[k], x = float(lobes) * (phi - phase);
-        const float c1 = 0.5f + 0.5f * std::cos(x), lobe = c1 * c1, dlobe = -c1 * float(lobes) * std::sin(x);
+        const float c1 = 0.5f + 0.5f * std::cos(x);
+        const float lobe = lobes ? c1 * c1 : 0.375f, dlobe = lobes ? -c1 * float(lobes) * std::sin(x) : 0.0f;  // 0.375: the lobes' mean
         const float mult = 1.0f + f * (0.2f + 0.8f * lobe);
         rr = r * mult;
         const float r_phi = r * f * 0.8f * dlobe, r_h = r * df * (0.2f + 0.8f * lobe);

@@ -533,6 +533,12 @@ TEST(MeshShape, RootFlareHasLobesAndMeetsTheGround) {
     if (thin.position[v].y > 6 * 0.03f + 1e-4f) {
       EXPECT_LE(std::hypot(thin.position[v].x, thin.position[v].z), 0.03f * 1.0001f);
     }
+  // Rings too coarse for three lobes (a reduced level of detail) flare round instead.
+  p.radial_segments = 4;
+  const tree_mesh coarse = mesh_tree(t, p);
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(std::hypot(coarse.position[size_t(k)].x, coarse.position[size_t(k)].z),
+                std::hypot(coarse.position[0].x, coarse.position[0].z), 1e-6f);
   // Faces stay outward on the lobes.
   for (size_t k = 0; k < m.index.size(); k += 3) {
     const glm::vec3 a = m.position[m.index[k]], b = m.position[m.index[k + 1]], c = m.position[m.index[k + 2]];
