@@ -349,8 +349,10 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
       if (!std::isfinite(turn)) turn = 0;
       want[i] = uint8_t(std::min(curve_rings, int(turn / curve_step)));
       want_score[i] = r * turn;   // the crease a kink leaves is about radius x angle wide
+      if (!std::isfinite(want_score[i])) want[i] = 0, want_score[i] = 0;   // (no NaN in the sort below)
     }
-    if (lateral && collar > 0 && m.final_radius[i] >= collar_min) collar_score[i] = collar * m.final_radius[i];
+    if (lateral && collar > 0 && m.final_radius[i] >= collar_min && std::isfinite(m.final_radius[i]))
+      collar_score[i] = collar * m.final_radius[i];
     if (!lateral && trunk_h[par] >= 0 && trunk_h[par] < flare_h[par])
       for (float frac : {0.1f, 0.25f, 0.45f, 0.7f}) {
         const float u = (frac * flare_h[par] - trunk_h[par]) / len;

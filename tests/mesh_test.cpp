@@ -222,6 +222,28 @@ TEST(Mesh, BadInputGivesEmptyMeshNotACrash) {
   EXPECT_EQ(validate_mesh(m), "");
   m.index[4] = uint32_t(m.position.size());
   EXPECT_NE(validate_mesh(m), "");
+  // Zero-length internodes and every shape knob at its extreme still give a finite, valid mesh.
+  t = small_tree();
+  t.position[2] = t.position[1];
+  t.add_node(t.position[2], 2, 0.01f, 2, 0);
+  p = mesh_params{};
+  p.curve_angle = 2;
+  p.curve_rings = 8;
+  p.detail_budget = 4;
+  p.gnarl = 30;
+  p.twist = 45;
+  p.collar = 1;
+  p.collar_length = 8;
+  p.collar_min_radius = 0.0001f;
+  p.flare_strength = 2;
+  p.flare_height = 3;
+  p.flare_lobes = 6;
+  EXPECT_EQ(validate_mesh(mesh_tree(t, p)), "");
+  p.curve_angle = std::nanf("");
+  p.gnarl = std::nanf("");
+  p.detail_budget = std::nanf("");
+  p.flare_strength = INFINITY;
+  EXPECT_EQ(validate_mesh(mesh_tree(t, p)), "");
 }
 
 TEST(Mesh, BarkTexelDensityIsTheSameOnTrunkAndTwig) {
