@@ -5,7 +5,9 @@
 #include <variant>
 
 #include "generators/guiding_vectors.h"
+#include "generators/keyframes.h"
 #include "generators/lsystem.h"
+#include "generators/pruning.h"
 #include "generators/self_organizing.h"
 #include "generators/space_colonization.h"
 
@@ -26,6 +28,8 @@ inline constexpr int generator_count = 4;
 struct tree_spec {
   generator_params params = lsystem_params{};
   uint64_t seed = 1;
+  std::vector<keyframe> keyframes;   // growth phases (generators/keyframes.h), sorted by step
+  std::vector<prune_cut> cuts;       // pruning (generators/pruning.h), in the order they were made
   bool operator==(const tree_spec&) const = default;
 };
 
