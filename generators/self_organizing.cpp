@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "generators/keyframes.h"
+#include "generators/pruning.h"
 #include "generators/self_organizing_grid.h"
 
 namespace sylva {
@@ -119,9 +121,9 @@ struct marker_state {
     best_bud.assign(pos.size(), -1);
     best_d2.assign(pos.size(), 0);
   }
-  // Calls f(marker) for the live markers within distance d of p.
+  // Calls f(marker) for the live markers (all when dead_too) within distance d of p.
   template <class F>
-  void visit_near(const glm::vec3& p, float d, F&& f) const {
+  void visit_near(const glm::vec3& p, float d, F&& f, bool dead_too = false) const {
     const glm::ivec3 lo = cell_of(p - d), hi = cell_of(p + d);
     const float d2 = d * d;
     for (int z = lo.z; z <= hi.z; ++z)
@@ -133,7 +135,7 @@ struct marker_state {
           const size_t c = size_t(it - cell_key.begin());
           for (uint32_t j = cell_start[c]; j < cell_start[c + 1]; ++j) {
             const uint32_t m = order[j];
-            if (!alive[m]) continue;
+            if (!alive[m] && !dead_too) continue;
             const glm::vec3 dv = pos[m] - p;
             if (glm::dot(dv, dv) <= d2) f(m, dv);
           }
@@ -371,6 +373,25 @@ struct so_state {
     return any;
   }
 
+  // Pruning (Palubicki et al. 2009, §7 and fig. 12): a cut branch goes as a shed one does. Its
+  // buds and its shadow go with it, so the next step's light and flow send the resource it took to
+  // the rest of the tree and the buds near the cut break. In the marker environment the markers
+  // it had occupied come back, unless a remaining node still occupies them.
+  void prune(const std::vector<int32_t>& cut) {
+    for (int32_t i : cut) {
+      const int32_t par = t.parent[i];
+      if (main[par] == i) main[par] = no_bud;
+      if (lat[par] == i) lat[par] = no_bud;
+      if (p.environment == so_environment::shadow)
+        add_shadow_pyramid(grid, voxel[i], p.shadow_a, p.shadow_b, p.q_max, -1);
+    }
+    if (p.environment != so_environment::markers) return;
+    for (int32_t i : cut)
+      markers.visit_near(t.position[i], p.occupancy_radius * l, [&](uint32_t m, const glm::vec3&) { markers.alive[m] = 1; }, true);
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t.died[i] == never_died) remove_markers_near(t.position[i]);
+  }
+
   // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v).
   void allocate(int step, const std::vector<int32_t>& roots) {
     for (int32_t root : roots) flow[root] = p.alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
@@ -528,12 +549,21 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     for (int32_t i : roots) st.remove_markers_near(t.position[i]);
   }
 
-  const float div = glm::radians(p.divergence);
+  float div = glm::radians(p.divergence);
   std::vector<int32_t> grown;  // nodes made this step
   std::vector<float> last_flow;
   int step = 0;
   for (int T = 1; T <= steps; ++T) {
     if (o.cancelled()) { rep.cancelled = true; break; }
+    // Growth phases: new values from this step on; what the state derives from them follows.
+    if (apply_keyframes(p, o.keyframes, T)) {
+      clamp_all_params(p);
+      st.cos_theta = std::cos(glm::radians(p.perception_angle));
+      st.age_pow.clear();   // memoised powers of σ and BE/n
+      st.tips_pow.clear();
+      div = glm::radians(p.divergence);
+    }
+    if (const std::vector<int32_t> cut = apply_cuts(t, o.cuts, T, rep); !cut.empty()) st.prune(cut);
     st.compute_bud_light(T);
     st.sweep_flow();
     if (st.shed(uint16_t(T))) st.sweep_flow();
