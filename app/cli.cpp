@@ -24,6 +24,7 @@
 #include "app/cli_textures.h"
 #include "app/headless.h"
 #include "generators/lsystem_engine.h"
+#include "generators/memory_bound.h"
 #include "render/export.h"
 #include "render/files.h"
 #include "render/gl/renderer.h"
@@ -171,6 +172,8 @@ int run_params(bool as_json, const std::string& preset_path) {
                                                      : "params of generator " + r["generator"].get<std::string>();
     if (h != heading) {
       std::printf("%s%s\n", heading.empty() ? "" : "\n", h.c_str());
+      if (r["section"] == "params" && !r["generator"].is_null())  // the documented bound (memory_bound.h)
+        std::printf("  (%s)\n", memory_bound_text(generator_index(r["generator"].get<std::string>())).c_str());
       heading = h;
     }
     const std::string sym = r["symbol"].get<std::string>();

@@ -13,6 +13,7 @@ void editor_lod_new_tree(editor_lod& s) {
   s.built_for = nullptr;
   s.uploaded = 0;
   s.wanted = 0;
+  s.tree_time = std::chrono::steady_clock::now();
 }
 
 void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t, const tree_mesh& m,
@@ -20,8 +21,9 @@ void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t,
   const lod_params& p = rp.lod;
   const bool budgets_changed = p.lod1_budget != s.built_params.lod1_budget || p.lod2_budget != s.built_params.lod2_budget ||
                                p.lod3_budget != s.built_params.lod3_budget;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!s.chain && std::chrono::duration<double, std::milli>(t0 - s.tree_time).count() < editor_lod_settle_ms) return;
   if (!s.chain || s.built_for != &m || budgets_changed) {
-    const auto t0 = std::chrono::steady_clock::now();
     s.chain = std::make_unique<lod_chain>(build_lods(t, m, mp, p));
     s.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     s.built_for = &m;
@@ -47,7 +49,8 @@ std::string editor_lod_status(const editor_lod& s) {
   const auto& n = s.chain->triangles;
   std::snprintf(buf, sizeof buf, "LOD%d%s   LOD0-3 triangles %zu / %zu / %zu / %zu", std::max(s.uploaded, 0),
                 s.wanted >= lod_levels ? " (impostor distance)" : "", n[0], n[1], n[2], n[3]);
-  return buf;
+  // Clamped budgets or a tree too small to reduce (build_lods says which).
+  return s.chain->message.empty() ? std::string(buf) : std::string(buf) + "   (" + s.chain->message + ")";
 }
 
 }  // namespace sylva

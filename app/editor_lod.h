@@ -2,6 +2,7 @@
 // by the tree's size on screen (or the "Show LOD" override) and keeps that level uploaded.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -17,7 +18,11 @@ struct editor_lod {
   int uploaded = 0;                   // the level in the renderer (0: the tree's own mesh)
   int wanted = 0;                     // the pick, lod_levels meaning "impostor distance" (LOD3 shown)
   double build_ms = 0;
+  // The chain is built once a new tree has been shown this long, so that dragging a slider (a new
+  // tree every few frames) does not rebuild it for each one; until then LOD0 shows.
+  std::chrono::steady_clock::time_point tree_time{};
 };
+inline constexpr double editor_lod_settle_ms = 300;
 
 // Call after upload_tree of a new tree: the renderer now holds LOD0 and the chain is stale.
 void editor_lod_new_tree(editor_lod& s);

@@ -19,7 +19,7 @@ namespace {
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr glm::vec3 up(0, 1, 0);
 // 64 Mi cells (256 MB of grid) is far beyond any interactive tree; past it we refuse, not crash.
-constexpr uint64_t max_grid_cells = uint64_t(1) << 26;
+constexpr uint64_t max_grid_cells = gv_grid_cell_cap;
 constexpr int32_t kd_leaf = 32;
 
 bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -194,7 +194,8 @@ void add_arrow(growth_debug& d, const glm::vec3& from, const glm::vec3& dir, flo
 }  // namespace
 
 bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& first, float r, int k,
-                         uint64_t seed, const grow_options& o, std::vector<glm::vec3>& out, std::string* error) {
+                         uint64_t seed, const grow_options& o, std::vector<glm::vec3>& out, std::string* error,
+                         int64_t point_cap) {
   out.clear();
   auto fail = [&](const std::string& why) {
     if (error) *error = why;
@@ -279,6 +280,12 @@ bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::ve
         }
       }
       if (!free) continue;
+      if (int64_t(out.size()) >= point_cap) {
+        out.clear();
+        out.shrink_to_fit();
+        return fail("the graph would pass " + std::to_string(point_cap) +
+                    " points (its memory cap); raise the spacing or shrink the domain");
+      }
       grid[own] = int32_t(out.size());
       out.push_back(cand);
     }

@@ -506,9 +506,17 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     // Markers fill an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1).
     const float bottom = std::min(p.envelope_bottom, p.envelope_top), top = std::max(p.envelope_bottom, p.envelope_top);
     const glm::vec3 radii(p.envelope_radius, 0.5f * (top - bottom), p.envelope_radius);
+    // Memory cap (memory_bound.h): at most so_marker_cap markers in all, shared by the trees.
+    int per_tree = p.marker_count;
+    if (int64_t(per_tree) * int64_t(roots_at.size()) > so_marker_cap) {
+      per_tree = int(so_marker_cap / int64_t(roots_at.size()));
+      rep.message = "markers capped at " + std::to_string(so_marker_cap) + " in all: " + std::to_string(per_tree) +
+                    " per tree instead of " + std::to_string(p.marker_count);
+    }
+    st.markers.pos.reserve(size_t(per_tree) * roots_at.size());
     for (const glm::vec3& at : roots_at) {
       const glm::vec3 centre = at + glm::vec3(0, 0.5f * (top + bottom), 0);
-      for (int k = 0; k < p.marker_count; ++k) {
+      for (int k = 0; k < per_tree; ++k) {
         glm::vec3 u;
         do u = glm::vec3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
         while (glm::dot(u, u) > 1);
@@ -580,7 +588,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     }
     step = T;
     if (o.progress) o.progress(float(T) / float(std::max(steps, 1)));
-    if (rep.hit_node_cap || rep.cancelled) break;
+    if (rep.hit_node_cap || rep.cancelled || st.grid.full) break;
   }
   t.steps = step;
   apply_pipe_radii(t, p.pipe_exponent, p.tip_radius);
@@ -588,7 +596,11 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) in step " + std::to_string(step) +
                   "; raise node_cap or lower the step count";
-  rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
+  else if (st.grid.full)
+    rep.message = "shadow grid memory cap reached (" + std::to_string(st.grid.chunk_cap) + " chunks, " +
+                  std::to_string((st.grid.chunk_cap * shadow_grid::chunk_cells * sizeof(float)) >> 20) +
+                  " MiB) in step " + std::to_string(step) + "; raise voxel_size, lower q_max or the step count";
+  rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : st.grid.full ? "memory cap" : "steps done";
 
   if (debug) {
     if (shadow) sample_shadow_grid(st.grid, 1000000, debug->points, debug->point_value);

@@ -107,14 +107,16 @@ struct kept_axis {
 // The axes a tolerance e keeps: nodes thinner than e/2 go (with everything above them), rings whose
 // removal moves the axis by less than e go, and each axis gets the segments its base radius needs.
 // `lookahead` bounds the chord test so that the cost stays linear.
-void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>& out, size_t& triangles) {
-  out.clear();
+// With `out` null only the triangles are counted (the search's inner loop allocates nothing).
+void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>* out, size_t& triangles) {
+  if (out) out->clear();
+  kept_axis a;
   triangles = 0;
   const tree_skeleton& t = *b.t;
   const std::vector<float>& r = *b.radius;
   const float cut = 0.5f * e;
   constexpr int lookahead = 16;
-  std::vector<uint32_t> chain;
+  static thread_local std::vector<uint32_t> chain;
   for (uint32_t s : b.starts) {
     const int32_t par = t.parent[s];
     if (r[s] < cut) continue;
@@ -123,7 +125,7 @@ void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>& out, si
     chain.clear();
     for (int32_t i = int32_t(s); i >= 0 && b.alive[i] && (r[i] >= cut || (par < 0 && chain.size() < 2)); i = b.cont[i])
       chain.push_back(uint32_t(i));
-    kept_axis a;
+    a.ring.clear();
     a.base_parent = par;
     a.first = s;
     a.segments = segments_for(r[s], e, b.most_segments);
@@ -156,7 +158,7 @@ void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>& out, si
     }
     const size_t spans = par >= 0 ? a.ring.size() : (a.ring.empty() ? 0 : a.ring.size() - 1);
     triangles += spans * size_t(2 * a.segments);
-    if (!a.ring.empty()) out.push_back(std::move(a));
+    if (out && !a.ring.empty()) out->push_back(a);
   }
 }
 
@@ -345,6 +347,20 @@ std::vector<std::pair<size_t, size_t>> group_leaves(const leaf_input& in, size_t
     }
     groups.swap(out);
   }
+  // Leaves that share even the finest cell (a whorl at one node) part into single leaves while the
+  // budget allows.
+  size_t count = groups.size();
+  std::vector<std::pair<size_t, size_t>> out;
+  for (const auto& g : groups) {
+    const size_t extra = g.second - g.first - 1;
+    if (extra > 0 && count + extra <= cards) {
+      count += extra;
+      for (size_t k = g.first; k < g.second; ++k) out.push_back({k, k + 1});
+    } else {
+      out.push_back(g);
+    }
+  }
+  groups.swap(out);
   return groups;
 }
 
@@ -459,18 +475,20 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     c.target[size_t(k)] = target;
     // The bark gets half its share of LOD0 (most of it hides inside the crown) and the leaves what it
     // leaves: measured on the oak, LOD1's silhouette IoU goes from 0.83 to 0.99 (docs/LOD.md).
-    const size_t bark_target = size_t(0.5 * double(bark0) * b);
+    // When every leaf fits anyway, the bark takes the rest.
+    const size_t all_leaves = 2 * leaves.leaves.size();
+    const size_t bark_target = std::max(size_t(0.5 * double(bark0) * b), target > all_leaves ? target - all_leaves : 0);
     // Largest mesh within budget: bisect the tolerance (log scale) between 1e-6 and 1x the tree.
     float lo = std::log(1e-6f * size), hi = std::log(size);
     size_t tris = 0;
-    simplify_bark(bark, std::exp(hi), axes, tris);
+    simplify_bark(bark, std::exp(hi), nullptr, tris);
     const bool reachable = tris <= bark_target;
-    for (int it = 0; it < 24 && reachable; ++it) {
+    for (int it = 0; it < 16 && reachable; ++it) {   // 2^-16 of the log range: within 0.03 % in e
       const float mid = 0.5f * (lo + hi);
-      simplify_bark(bark, std::exp(mid), axes, tris);
+      simplify_bark(bark, std::exp(mid), nullptr, tris);
       if (tris <= bark_target) hi = mid; else lo = mid;
     }
-    simplify_bark(bark, std::exp(hi), axes, tris);
+    simplify_bark(bark, std::exp(hi), &axes, tris);
     tree_mesh& out = c.level[size_t(k) - 1];
     out.steps = m.steps;
     out.radial_segments = m.radial_segments;

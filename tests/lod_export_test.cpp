@@ -14,6 +14,7 @@
 #include "render/files.h"
 #include "render/lod.h"
 #include "render/textures.h"
+#include "run_sylva.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -147,4 +148,23 @@ TEST(LodExport, ObjWritesOneFilePerLevelAllOrNothing) {
   EXPECT_NE(bad.error, "");
   EXPECT_EQ(slurp(dir / "tree_lod1.obj"), before);
   EXPECT_FALSE(fs::exists(dir / "tree_lod3.obj"));
+}
+
+TEST(LodExport, CliWritesLevelsAndRefusesWhatItCannot) {
+  lod_scratch dir;
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  // OBJ needs no display: four levels.
+  const sylva_run obj = run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY", "export '" + preset + "' -o '" + (dir / "t.obj") + "' --lods");
+  EXPECT_EQ(obj.code, 0) << obj.err;
+  for (const char* f : {"t.obj", "t_lod1.obj", "t_lod2.obj", "t_lod3.obj"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
+  // glTF without a display: written, the impostor left out with a warning.
+  const sylva_run glb = run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY", "export '" + preset + "' -o '" + (dir / "t.glb") + "' --lods");
+  EXPECT_EQ(glb.code, 0) << glb.err;
+  EXPECT_NE(glb.err.find("impostor left out"), std::string::npos) << glb.err;
+  const sylva_run png = run_sylva("", "export '" + preset + "' -o '" + (dir / "t.png") + "' --lods");
+  EXPECT_EQ(png.code, 2);
+  EXPECT_NE(png.err.find("--lods writes"), std::string::npos) << png.err;
+  const sylva_run anim = run_sylva("", "export '" + preset + "' -o '" + (dir / "a.glb") + "' --lods --animation");
+  EXPECT_EQ(anim.code, 2);
+  EXPECT_FALSE(fs::exists(dir / "a.glb"));
 }

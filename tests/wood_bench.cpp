@@ -28,13 +28,31 @@ static void BM_WoodPass642k(benchmark::State& state) {
   wood_params w;
   w.gravity = 1;
   for (auto _ : state) {
+    state.PauseTiming();   // the copy is not the pass
     tree_skeleton c = t;
+    state.ResumeTiming();
     apply_wood(c, w);
     benchmark::DoNotOptimize(c.position.data());
   }
   state.counters["nodes"] = double(t.size());
 }
 BENCHMARK(BM_WoodPass642k)->Unit(benchmark::kMillisecond);
+
+// The same without reaction wood: what the recovery costs.
+static void BM_WoodPass642kNoRecovery(benchmark::State& state) {
+  const tree_skeleton& t = tree_642k();
+  wood_params w;
+  w.gravity = 1;
+  w.recovery = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    tree_skeleton c = t;
+    state.ResumeTiming();
+    apply_wood(c, w);
+    benchmark::DoNotOptimize(c.position.data());
+  }
+}
+BENCHMARK(BM_WoodPass642kNoRecovery)->Unit(benchmark::kMillisecond);
 
 static void BM_Grow642k(benchmark::State& state) {
   self_organizing_params p;
