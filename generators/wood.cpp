@@ -203,14 +203,20 @@ struct engine {
     const glm::vec3 rd(rest_d[k]);
     const float len = rest_d[k].w;
     if (!(len > 1e-9f)) return;
+    const float ei = p.modulus * 1e9f * pi * rr2 * rr2 * 0.25f;   // E·I, I = π r⁴ / 4
+    const float flex = len / ei;
+    const int young = recover && p.recovery > 0
+                          ? std::min(s, int(t.born[k]) + p.recovery_age) - std::max(prev + 1, int(t.born[k])) + 1
+                          : 0;
+    // Without reaction wood the turn is at most |m|·L/(EI) (the projection below only shortens
+    // it): when that is already under the skip threshold, nothing below would change the bend.
+    if (young <= 0 && glm::dot(m, m) * flex * flex <= 1e-12f) return;
     const glm::vec3 dir = at[k].frame * (rd / len);   // the direction of its tip now
     m -= glm::dot(m, dir) * dir;             // the axial part twists; only the rest bends
-    const float ei = p.modulus * 1e9f * pi * rr2 * rr2 * 0.25f;   // E·I, I = π r⁴ / 4
-    glm::vec3 turn = m * (len / ei);
+    glm::vec3 turn = m * flex;
     // Reaction wood (gravitropic recovery): a young shoot turns its tip back toward its set
     // direction by `recovery` of the angle between them per step it was young in (prev, s].
-    if (recover && p.recovery > 0) {
-      const int young = std::min(s, int(t.born[k]) + p.recovery_age) - std::max(prev + 1, int(t.born[k])) + 1;
+    {
       if (young > 0) {
         glm::vec3 target = rd / len;
         if (p.recovery_up > 0) {
@@ -277,6 +283,8 @@ struct engine {
     std::fill(acc, acc + end, load{glm::vec3(0), 0, 0});
     const bool pipe = t.pipe_exponent > 0;
     float rt = 0, two_over_e = 0;
+    // The usual exponent 2 (da Vinci's rule): r² is the pipe sum itself, no power needed.
+    const bool square_pipe = t.pipe_exponent == 2;
     if (pipe) {
       rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
       two_over_e = 2.0f / t.pipe_exponent;
@@ -291,7 +299,7 @@ struct engine {
       float sum = 0, r2;
       if (pipe) {
         sum = a.pipe > 0 ? a.pipe : rt;
-        r2 = fast_pow(sum, two_over_e);
+        r2 = square_pipe ? sum : fast_pow(sum, two_over_e);
       } else {
         r2 = t.radius[k] * t.radius[k];
       }
