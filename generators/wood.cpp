@@ -91,11 +91,6 @@ float fast_atan2(float y, float x) {
   return x < 0 ? 3.14159265f - a : a;
 }
 
-// The square root of a unit quaternion with w >= 0: half the rotation about the same axis.
-glm::quat half_rotation(const glm::quat& q) {
-  return glm::normalize(glm::quat(1 + q.w, q.x, q.y, q.z));
-}
-
 // One block for all of the pass's scratch arrays (about 90 bytes a node), left uninitialised. On a
 // large tree, faulting in 4 KiB pages one at a time was about a fifth of the pass: on Linux the
 // block asks for transparent huge pages (2 MiB), which the kernel grants in "madvise" mode too.
@@ -254,8 +249,10 @@ struct engine {
   }
 
   // One sweep parents-first over [0, end): positions and frames from the bends.
-  void forward(size_t end) {
+  // clear_loads: also zero the loads of [0, end) for the reverse sweep that follows (one pass less).
+  void forward(size_t end, bool clear_loads) {
     for (size_t k = 0; k < end; ++k) {
+      if (clear_loads) acc[k] = load{glm::vec3(0), 0, 0};
       const int32_t par = t.parent[k];
       if (par < 0) {
         at[k].x = rest[k];
@@ -269,7 +266,11 @@ struct engine {
         at[k].x = pp.x + pp.frame * rd;
         at[k].frame = pp.frame;
       } else {
-        at[k].x = pp.x + pp.frame * (half_rotation(b) * rd);
+        // The hinge at the middle turns rd by half of b = (w, u). That half is (1 + w, u) / |·|, so
+        // it turns rd to rd + u × rd + u × (u × rd) / (1 + w): no square root (w > 0, see turn_internode).
+        const glm::vec3 u(b.x, b.y, b.z);
+        const glm::vec3 c = glm::cross(u, rd);
+        at[k].x = pp.x + pp.frame * (rd + c + glm::cross(u, c) * (1.0f / (1.0f + b.w)));
         at[k].frame = pp.frame * b;
       }
     }
@@ -280,7 +281,7 @@ struct engine {
   // its middle, M = Σ m_i (x_i - c) × g, and its turn from the increase since the last bend. The
   // turns change the bends only: positions follow in the next forward sweep.
   void reverse(int s, int prev, size_t end) {
-    std::fill(acc, acc + end, load{glm::vec3(0), 0, 0});
+    // forward(end, true) has just cleared acc[0, end).
     const bool pipe = t.pipe_exponent > 0;
     float rt = 0, two_over_e = 0;
     // The usual exponent 2 (da Vinci's rule): r² is the pipe sum itself, no power needed.
@@ -335,11 +336,11 @@ struct engine {
     for (uint16_t s : steps) {
       if (int(s) > step) break;
       const size_t reach = prefix_end(s);
-      forward(reach);
+      forward(reach, true);
       reverse(s, prev, reach);
       prev = s;
     }
-    forward(n);
+    forward(n, false);
   }
 
   // One past the last node born at or before s (all nodes when they are not born in index order).
