@@ -508,6 +508,7 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
   const tree_skeleton t = grow(p.spec, grow_options{}, &report, &debug);
   if (report.error) return "growth failed: " + report.message;
   const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+  const auto overlays = std::make_shared<const overlay_geometry>(build_overlays(debug, &t));   // the worker's part
   out.nodes = t.size();
 
   hidden_gl_context context;
@@ -539,7 +540,7 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
     for (int i = 0; i <= repeat && error.empty(); ++i) {
       const auto t0 = clock_type::now();
       upload_tree(r, m);
-      upload_overlays(r, debug, &t, int(p.spec.params.index()));
+      set_overlays(r, overlays);
       set_tree_step(r, t, p.mesh.min_radius, t.steps);
       glFinish();
       if (i > 0) take.push_back(ms_since(t0));

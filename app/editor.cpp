@@ -1238,7 +1238,7 @@ void take_new_tree(editor_state& e) {
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
-  upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
+  set_overlays(e.renderer, r->overlays);
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
     overlay_view& v = e.renderer.overlay.view;

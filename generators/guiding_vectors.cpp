@@ -185,9 +185,7 @@ void add_arrow(growth_debug& d, const glm::vec3& from, const glm::vec3& dir, flo
   const glm::vec3 colour(1.0f, 0.55f, 0.1f);
   for (const glm::vec3& end : {from, tip - dir * (0.3f * len) + side * (0.15f * len),
                                tip - dir * (0.3f * len) - side * (0.15f * len)}) {
-    d.lines.push_back(end);
-    d.lines.push_back(tip);
-    d.line_color.push_back(colour);
+    d.add_line(end, tip, colour, debug_kind::guide_arrow);
   }
 }
 
@@ -529,10 +527,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
     rule.radial_T = p.radial_T;
     rule.axis_origin = g.point[root];
     if (debug)
-      for (int32_t v : sources) {
-        debug->points.push_back(g.point[v]);
-        debug->point_value.push_back(0);
-      }
+      for (int32_t v : sources) debug->add_point(g.point[v], 0, debug_kind::source);
     if (!search_gv_paths(g, sources, source_guide, rule, endpoints, search, o, corridor)) {
       rep.cancelled = true;
       break;
@@ -542,10 +537,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
     // already holds, so shared prefixes are merged.
     fresh.clear();
     for (int32_t e : endpoints) {
-      if (debug) {
-        debug->points.push_back(g.point[e]);
-        debug->point_value.push_back(float(k));
-      }
+      if (debug) debug->add_point(g.point[e], float(k), debug_kind::endpoint);
       if (!search.settled[e] || tree_node[e] >= 0) continue;
       path.clear();
       int32_t v = e;
@@ -599,11 +591,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
       int32_t out[8];
       std::copy_n(yao8_edges(g, v), 8, out);
       for (int32_t w : out)
-        if (w >= 0) {
-          debug->lines.push_back(g.point[v]);
-          debug->lines.push_back(g.point[w]);
-          debug->line_color.push_back(glm::vec3(0.45f));
-        }
+        if (w >= 0) debug->add_line(g.point[v], g.point[w], glm::vec3(0.45f), debug_kind::graph_edge);
       add_arrow(*debug, g.point[v], node_guide[i], arrow);
     }
   }

@@ -574,13 +574,13 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
 
   if (debug) {
-    if (shadow) sample_shadow_grid(st.grid, 1000000, debug->points, debug->point_value);
-    else
+    if (shadow) {
+      sample_shadow_grid(st.grid, 1000000, debug->points, debug->point_value);
+      debug->point_kind.assign(debug->points.size(), debug_kind::shadow_sample);
+    } else {
       for (size_t m = 0; m < st.markers.pos.size(); ++m)
-        if (st.markers.alive[m]) {
-          debug->points.push_back(st.markers.pos[m]);
-          debug->point_value.push_back(-1);
-        }
+        if (st.markers.alive[m]) debug->add_point(st.markers.pos[m], -1, debug_kind::marker);
+    }
     // Fates as of the last step: shed, grew in it (or used up its buds), or dormant.
     debug->node_fate.assign(t.size(), 1);
     for (size_t i = 0; i < t.size(); ++i) {

@@ -1135,10 +1135,7 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
 }
 
 
-void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator) {
-  upload_overlays(r.overlay, build_overlays(d, t, generator));
-  ++r.uploads_total;
-}
+void set_overlays(renderer_state& r, std::shared_ptr<const overlay_geometry> g) { set_overlays(r.overlay, std::move(g)); }
 
 // ---------------------------------------------------------------- the frame
 
@@ -1282,7 +1279,10 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       draw_bark(r);
     }
   }
-  if (overlays) r.counts.draw_calls += draw_overlays(r.overlay, viewproj, r.step);
+  if (overlays) {
+    if (sync_overlays(r.overlay)) ++r.uploads_total;
+    r.counts.draw_calls += draw_overlays(r.overlay, viewproj, r.step);
+  }
   if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.hdr_fbo.id);

@@ -93,9 +93,9 @@ void destroy_renderer(renderer_state& r);
 void upload_tree(renderer_state& r, const tree_mesh& m);
 // Shows the tree as it stood at `step`: draw counts plus one small per-node radius upload.
 void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step);
-// Growth-debug overlays, split into kinds for the View toggles: `generator` is the tree_spec index,
-// `t` the grown tree (empty debug clears them).
-void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator);
+// The tree's growth-debug overlays, built with it on the worker (null clears them). No GL work
+// here: they are uploaded by the first draw_frame that shows them.
+void set_overlays(renderer_state& r, std::shared_ptr<const overlay_geometry> g);
 
 // Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
 // `origin` places the image inside the target (the editor's viewport beside its panels).
