@@ -149,7 +149,7 @@ bool draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed,
     if (!s.error.ok()) {
       draw_error(s.error, p.source);
       ImGui::TextDisabled("The last good tree stays on screen until the text parses.");
-    } else if (shown && shown->report.stop_reason == "evaluation error") {
+    } else if (shown && shown->report.stop == grow_stop::evaluation_error) {
       ImGui::TextColored(error_colour, "%s", shown->report.message.c_str());
     } else if (!s.warnings.empty()) {
       const ImVec4 warn(1, 0.78f, 0.35f, 1);

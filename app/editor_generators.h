@@ -108,6 +108,6 @@ bool draw_step_table(std::vector<step_column>& cols, bool& hold);
 void draw_overlay_menu(overlay_view& view, const overlay_gpu& gpu);
 
 // A growth that failed to parse is not shown: the last good tree stays on screen (issue 6).
-inline bool keeps_last_tree(const grow_result& r) { return r.report.stop_reason == "parse error"; }
+inline bool keeps_last_tree(const grow_result& r) { return r.report.stop == grow_stop::parse_error; }
 
 }  // namespace sylva

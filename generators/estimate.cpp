@@ -76,7 +76,7 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
   e.cancelled = o.cancelled();
   const bool timed_out = stop.load() != 0 && !e.cancelled;
   const bool node_capped = e.report.hit_node_cap && trial_node_cap < real_node_cap;
-  const bool module_capped = e.report.stop_reason == "module cap" && trial_module_cap < real_module_cap;
+  const bool module_capped = e.report.stop == grow_stop::module_cap && trial_module_cap < real_module_cap;
   e.exact = !e.cancelled && !timed_out && !node_capped && !module_capped;
   e.uncertain = !e.exact && !e.cancelled && !node_capped && !module_capped;
   const double n = double(e.trial.size());

@@ -428,8 +428,10 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
   tree_skeleton t;
   auto finish = [&](tree_skeleton& tree) -> tree_skeleton& {
     apply_pipe_radii(tree, std::max(p.pipe_exponent, 0.1f), std::max(p.tip_radius, 0.0f));
-    if (rep.stop_reason.empty())
+    if (rep.stop_reason.empty()) {
+      rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
       rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
+    }
     return tree;
   };
 
@@ -445,6 +447,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
     } else {
       rep.error = true;
       rep.message = "guiding vectors: " + why;
+      rep.stop = grow_stop::bad_input;
       rep.stop_reason = "no graph";
     }
     return finish(t);
@@ -498,6 +501,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
       if (candidates.empty()) {
         rep.error = true;
         rep.message = "guiding vectors: the endpoint volume contains no graph vertex; move it inside the domain or enlarge it";
+        rep.stop = grow_stop::bad_input;
         rep.stop_reason = "empty endpoint volume";
         break;
       }

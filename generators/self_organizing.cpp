@@ -571,6 +571,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) in step " + std::to_string(step) +
                   "; raise node_cap or lower the step count";
+  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
   rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
 
   if (debug) {

@@ -110,10 +110,22 @@ struct grow_options {
   }
 };
 
+// Why growth stopped, for code to act on; stop_reason says it in words.
+enum class grow_stop : uint8_t {
+  finished,           // ran its steps or derivations, or ran out of room to grow (stop_reason says which)
+  node_cap,
+  module_cap,         // L-systems: the derived string hit its module cap
+  cancelled,
+  parse_error,        // L-systems: the source does not parse (the editor keeps the last good tree)
+  evaluation_error,   // L-systems: an expression failed while deriving
+  bad_input,          // nothing to grow in: an unreadable envelope, no graph, an empty endpoint volume
+};
+
 // Why growth stopped and what the user should know.
 struct grow_report {
   bool hit_node_cap = false;
   bool cancelled = false;
+  grow_stop stop = grow_stop::finished;
   std::string stop_reason;    // e.g. "no attraction points left"
   std::string message;        // warning or error for the status bar ("" when all is well)
   bool error = false;         // true when the result is not a tree the user asked for

@@ -371,6 +371,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   }
   t.steps = step;
   rep.stop_reason = stop;
+  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) at step " + std::to_string(step) +
                   "; raise node_cap or lower the point count";
@@ -414,6 +415,7 @@ tree_skeleton grow_space_colonization(const space_colonization_params& p_in, con
     t.add_node(glm::vec3(0), -1, p.min_width, 0, 0);
     rep.error = true;
     rep.message = e.error;
+    rep.stop = grow_stop::bad_input;
     rep.stop_reason = "envelope error";
     return t;
   }
