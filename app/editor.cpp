@@ -171,7 +171,6 @@ struct param_drawer {
   const char* section;     // header for parameters before the first group
   const char* source;      // the paper the struct's parameters come from, with a trailing newline, or nullptr
   bool show_advanced;
-  bool changed = false;
   bool hold = false;       // an apply-on-release item is active
   bool open = true;
   bool header_drawn = false;
@@ -210,37 +209,36 @@ struct param_drawer {
     if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
     if constexpr (std::is_same_v<T, std::vector<float>>) {
       if (steps && !steps->empty()) {   // all schedules in one table, where the first one is declared
-        if (!steps_drawn) changed |= draw_step_table(*steps, hold);
+        if (!steps_drawn) draw_step_table(*steps, hold);
         steps_drawn = true;
         return;
       }
     }
     ImGui::PushID(info.key);
     const char* l = label(info);
-    bool edited = false;
     const int slider_flags = (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0;
     if constexpr (std::is_same_v<T, float>) {
       const char* fmt = (info.flags & param_degrees) ? "%.1f°" : (info.flags & param_log) ? "%.4g" : "%.3f";
-      edited = ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
+      ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
     } else if constexpr (std::is_same_v<T, int>) {
-      edited = ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
+      ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
     } else if constexpr (std::is_same_v<T, bool>) {
-      edited = ImGui::Checkbox(l, &value);
+      ImGui::Checkbox(l, &value);
     } else if constexpr (std::is_enum_v<T>) {
       int v = int(value);
       const int n = option_count(info);
-      if (ImGui::Combo(l, &v, info.options, n)) { value = T(v); edited = true; }
+      if (ImGui::Combo(l, &v, info.options, n)) value = T(v);
     } else if constexpr (std::is_same_v<T, glm::vec3>) {
       // A colour is a vec3 on [0,1] that is not a direction; sizes and offsets get plain drags.
       const bool colour = !(info.flags & param_direction) && info.min == 0 && info.max == 1;
-      if (colour) edited = ImGui::ColorEdit3(l, &value.x, ImGuiColorEditFlags_Float);
-      else edited = ImGui::DragFloat3(l, &value.x, std::max((info.max - info.min) * 0.001f, 0.001f), info.min, info.max);
+      if (colour) ImGui::ColorEdit3(l, &value.x, ImGuiColorEditFlags_Float);
+      else ImGui::DragFloat3(l, &value.x, std::max((info.max - info.min) * 0.001f, 0.001f), info.min, info.max);
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (info.flags & param_multiline) {
         ImGui::TextUnformatted(info.label);
-        edited = ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
+        ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
       } else {
-        edited = ImGui::InputText(l, &value);
+        ImGui::InputText(l, &value);
       }
     } else if constexpr (std::is_same_v<T, std::vector<float>>) {
       ImGui::TextUnformatted(l, std::strstr(l, "##"));
@@ -248,32 +246,28 @@ struct param_drawer {
         ImGui::PushID(int(i));
         if (i) ImGui::SameLine();
         ImGui::SetNextItemWidth(52);
-        edited |= ImGui::DragFloat("##v", &value[i], (info.max - info.min) * 0.002f, info.min, info.max, "%.2f");
+        ImGui::DragFloat("##v", &value[i], (info.max - info.min) * 0.002f, info.min, info.max, "%.2f");
         ImGui::PopID();
       }
       ImGui::SameLine();
-      if (ImGui::SmallButton("+")) { value.push_back(value.empty() ? info.min : value.back()); edited = true; }
+      if (ImGui::SmallButton("+")) value.push_back(value.empty() ? info.min : value.back());
       ImGui::SameLine();
-      if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
+      if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
     } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
       ImGui::TextUnformatted(l, std::strstr(l, "##"));
       for (size_t i = 0; i < value.size(); ++i) {
         ImGui::PushID(int(i));
-        edited |= ImGui::DragFloat3("##v", &value[i].x, 0.01f, info.min, info.max);
+        ImGui::DragFloat3("##v", &value[i].x, 0.01f, info.min, info.max);
         ImGui::PopID();
       }
-      if (ImGui::SmallButton("+")) { value.push_back(value.empty() ? glm::vec3(0) : value.back()); edited = true; }
+      if (ImGui::SmallButton("+")) value.push_back(value.empty() ? glm::vec3(0) : value.back());
       ImGui::SameLine();
-      if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
+      if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
     }
     if (ImGui::IsItemHovered() && info.help && *info.help)
       ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
-    if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) {
-      value = def;
-      edited = true;
-    }
+    if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) value = def;
     if ((info.flags & param_on_release) && ImGui::IsItemActive()) hold = true;
-    changed |= edited;
     ImGui::PopID();
   }
 };
@@ -311,8 +305,9 @@ const char* param_source() {
     return nullptr;
 }
 
+// Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
 template <class P>
-bool draw_params(P& p, const char* section, editor_state& e) {
+void draw_params(P& p, const char* section, editor_state& e) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
@@ -323,7 +318,6 @@ bool draw_params(P& p, const char* section, editor_state& e) {
     d(value, info);
   });
   e.hold_post |= d.hold;
-  return d.changed;
 }
 
 // ---------------------------------------------------------------- presets
