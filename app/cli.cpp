@@ -22,6 +22,7 @@
 
 #include "app/cli_textures.h"
 #include "app/headless.h"
+#include "app/timing.h"
 #include "render/export.h"
 #include "render/files.h"
 #include "render/gl/renderer.h"
@@ -31,18 +32,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
-using clock_type = std::chrono::steady_clock;
-
-double ms_since(clock_type::time_point t0) {
-  return std::chrono::duration<double, std::milli>(clock_type::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Failure: one line on stderr, exit 1 (DESIGN §7).
 int fail(const std::string& command, const std::string& reason) {

@@ -10,6 +10,7 @@
 #include <epoxy/gl.h>
 
 #include "app/headless.h"
+#include "app/timing.h"
 #include "app/worker.h"
 #include "render/files.h"
 #include "render/gl/renderer.h"
@@ -19,17 +20,6 @@ namespace sylva {
 namespace {
 
 namespace fs = std::filesystem;
-using clock_type = std::chrono::steady_clock;
-
-double ms_between(clock_type::time_point a, clock_type::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 // The generator's first float parameter, as a pointer into `spec` (nullptr if it has none).
 float* first_float(tree_spec& spec) {

@@ -11,6 +11,7 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
+#include "app/timing.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -20,10 +21,6 @@ std::string glfw_error(const std::string& what) {
   const char* desc = nullptr;
   glfwGetError(&desc);
   return desc ? what + ": " + desc : what;
-}
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 }  // namespace
 

@@ -4,13 +4,11 @@
 #include <chrono>
 #include <new>
 
+#include "app/timing.h"
+
 namespace sylva {
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 
 // A growth too large for memory: the tree on screen stays (the previous result, re-published under
 // the new generation) and the status bar says why. The worker's own `last` stays the good result.
