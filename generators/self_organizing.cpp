@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "generators/self_organizing_grid.h"
+#include "generators/vec_util.h"
 
 namespace sylva {
 
@@ -70,11 +71,6 @@ namespace {
 
 constexpr int32_t bud_here = -1;  // main/lat: a live bud sits there
 constexpr int32_t no_bud = -2;    // main/lat: nothing (shed, or never had one)
-
-glm::vec3 any_perpendicular(const glm::vec3& h) {
-  const glm::vec3 a = std::abs(h.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  return glm::normalize(glm::cross(h, a));
-}
 
 glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float l2 = glm::dot(v, v);

@@ -2,18 +2,15 @@
 #include "render/mesh.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+
+#include "generators/vec_util.h"
 
 namespace sylva {
 namespace {
 
 constexpr glm::vec3 up_axis{0, 1, 0};
-
-// Any unit vector perpendicular to the unit vector t (the start of a branch's frame).
-glm::vec3 any_perpendicular(const glm::vec3& t) {
-  const glm::vec3 a = std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  return glm::normalize(glm::cross(glm::cross(t, a), t));
-}
 
 // Parallel transport (Bishop 1975; Wang et al. 2008): carry normal n from unit tangent t0 to t1 by
 // the smallest rotation between them, so rings along an axis do not twist.
