@@ -1170,15 +1170,11 @@ void apply_ui_scale(float scale) {
 }
 
 std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
-  std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4), flipped(pixels.size());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-  const size_t row = size_t(width) * 4;
-  for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
-  for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;
-  return save_png_rgba(path, width, height, flipped.data());
+  image shot = read_back_rgba(x, y, width, height);
+  for (size_t i = 3; i < shot.pixels.size(); i += 4) shot.pixels[i] = 255;
+  return save_png(shot, path);
 }
 
 std::string save_window_png(int width, int height, const std::string& path) { return save_region_png(0, 0, width, height, path); }

@@ -34,17 +34,11 @@ std::string save_view_png(renderer_state& r, const render_params& rp, const orbi
   if (error.empty()) {
     auto t0 = std::chrono::steady_clock::now();
     draw_frame(r, rp, cam, width, height, fbo);
-    std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    const image shot = read_back_rgba(0, 0, width, height);
     if (frame_ms) *frame_ms = ms_since(t0);
     check_gl("read pixels");
-    // GL rows run bottom to top; PNG rows top to bottom.
-    std::vector<unsigned char> flipped(pixels.size());
-    const size_t row = size_t(width) * 4;
-    for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
-    error = save_png_rgba(path, width, height, flipped.data());
+    error = save_png(shot, path);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   delete_gl(fbo);

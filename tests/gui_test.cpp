@@ -39,8 +39,11 @@ struct picture {
 
 picture load(const std::string& path) {
   picture im;
-  std::string err = load_png_rgba(path, im.width, im.height, im.rgba);
+  image img;
+  std::string err = load_png(path, img);
   EXPECT_EQ(err, "");
+  im.width = img.width, im.height = img.height;
+  im.rgba.assign(img.pixels.begin(), img.pixels.end());
   return im;
 }
 
@@ -272,9 +275,9 @@ TEST(HeadlessRender, ScrubbingShowsTheYoungerTree) {
 TEST(HeadlessRender, UserBarkTextureIsUsedAndABadPathIsHarmless) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const std::string red = temp_path("red_bark.png");
-  std::string pixels;
-  for (int i = 0; i < 8 * 8; ++i) pixels += std::string("\xff\x10\x10\xff", 4);
-  ASSERT_EQ(save_png_rgba(red, 8, 8, reinterpret_cast<const unsigned char*>(pixels.data())), "");
+  image pixels{8, 8, 4, {}};
+  for (int i = 0; i < 8 * 8; ++i) pixels.pixels.insert(pixels.pixels.end(), {0xff, 0x10, 0x10, 0xff});
+  ASSERT_EQ(save_png(pixels, red), "");
   preset p = honda_a();
   p.mesh.leaves_enabled = false;
   p.render.shadows = false;
