@@ -1463,21 +1463,10 @@ int run_editor(const editor_options& o) {
     std::fprintf(stderr, "sylva: the editor needs a display (DISPLAY is not set); try `sylva export` instead\n");
     return 1;
   }
-  bool up = glfwInit();
-  if (!up) {   // a display shared with other clients now and then refuses one connection: retry once
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    up = glfwInit();
-  }
-  if (!up) {
-    const char* why = nullptr;
-    glfwGetError(&why);
-    std::fprintf(stderr, "sylva: cannot initialise GLFW: %s\n", why ? why : "unknown reason");
+  if (const std::string why = init_glfw(); !why.empty()) {
+    std::fprintf(stderr, "sylva: %s\n", why.c_str());
     return 1;
   }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   // The window fits the monitor's work area on the first start and keeps its place afterwards.
   editor_settings settings = load_settings(e->home);
   if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker.node_budget = settings.node_budget;
@@ -1498,17 +1487,15 @@ int run_editor(const editor_options& o) {
       }
     }
   }
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  if (remember_window && settings.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(width, height, "Sylva", nullptr, nullptr);
+  std::string why;   // shown once placed, so that it does not jump
+  GLFWwindow* window = create_gl33_window({width, height, "Sylva", false, false, remember_window && settings.maximized}, why);
   if (window && pos_x >= 0) glfwSetWindowPos(window, pos_x, pos_y);
   if (window) glfwShowWindow(window);
   if (!window) {
-    std::fprintf(stderr, "sylva: cannot create an OpenGL 3.3 core window\n");
+    std::fprintf(stderr, "sylva: %s\n", why.c_str());
     glfwTerminate();
     return 1;
   }
-  glfwMakeContextCurrent(window);
   e->window = window;
   // Closing the window asks first when there are unsaved changes (issue 14).
   glfwSetWindowUserPointer(window, e.get());

@@ -54,30 +54,42 @@ std::string display_missing(const char* what) {
   return "";
 }
 
+std::string init_glfw() {
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (glfwInit()) return "";
+  }
+  return glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
+}
+
+GLFWwindow* create_gl33_window(const gl_window_options& o, std::string& why) {
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_VISIBLE, o.visible ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  if (o.debug) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+  if (o.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, o.title, nullptr, nullptr);
+  if (!window) {
+    why = glfw_error("cannot create an OpenGL 3.3 core context");
+    return nullptr;
+  }
+  glfwMakeContextCurrent(window);
+  return window;
+}
+
 std::string open_hidden_gl_context(hidden_gl_context& c, const char* title, bool debug) {
   std::string why;
   GLFWwindow* window = nullptr;
   for (int attempt = 0; attempt < 2 && !window; ++attempt) {
     if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    if (!glfwInit()) {
-      why = glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
-      continue;
-    }
-    glfwDefaultWindowHints();
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    if (debug) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, title, nullptr, nullptr);
-    if (!window) {
-      why = glfw_error("cannot create an OpenGL 3.3 core context");
-      glfwTerminate();
-    }
+    if (why = init_glfw(); !why.empty()) continue;
+    window = create_gl33_window({64, 64, title, false, debug, false}, why);
+    if (!window) glfwTerminate();
   }
   if (!window) return why;
-  glfwMakeContextCurrent(window);
   c.window = window;
   return "";
 }

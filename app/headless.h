@@ -5,10 +5,27 @@
 
 #include "render/files.h"
 
+struct GLFWwindow;
+
 namespace sylva {
 
 struct renderer_state;
 struct orbit_camera;
+
+// glfwInit, retried once (a display shared with other clients now and then refuses a connection).
+// Returns "" or the reason.
+std::string init_glfw();
+// The one way Sylva opens OpenGL: a window with a 3.3 core, forward-compatible context (as on
+// llvmpipe), made current. Used by the editor, the hidden contexts below and the GL test fixtures.
+// Needs init_glfw; returns nullptr with the reason in `why` when no such context can be had.
+struct gl_window_options {
+  int width = 64, height = 64;
+  const char* title = "sylva";
+  bool visible = false;     // hidden windows render off-screen (create_color_target)
+  bool debug = false;       // a debug context (install_gl_debug_output)
+  bool maximized = false;
+};
+GLFWwindow* create_gl33_window(const gl_window_options& o, std::string& why);
 
 // A hidden window whose OpenGL 3.3 core context is current, for rendering without the editor.
 struct hidden_gl_context {

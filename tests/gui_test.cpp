@@ -170,22 +170,11 @@ TEST(HeadlessRender, GodRaysBrightenARingAroundTheSun) {
 
 TEST(HeadlessRender, BrokenShaderIsReportedAndFallsBack) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  bool up = glfwInit();
-  if (!up) {   // a display shared with other clients now and then refuses one connection
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    up = glfwInit();
-  }
-  const char* why = nullptr;
-  if (!up) glfwGetError(&why);
-  ASSERT_TRUE(up) << (why ? why : "");
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* win = glfwCreateWindow(64, 64, "test", nullptr, nullptr);
-  ASSERT_TRUE(win);
-  glfwMakeContextCurrent(win);
+  const std::string up = init_glfw();
+  ASSERT_TRUE(up.empty()) << up;
+  std::string why;
+  GLFWwindow* win = create_gl33_window({64, 64, "test"}, why);
+  ASSERT_TRUE(win) << why;
   const int errors = gl_error_count();
   gl_program bad = compile_program("broken test shader", "#version 330 core\nvoid main() { gl_Position = oops; }",
                                    "#version 330 core\nout vec4 c; void main() { c = vec4(1); }");
