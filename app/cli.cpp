@@ -169,8 +169,7 @@ int run_export(const export_args& a) {
   const char* cmd = "export";
   std::string ext = fs::path(a.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  static const char* const formats[] = {".glb", ".gltf", ".obj", ".json", ".png"};
-  if (std::find(std::begin(formats), std::end(formats), ext) == std::end(formats))
+  if (std::find(std::begin(export_formats), std::end(export_formats), ext) == std::end(export_formats))
     return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .json or .png");
   if (a.step < -1) return usage_error(cmd, "--step must be -1 (final tree) or a step number");
   if (a.seed_opt->count() && !a.seeds.empty()) return usage_error(cmd, "--seed and --seeds exclude each other");

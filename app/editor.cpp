@@ -982,7 +982,7 @@ void draw_dialogs(editor_state& e) {
     const std::string stem = fs::path(default_save_path(e)).stem().string();
     open_file_browser(e.files, "Export as", true, current.parent_path().string(),
                       stem + (current.has_extension() ? current.extension().string() : ".glb"),
-                      {".glb", ".gltf", ".obj", ".json", ".png"});
+                      {std::begin(export_formats), std::end(export_formats)});
     e.browse = editor_state::browsing::export_to;
     e.browse_export = false;
   }
