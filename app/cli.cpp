@@ -514,8 +514,7 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
     frame_camera(cam, r.bounds_min, r.bounds_max, float(width) / float(height));
     render_params rp = p.render;
     if (all_effects) {
-      rp.sun_azimuth = std::remainder(cam.yaw + 180.0f, 360.0f);
-      rp.sun_elevation = 12;
+      place_sun_behind(rp, cam.yaw);
       rp.shadows = true;
     }
     const bool both = all_effects;

@@ -673,7 +673,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("Backlit rays")) {   // the sun straight behind the tree as seen now
-    rp.sun_azimuth = std::remainder(e.camera.yaw + 180.0f, 360.0f), rp.sun_elevation = 12;
+    place_sun_behind(rp, e.camera.yaw);
     rp.sun_color = {1.0f, 0.88f, 0.7f}, rp.sun_intensity = 2.2f;
     if (rp.shafts == light_shafts::off) rp.shafts = light_shafts::volumetric;
     rp.fog_density = std::max(rp.fog_density, 0.025f);   // enough air for the shafts to show
