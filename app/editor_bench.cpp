@@ -9,6 +9,7 @@
 
 #include <epoxy/gl.h>
 
+#include "app/bench.h"
 #include "app/headless.h"
 #include "app/timing.h"
 #include "app/worker.h"
@@ -123,8 +124,8 @@ int run_bench_edit(std::vector<std::string> paths, int repeat, bool as_json, int
     }
     const std::string name = fs::path(path).stem().string();
     if (as_json)
-      std::printf("{\"preset\":\"%s\",\"nodes\":%zu,\"edit_ms\":%.2f,\"worker_ms\":%.2f,\"upload_ms\":%.2f,\"frame_ms\":%.2f}\n",
-                  name.c_str(), r.nodes, r.total, r.worker, r.upload, r.frame);
+      print_bench_json({{"preset", name}, {"nodes", r.nodes}, {"edit_ms", r.total}, {"worker_ms", r.worker},
+                        {"upload_ms", r.upload}, {"frame_ms", r.frame}});
     else
       std::printf("%-34s %9zu %10.1f %10.1f %10.1f %10.1f\n", name.c_str(), r.nodes, r.total, r.worker, r.upload, r.frame);
     std::fflush(stdout);
