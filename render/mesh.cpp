@@ -80,6 +80,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   std::vector<glm::vec3> dir(n);
   for (size_t i = 0; i < n; ++i) {
     const int32_t par = t.parent[i];
+    assert(par < int32_t(i) && "mesh_tree: parent[i] < i (structurally_sound lets no other skeleton in)");
     if (par < 0) { dir[i] = up_axis; continue; }
     const glm::vec3 d = t.position[i] - t.position[par];
     const float len = glm::length(d);
