@@ -270,6 +270,8 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
   if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
   if (error.empty()) {
     upload_tree(r, m);
+    upload_wind(r, t);
+    r.wind_time = 1.0f;
     set_tree_step(r, t, p.mesh.min_radius, t.steps);
     orbit_camera cam;
     frame_camera(cam, r.bounds_min, r.bounds_max, float(width) / float(height));
@@ -288,6 +290,7 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
     for (int i = 0; i <= repeat && error.empty(); ++i) {
       const auto t0 = clock_type::now();
       upload_tree(r, m);
+      upload_wind(r, t);
       set_overlays(r, overlays);
       set_tree_step(r, t, p.mesh.min_radius, t.steps);
       glFinish();

@@ -1,6 +1,7 @@
 // The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
 #include "app/cli.h"
 #include "app/bench.h"
+#include "app/cli_lods.h"
 #include "app/editor_bench.h"
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "app/cli_textures.h"
 #include "app/headless.h"
 #include "app/timing.h"
+#include "generators/lsystem_engine.h"
 #include "render/export.h"
 #include "render/files.h"
 
@@ -92,8 +94,44 @@ void list_params(const P& p, const json& defaults, const char* section, const ch
   });
 }
 
-int run_params(bool as_json) {
+// With --preset: that preset's parameters (its values as "default") and, for a text-mode
+// L-system, one "define" record per #define constant, settable as --set define.NAME=value.
+int list_preset_params(const std::string& path, json& all) {
+  preset p;
+  const load_result loaded = load_preset_file(path, p);
+  if (!loaded.ok) {
+    std::fprintf(stderr, "sylva params: %s\n", loaded.error.c_str());
+    return 1;
+  }
+  const json saved = json::parse(save_preset_json(p));
+  const char* gen = generator_names[p.spec.params.index()];
+  std::visit([&](const auto& gp) { list_params(gp, saved["params"], "params", gen, all); }, p.spec.params);
+  list_params(p.mesh, saved["mesh"], "mesh", nullptr, all);
+  list_params(p.render, saved["render"], "render", nullptr, all);
+  if (const auto* lp = std::get_if<lsystem_params>(&p.spec.params); lp && lp->mode == lsystem_mode::text)
+    for (const lsystem_constant& k : lsystem_constants(lp->source)) {
+      json r;
+      r["section"] = "define";
+      r["generator"] = gen;
+      r["key"] = "define." + k.name;
+      r["label"] = k.name;
+      r["symbol"] = k.name;
+      r["type"] = "float";
+      r["min"] = k.min;
+      r["max"] = k.max;
+      r["default"] = k.value;
+      r["help"] = k.help.empty() ? "#define constant of the L-system text" : k.help;
+      r["flags"] = json::array();
+      all.push_back(std::move(r));
+    }
+  return 0;
+}
+
+int run_params(bool as_json, const std::string& preset_path) {
   json all = json::array();
+  if (!preset_path.empty()) {
+    if (int rc = list_preset_params(preset_path, all)) return rc;
+  } else
   for (int g = 0; g < generator_count; ++g) {
     preset p;
     p.spec.params = default_params(g);
@@ -103,6 +141,7 @@ int run_params(bool as_json) {
     if (g == 0) {
       list_params(p.mesh, saved["mesh"], "mesh", nullptr, all);
       list_params(p.render, saved["render"], "render", nullptr, all);
+      list_params(p.spec.wood, saved["wood"], "wood", nullptr, all);
     }
   }
   if (as_json) {
@@ -112,7 +151,8 @@ int run_params(bool as_json) {
   std::string heading;
   for (const json& r : all) {
     const std::string h = r["generator"].is_null() ? r["section"].get<std::string>()
-                                                   : "params of generator " + r["generator"].get<std::string>();
+                          : r["section"] == "define" ? "#define constants (--set define.NAME=value)"
+                                                     : "params of generator " + r["generator"].get<std::string>();
     if (h != heading) {
       std::printf("%s%s\n", heading.empty() ? "" : "\n", h.c_str());
       heading = h;
@@ -122,7 +162,7 @@ int run_params(bool as_json) {
                 sym.empty() ? "-" : sym.c_str(), r["type"].get<std::string>().c_str(), r["min"].get<double>(),
                 r["max"].get<double>(), r["default"].dump().c_str(), r["help"].get<std::string>().c_str());
   }
-  std::printf("\n--set takes any key above as key=value (vec3 as x,y,z); prefix params., mesh. or render. "
+  std::printf("\n--set takes any key above as key=value (vec3 as x,y,z); prefix params., mesh., render. or wood. "
               "when a key is ambiguous.\n");
   return 0;
 }
@@ -135,9 +175,11 @@ struct export_args {
   uint64_t seed = 1;
   int step = -1, width = 1280, height = 720;
   std::vector<std::string> sets;
-  bool instancing = false, animation = false;
+  bool instancing = false, animation = false, lods = false;
   float seconds_per_step = 0.5f;
+  float wind = 0;                  // --wind SECONDS: glTF loop length, or the .png's moment
   CLI::Option* seed_opt = nullptr;
+  CLI::Option* wind_opt = nullptr;
 };
 
 struct variant {
@@ -168,6 +210,8 @@ int run_export(const export_args& a) {
     return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .json or .png");
   if (a.step < -1) return usage_error(cmd, "--step must be -1 (final tree) or a step number");
   if (a.seed_opt->count() && !a.seeds.empty()) return usage_error(cmd, "--seed and --seeds exclude each other");
+  if (a.lods && (ext == ".json" || ext == ".png")) return usage_error(cmd, "--lods writes .glb, .gltf or .obj");
+  if (a.lods && (a.animation || a.step >= 0)) return usage_error(cmd, "--lods exports the final tree; drop --animation and --step");
 
   preset base;
   load_result loaded = load_preset_file(a.preset_path, base);
@@ -223,8 +267,16 @@ int run_export(const export_args& a) {
     std::string what = "seed " + std::to_string(v.seed);
     for (const std::string& set : v.sets) what += ", " + set;
 
+    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0 && std::isfinite(a.wind)))
+      return usage_error(cmd, "--wind needs a loop length (glTF) or a moment (.png) in seconds > 0");
+    const bool wind = a.wind_opt && a.wind_opt->count();
+    if (wind) {
+      p.render.wind.enabled = true;
+      if (std::string msg = clamp_wind(p.render.wind); !msg.empty()) warn(path, msg);
+    }
     if (ext == ".png") {
       headless_stats stats;
+      stats.wind_time = wind ? a.wind : 0.0f;
       const auto t0 = clock_type::now();
       if (std::string e = render_preset_png(p, a.step, path, a.width, a.height, &stats); !e.empty())
         return fail(cmd, path + ": " + e);
@@ -252,6 +304,11 @@ int run_export(const export_args& a) {
     o.seconds_per_step = a.seconds_per_step;
     o.mesh = p.mesh;
     apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
+    lod_export_data lods;   // --lods (app/cli_lods.h): LOD1-3 and the impostor
+    if (a.lods)
+      for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
+    if (wind && (ext == ".glb" || ext == ".gltf")) o.wind_seconds = a.wind;
+    else if (wind && ext != ".png") warn(path, "--wind applies to .glb, .gltf and .png; ignored");
     t0 = clock_type::now();
     const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
     const double export_ms = ms_since(t0);
@@ -284,6 +341,9 @@ int run_cli(int argc, char** argv) {
   bool params_json = false;
   CLI::App* params = app.add_subcommand("params", "List every parameter: generator, key, symbol, range, default, help");
   params->add_flag("--json", params_json, "Print one JSON array");
+  std::string params_preset;
+  params->add_option("--preset", params_preset,
+                     "List this preset's parameters with its values, and a text L-system's #define constants");
 
   export_args ex;
   CLI::App* exp = app.add_subcommand("export", "Grow a preset and write it; OUT's extension picks the format");
@@ -297,11 +357,15 @@ int run_cli(int argc, char** argv) {
   exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));
   exp->add_flag("--instancing", ex.instancing, "glTF: leaves as EXT_mesh_gpu_instancing instead of baked quads");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
+  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, OBJ one file per level");
   exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
+  ex.wind_opt = exp->add_option("--wind", ex.wind,
+                                "glTF: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
+                                "(0.5-60); .png: render the wind's motion at SECONDS");
 
   std::vector<std::string> bench_paths;
   int repeat = 5;
-  bool bench_json = false, bench_export = false, bench_render = false, bench_edit = false;
+  bool bench_json = false, bench_export = false, bench_render = false, bench_edit = false, bench_lods = false;
   int bench_width = 1280, bench_height = 720;
   bool bench_preset_light = false;
   CLI::App* bench = app.add_subcommand("bench", "Time grow and mesh per preset (default: every bench/*.json)");
@@ -311,6 +375,9 @@ int run_cli(int argc, char** argv) {
   bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
   bench->add_flag("--render", bench_render,
                   "Time rendering instead: frame ms per pass (needs DISPLAY; default: one preset per generator)");
+  bench->add_flag("--lods", bench_lods, "LOD triangles against their budgets, LOD build and impostor atlas times (default: every species preset)");
+  std::string bench_sheet;
+  bench->add_option("--sheet", bench_sheet, "--lods: also write each level's render and the impostor atlas as PNGs into this folder");
   bench->add_flag("--edit", bench_edit, "Time a slider release to the new tree on screen (worker, upload, one frame)");
   bench->add_option("--width", bench_width, "--render: image width")->check(CLI::Range(16, 8192));
   bench->add_option("--height", bench_height, "--render: image height")->check(CLI::Range(16, 8192));
@@ -331,8 +398,10 @@ int run_cli(int argc, char** argv) {
     return 2;
   }
   try {
-    if (params->parsed()) return run_params(params_json);
+    if (params->parsed()) return run_params(params_json, params_preset);
     if (exp->parsed()) return run_export(ex);
+    if (bench->parsed() && bench_lods)
+      return run_bench_lods(bench_paths, repeat, bench_json, bench_sheet, bench_width, bench_height);
     if (bench->parsed() && bench_edit) return run_bench_edit(bench_paths, repeat, bench_json, bench_width, bench_height);
     if (bench->parsed() && bench_render) {
       if (bench_export) return usage_error("bench", "--render and --export time different things; give one");

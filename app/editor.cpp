@@ -26,6 +26,7 @@
 
 #include "app/editor_files.h"
 #include "app/editor_generators.h"
+#include "app/editor_lod.h"
 #include "app/export_dialog.h"
 #include "app/headless.h"
 #include "app/input_queue.h"
@@ -48,6 +49,7 @@ float timeline_height() { return 38 * ui_scale; }
 float status_height() { return 26 * ui_scale; }
 
 struct editor_state {
+  editor_lod lod;                 // level of detail shown in the viewport (app/editor_lod.h)
   preset doc;                     // the edited copy (DESIGN §9: edit a copy, commit on change)
   preset undo_base;               // doc as of the last undo step
   std::vector<preset> undo, redo;
@@ -301,6 +303,8 @@ const char* param_source() {
     return "Xu & Mould 2015, Procedural tree modeling with guiding vectors\n";
   else if constexpr (std::is_same_v<P, lsystem_params>)
     return "Honda 1971; Prusinkiewicz & Lindenmayer 1990, The Algorithmic Beauty of Plants (ch. 1-2)\n";
+  else if constexpr (std::is_same_v<P, wood_params>)
+    return "Beam bending with permanent set (Jirasek, Prusinkiewicz & Moulia 2000); green wood from the USDA Wood Handbook 2010\n";
   else
     return nullptr;
 }
@@ -654,6 +658,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
                                     : "This generator is deterministic and leaves are off: the seed changes nothing");
   std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
   draw_generator_panel(e.generator_panels, spec, e.shown.get());
+  draw_params(spec.wood, "Wood", e);
   draw_params(e.doc.mesh, "Mesh", e);
   // Time-of-day presets: a starting point for the lighting sliders below.
   render_params& rp = e.doc.render;
@@ -910,6 +915,10 @@ void draw_status(editor_state& e, float y, float w) {
   ImGui::SameLine();
   ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
               e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+  if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) {
+    ImGui::SameLine();
+    ImGui::Text("   %s", lod.c_str());
+  }
   if (!e.message.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(e.message_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", e.message.c_str());
@@ -1228,6 +1237,8 @@ void take_new_tree(editor_state& e) {
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
   upload_tree(e.renderer, r->mesh);
+  editor_lod_new_tree(e.lod);
+  upload_wind(e.renderer, *r->skeleton);
   set_overlays(e.renderer, r->overlays);
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
@@ -1628,6 +1639,11 @@ int run_editor(const editor_options& o) {
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
+    if (e->renderer.ok && e->shown && e->shown->skeleton)
+      editor_lod_update(e->lod, e->renderer, *e->shown->skeleton, e->shown->mesh, e->shown->mesh_settings, e->doc.render,
+                        e->camera, e->step);
+    // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
+    if (e->doc.render.wind.enabled) e->renderer.wind_time = float(std::fmod(double(e->renderer.wind_time) + dt, 3600.0));
     if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;

@@ -131,6 +131,8 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
   if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
   if (error.empty()) {
     upload_tree(r, mesh);
+    upload_wind(r, tree);
+    r.wind_time = stats ? stats->wind_time : 0.0f;
     set_tree_step(r, tree, p.mesh.min_radius, step < 0 ? tree.steps : std::min(step, tree.steps));
     orbit_camera cam;
     frame_camera(cam, r.bounds_min, r.bounds_max, float(width) / float(height));

@@ -41,6 +41,7 @@ void close_hidden_gl_context(hidden_gl_context& c);
 
 struct headless_stats {
   bool measure_passes = false;   // input: time each pass (glFinish between passes; benchmarks only)
+  float wind_time = 0;           // input: seconds into the wind's motion (when the preset's wind is on)
   double shadow_ms = 0, lit_ms = 0, occlusion_ms = 0, blur_ms = 0, composite_ms = 0;
   int gl_errors = 0;         // GL errors seen while rendering (debug callback + glGetError)
   double grow_ms = 0, mesh_ms = 0, frame_ms = 0;

@@ -508,11 +508,14 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
     } else {
       const int h = std::max(1, int(std::lround(std::clamp(schedule_at(p.step_hops, k, 3), 1.0f, 1e6f))));
       bool stop = false;
-      // The search of a later step keeps to the vertices within 2h hops of the tree. Moving along
-      // a guiding vector is nearly free, so an unbounded search would sweep the whole domain every
-      // step to reach the one costly endpoint; shortest paths to B_h rarely stray that far.
-      candidates = hop_levels(g, node_vertex, h, 2 * h, level, level_touched, o, stop);
-      corridor = &level;
+      // The search of a later step keeps to the vertices within search_corridor·h hops of the tree
+      // (default 2h). Moving along a guiding vector is nearly free, so an unbounded search sweeps
+      // the whole domain every step to reach the one costly endpoint; shortest paths to B_h rarely
+      // stray that far. search_corridor = 0 is the paper's exact, unbounded search.
+      const bool bounded = p.search_corridor > 0;
+      const int depth = bounded ? std::max(h, int(std::lround(std::min(p.search_corridor * float(h), 1e6f)))) : h;
+      candidates = hop_levels(g, node_vertex, h, depth, level, level_touched, o, stop);
+      corridor = bounded ? &level : nullptr;
       if (stop) { rep.cancelled = true; break; }
       const float floor_y = g.point[root].y + p.clear_trunk;
       std::erase_if(candidates, [&](int32_t v) { return g.point[v].y < floor_y; });

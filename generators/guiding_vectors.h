@@ -32,6 +32,7 @@ struct guiding_vectors_params {
   float t_end = 0;           // degrees, hop ramp end
   int ramp_hops = 20;
   float radial_T = 1.0f;     // metres from the trunk axis
+  float search_corridor = 2; // later steps search within corridor·h hops of the tree; 0: unbounded
   // Graph.
   float spacing = 0.2f;      // r
   int candidates = 12;       // k
@@ -61,6 +62,7 @@ void visit_params(P& p, V&& v) {
   v(p.t_end, param_info{"t_end", "Ramp end angle", "t_end", -45, 45, "hop_ramp: the turn angle reached after ramp_hops hops", param_degrees});
   v(p.ramp_hops, param_info{"ramp_hops", "Ramp length", "", 1, 1000, "hop_ramp: hops from the source over which t goes from the step's t to t_end"});
   v(p.radial_T, param_info{"radial_T", "Radial flip distance", "T", 0, 50, "radial: distance from the trunk axis beyond which t changes sign (metres)"});
+  v(p.search_corridor, param_info{"search_corridor", "Search corridor", "", 0, 20, "Steps after the first search shortest paths only within this many times h hops of the tree (Sylva's speed-up, not in the paper); 0 searches the whole graph, exactly as Xu & Mould 2015", param_on_release | param_advanced});
   v(p.spacing, param_info{"spacing", "Point spacing", "r", 0.05f, 2, "Minimum distance between Poisson-disc graph vertices (metres); smaller gives smoother, costlier trees", param_log | param_on_release, "Graph"});
   v(p.candidates, param_info{"candidates", "Candidates per point", "k", 2, 100, "Poisson-disc candidates tried around each accepted point; more leaves fewer holes", param_on_release | param_advanced});
   v(p.domain_size, param_info{"domain_size", "Domain size", "", 0.1f, 20, "Extent of the point box (metres): centred on the trunk in x and z, from the ground up in y", param_on_release});

@@ -19,14 +19,6 @@ struct apex {
   uint8_t order;
 };
 
-// ABOP §1.5: +(δ) turns left about U, /(δ) rolls about H. Angles compose in the turtle's frame.
-glm::mat3 turn(const glm::mat3& f, float deg) {
-  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(0, 0, 1)));
-}
-glm::mat3 roll(const glm::mat3& f, float deg) {
-  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(1, 0, 0)));
-}
-
 }  // namespace
 
 tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_report* report) {
@@ -36,8 +28,8 @@ tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_re
   const float radius_of_width = 0.5f * p.scale * p.width_scale;
 
   tree_skeleton t;
-  // H = +Y (up), L = -X, U = +Z: a right-handed turtle frame standing on the ground.
-  const glm::mat3 frame0(glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1));
+  // H = +Y (up), L = +X, U = −Z: the text turtle's right-handed start frame (lsystem_turtle.cpp).
+  const glm::mat3 frame0 = lsystem_start_frame();
   t.add_node(glm::vec3(0), -1, p.w0 * radius_of_width, 0, 0);
 
   // Derivations proceed in parallel over all apices (breadth first), so the nodes of derivation
@@ -59,9 +51,10 @@ tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_re
       const int32_t node = t.add_node(tip * p.scale, a.node, a.w * radius_of_width, uint16_t(k), a.order);
       // Daughters; the longer one continues the axis (same order), the other is a lateral.
       const bool first_main = p.r1 >= p.r2;
-      next.push_back({roll(turn(a.frame, p.alpha1), p.phi1), tip, a.s * p.r1, a.w * wq1, node,
+      // [+(α)/(φ)A...]: turn by R_U(α), then roll by '/' = R_H(−φ) (ABOP §1.5).
+      next.push_back({turtle_roll(turtle_turn(a.frame, p.alpha1), -p.phi1), tip, a.s * p.r1, a.w * wq1, node,
                       uint8_t(a.order + (first_main ? 0 : 1))});
-      next.push_back({roll(turn(a.frame, p.alpha2), p.phi2), tip, a.s * p.r2, a.w * wq2, node,
+      next.push_back({turtle_roll(turtle_turn(a.frame, p.alpha2), -p.phi2), tip, a.s * p.r2, a.w * wq2, node,
                       uint8_t(a.order + (first_main ? 1 : 0))});
     }
     step = k;

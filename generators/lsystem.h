@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include <glm/mat3x3.hpp>
+
 #include "generators/params.h"
 #include "generators/skeleton.h"
 
@@ -78,6 +80,13 @@ inline bool param_relevant(const lsystem_params& p, const void* field, const par
   if (text_only) return p.mode == lsystem_mode::text;
   return true;
 }
+
+// The turtle's handedness, shared by the text turtle and Honda's tree (see lsystem_turtle.cpp):
+// frame columns H, L, U; ABOP §1.5's matrices as printed; start H = +Y, L = +X, U = −Z.
+glm::mat3 lsystem_start_frame();
+glm::mat3 turtle_turn(const glm::mat3& frame, float degrees);   // +(δ): R_U(δ); -(δ) is turtle_turn(−δ)
+glm::mat3 turtle_pitch(const glm::mat3& frame, float degrees);  // &(δ): R_L(δ); ^(δ) is turtle_pitch(−δ)
+glm::mat3 turtle_roll(const glm::mat3& frame, float degrees);   // \(δ): R_H(δ); /(δ) is turtle_roll(−δ)
 
 // Honda's tree (derivation k = growth step k). Deterministic; no randomness.
 tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_report* report = nullptr);

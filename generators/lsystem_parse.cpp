@@ -1,6 +1,7 @@
 // L-system source language: directives, productions, the expression compiler and editor helpers.
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -511,12 +512,11 @@ lsystem_error compile_into(const std::string& source, lsystem_program& prog) {
   return {};
 }
 
+// Shortest text that reads back as v, plain where that is no longer: 30, not %g's 3e+01.
 std::string format_float(float v) {
   char buf[32];
-  for (int prec = 1; prec <= 9; ++prec) {
-    std::snprintf(buf, sizeof buf, "%.*g", prec, double(v));
-    if (std::strtof(buf, nullptr) == v) break;
-  }
+  const auto r = std::to_chars(buf, buf + sizeof buf - 1, v);
+  *r.ptr = 0;
   return buf;
 }
 

@@ -7,13 +7,31 @@
 #include "generators/lsystem_engine.h"
 
 namespace sylva {
+
+glm::mat3 lsystem_start_frame() { return glm::mat3(glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::vec3(0, 0, -1)); }
+glm::mat3 turtle_turn(const glm::mat3& f, float deg) {   // R_U(δ) = Rz(−δ)
+  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(-deg), glm::vec3(0, 0, 1)));
+}
+glm::mat3 turtle_pitch(const glm::mat3& f, float deg) {  // R_L(δ) = Ry(−δ)
+  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(-deg), glm::vec3(0, 1, 0)));
+}
+glm::mat3 turtle_roll(const glm::mat3& f, float deg) {   // R_H(δ) = Rx(δ)
+  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(deg), glm::vec3(1, 0, 0)));
+}
+
 namespace {
 
-// Frame columns: heading H, left L, up U (ABOP §1.5). Rotations compose in the turtle's frame and
-// are built exactly as in honda.cpp, so Honda's production written as text gives the same tree.
-glm::mat3 rotate_local(const glm::mat3& f, float deg, const glm::vec3& axis) {
-  return f * glm::mat3(glm::rotate(glm::mat4(1), glm::radians(deg), axis));
-}
+// Frame columns: heading H, left L, up U (ABOP §1.5), always right-handed (H × L = U).
+// Handedness, one choice for all six turns: ABOP §1.5's rotation matrices exactly as printed,
+// [H' L' U'] = [H L U]·R, with R_U(δ) for +, R_L(δ) for &, R_H(δ) for \ and the negated angles
+// for -, ^, /. In glm's column terms R_U(δ) = Rz(−δ), R_L(δ) = Ry(−δ), R_H(δ) = Rx(δ). The start
+// frame H = +Y, L = +X, U = −Z makes + turn H towards −L = −X: anticlockwise for a viewer on +Z,
+// which is ABOP's "turn left" and its printed 2D figures (1.24, the Koch curves) as they stand.
+// The matrices then fix & and / relative to +, as in the program that drew the book's 3D figures.
+// honda.cpp uses the same functions, so Honda's production written as text gives the same tree.
+glm::mat3 turn_u(const glm::mat3& f, float deg) { return turtle_turn(f, deg); }
+glm::mat3 pitch_l(const glm::mat3& f, float deg) { return turtle_pitch(f, deg); }
+glm::mat3 roll_h(const glm::mat3& f, float deg) { return turtle_roll(f, deg); }
 
 struct turtle_state {
   glm::vec3 pos{0};      // model units
@@ -36,8 +54,8 @@ tree_skeleton interpret_lsystem(const lsystem_program& prog, const lsystem_strin
     return std::isfinite(r) && r > 0 ? r : 0.0f;
   };
   turtle_state tu;
-  // H = +Y (up), L = -X, U = +Z, as in honda.cpp.
-  tu.frame = glm::mat3(glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1));
+  // H = +Y (up), L = +X, U = −Z, as in honda.cpp.
+  tu.frame = lsystem_start_frame();
   tu.width = prog.width;
   std::vector<turtle_state> stack;
   std::vector<uint8_t> has_child;
@@ -106,15 +124,14 @@ tree_skeleton interpret_lsystem(const lsystem_program& prog, const lsystem_strin
         tu.node = -1;
         break;
       }
-      // ABOP §1.5: + - turn about U, & ^ pitch about L, \ / roll about H, | turns around.
-      case '+': tu.frame = rotate_local(tu.frame, arg(m, prog.angle), {0, 0, 1}); break;
-      case '-': tu.frame = rotate_local(tu.frame, -arg(m, prog.angle), {0, 0, 1}); break;
-      case '&': tu.frame = rotate_local(tu.frame, -arg(m, prog.angle), {0, 1, 0}); break;
-      case '^': tu.frame = rotate_local(tu.frame, arg(m, prog.angle), {0, 1, 0}); break;
-      // '/' rolls by +angle about H, as honda.cpp does (ABOP's R_H(-δ) is the mirror image).
-      case '/': tu.frame = rotate_local(tu.frame, arg(m, prog.angle), {1, 0, 0}); break;
-      case '\\': tu.frame = rotate_local(tu.frame, -arg(m, prog.angle), {1, 0, 0}); break;
-      case '|': tu.frame = rotate_local(tu.frame, 180, {0, 0, 1}); break;
+      // ABOP §1.5: + R_U(δ), - R_U(−δ), & R_L(δ), ^ R_L(−δ), \ R_H(δ), / R_H(−δ), | R_U(180°).
+      case '+': tu.frame = turn_u(tu.frame, arg(m, prog.angle)); break;
+      case '-': tu.frame = turn_u(tu.frame, -arg(m, prog.angle)); break;
+      case '&': tu.frame = pitch_l(tu.frame, arg(m, prog.angle)); break;
+      case '^': tu.frame = pitch_l(tu.frame, -arg(m, prog.angle)); break;
+      case '\\': tu.frame = roll_h(tu.frame, arg(m, prog.angle)); break;
+      case '/': tu.frame = roll_h(tu.frame, -arg(m, prog.angle)); break;
+      case '|': tu.frame = turn_u(tu.frame, 180); break;
       case '[':
         stack.push_back(tu);
         if (tu.order < 255) ++tu.order;

@@ -275,11 +275,17 @@ struct so_state {
         const float s = shadow_at(grid, voxel[i]);
         float light = std::max(p.full_exposure - s + p.shadow_a, 0.0f);
         light = e == 1.0f ? light : std::pow(light, e);
+        // Seed 001 §3.1 counts a node's light once if it has either bud (per_node: shared by its
+        // buds); Sylva's default lets each live bud count it, as Palubicki 2009 gives each bud a Q.
+        const bool both = main[i] == bud_here && lat[i] == bud_here;
+        if (both && p.light_count == so_light_count::per_node) light *= 0.5f;
         q[2 * i] = main[i] == bud_here ? light : 0.0f;
         q[2 * i + 1] = lat[i] == bud_here ? light : 0.0f;
       } else {
         q[2 * i] = q[2 * i] > 0 ? 1.0f : 0.0f;  // 0^e = 0 and 1^e = 1: σ changes nothing here
         q[2 * i + 1] = q[2 * i + 1] > 0 ? 1.0f : 0.0f;
+        if (p.light_count == so_light_count::per_node && q[2 * i] > 0 && q[2 * i + 1] > 0)
+          q[2 * i] = q[2 * i + 1] = 0.5f;
       }
     }
   }
@@ -324,6 +330,10 @@ struct so_state {
   // buds. Dead nodes are never reached: their parents' links say no_bud.
   void sweep_flow() {
     const float be_over_n = p.be / p.pipe_exponent;
+    // Seed 001 eq. 2 prints BM·radius^BE / default_radius; with r = r₀·(r/r₀) that is
+    // r₀^(BE−1)·BM·(r/r₀)^BE, r in metres. The relative form (default) does not change with the
+    // choice of unit or of r₀, which is why Sylva uses it; upkeep_form = seed001 follows the text.
+    const float bm = p.upkeep_form == so_upkeep_form::seed001 ? p.bm * std::pow(p.tip_radius, p.be - 1) : p.bm;
     for (size_t i = t.size(); i-- > 0;) {
       if (t.died[i] != never_died) { flow[i] = 0; buds[i] = 0; continue; }
       const int32_t m = main[i], la = lat[i];
@@ -334,7 +344,7 @@ struct so_state {
       buds[i] = (m >= 0 ? buds[m] : m == bud_here) + (la >= 0 ? buds[la] : la == bud_here);
       // Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): upkeep BM·(r/r₀)^BE, where the pipe model
       // gives (r/r₀)^n = number of tips, so (r/r₀)^BE = tips^(BE/n).
-      const float upkeep = p.bm > 0 ? p.bm * whole_pow(tips_pow, tips[i], be_over_n) : 0.0f;
+      const float upkeep = bm > 0 ? bm * whole_pow(tips_pow, tips[i], be_over_n) : 0.0f;
       flow[i] = qm + ql - upkeep;
     }
   }
@@ -376,7 +386,10 @@ struct so_state {
     // Priority model: each axis, from its base, ranks its lateral branches and buds and its
     // terminal bud by Q. An axis starts at a root or a lateral child; parents precede children,
     // so an axis' resource is known when its base comes up.
-    struct cand { float q; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(2i+k)−1
+    // Seed 000 sorts an axis' nodes by the *average* environmental input of the buds each supports,
+    // then weights eq. 1 by its summed Q; priority_rank = summed sorts by the summed Q instead.
+    struct cand { float q; float rank; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(2i+k)−1
+    const bool by_average = p.priority_rank == so_priority_rank::average;
     std::vector<cand> c;
     std::vector<float> qs, vs;
     const bool terminal_first = step <= p.terminal_priority_steps;
@@ -388,18 +401,22 @@ struct so_state {
       int32_t j = int32_t(b);
       bool has_terminal = false;
       for (;;) {
-        if (lat[j] >= 0) c.push_back({std::max(flow[lat[j]], 0.0f), lat[j]});
-        else if (lat[j] == bud_here) c.push_back({q[2 * j + 1], -(2 * j + 1) - 1});
+        if (lat[j] >= 0) {
+          const float sum = std::max(flow[lat[j]], 0.0f);
+          c.push_back({sum, by_average ? sum / float(std::max(buds[lat[j]], 1)) : sum, lat[j]});
+        } else if (lat[j] == bud_here) {
+          c.push_back({q[2 * j + 1], q[2 * j + 1], -(2 * j + 1) - 1});
+        }
         if (main[j] >= 0) { j = main[j]; continue; }
         if (main[j] == bud_here) {
-          c.push_back({q[2 * j], -(2 * j) - 1});
+          c.push_back({q[2 * j], q[2 * j], -(2 * j) - 1});
           has_terminal = true;
         }
         break;
       }
       if (has_terminal && terminal_first) std::rotate(c.begin(), c.end() - 1, c.end());
       std::stable_sort(c.begin() + (has_terminal && terminal_first ? 1 : 0), c.end(),
-                       [](const cand& x, const cand& y) { return x.q > y.q; });
+                       [](const cand& x, const cand& y) { return x.rank > y.rank; });
       qs.resize(c.size());
       for (size_t k = 0; k < c.size(); ++k) qs[k] = c[k].q;
       allocate_priority(flow[b], qs, p.w_max, p.w_min, p.kappa, vs);

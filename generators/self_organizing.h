@@ -16,6 +16,15 @@ enum class so_phyllotaxis : int { spiral = 0, planar = 1 };
 inline constexpr const char* so_phyllotaxis_names[] = {"spiral", "planar", nullptr};
 enum class so_placement : int { grid = 0, random = 1, explicit_positions = 2 };
 inline constexpr const char* so_placement_names[] = {"grid", "random", "explicit", nullptr};
+// Priority model: how an axis ranks its buds and lateral branches (seed 000 sorts by the average).
+enum class so_priority_rank : int { average = 0, summed = 1 };
+inline constexpr const char* so_priority_rank_names[] = {"average", "summed", nullptr};
+// How a node's light enters the flow: each live bud counts it, or the node counts it once (seed 001).
+enum class so_light_count : int { per_bud = 0, per_node = 1 };
+inline constexpr const char* so_light_count_names[] = {"per_bud", "per_node", nullptr};
+// Upkeep normalisation: BM·(r/r₀)^BE, or seed 001's printed BM·r^BE/r₀ (r in metres).
+enum class so_upkeep_form : int { relative = 0, seed001 = 1 };
+inline constexpr const char* so_upkeep_form_names[] = {"relative", "seed001", nullptr};
 
 struct self_organizing_params {
   int steps = 27;                     // about 20,000 internodes with the defaults
@@ -39,11 +48,14 @@ struct self_organizing_params {
   float sigma = 0.5f;
   float bm = 0.02f, be = 1.3f;
   int shed_min_buds = 20;             // N_min; 0 disables shedding
+  so_light_count light_count = so_light_count::per_bud;
+  so_upkeep_form upkeep_form = so_upkeep_form::relative;
   // Allocation.
   so_allocation allocation = so_allocation::borchert_honda;
   float alpha = 2, lambda = 0.55f;
   float w_max = 1.0f, w_min = 0.006f, kappa = 0.5f;
   int terminal_priority_steps = 8;
+  so_priority_rank priority_rank = so_priority_rank::average;
   // Shoots.
   float w_default = 1.0f, w_optimal = 0.5f, w_tropism = 0.3f;  // seed 000 fig. 6
   glm::vec3 tropism{0, 1, 0};
@@ -82,6 +94,8 @@ void visit_params(P& p, V&& v) {
   v(p.bm, param_info{"bm", "Maintenance", "BM", 0, 2, "Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): BM·(r/r₀)^BE is subtracted as Q flows down"});
   v(p.be, param_info{"be", "Maintenance exponent", "BE", 0.1f, 4, "Exponent of the branch maintenance cost"});
   v(p.shed_min_buds, param_info{"shed_min_buds", "Shedding threshold", "N_min", 0, 1000, "A branch with negative flow supporting fewer buds than this is shed (0: never)"});
+  v(p.light_count, param_info{"light_count", "Light counted", "", 0, 1, "per_bud: each live bud of a node counts the node's light; per_node: seed 001 counts it once for a node with either bud (split between its buds)", 0, nullptr, so_light_count_names});
+  v(p.upkeep_form, param_info{"upkeep_form", "Upkeep form", "", 0, 1, "relative: BM·(r/r₀)^BE; seed001: the seed's printed BM·r^BE/r₀ with r in metres (= r₀^(BE−1)·relative)", 0, nullptr, so_upkeep_form_names});
   v(p.allocation, param_info{"allocation", "Allocation model", "", 0, 1, "borchert_honda: split at each branch point; priority: sort the buds of each axis (Palubicki 2009 §5)", 0, "Allocation", so_allocation_names});
   v(p.alpha, param_info{"alpha", "Resource factor", "α", 0, 20, "v_base = α·Q_base"});
   v(p.lambda, param_info{"lambda", "Apical bias", "λ", 0, 1, "Borchert–Honda: share of resource sent to the main axis"});
@@ -89,6 +103,7 @@ void visit_params(P& p, V&& v) {
   v(p.w_min, param_info{"w_min", "Low priority weight", "w_min", 0, 2, "Priority model: weight of the buds ranked at or after κN"});
   v(p.kappa, param_info{"kappa", "Priority span", "κ", 0.01f, 1, "Priority model: share of an axis' buds with linearly falling weights"});
   v(p.terminal_priority_steps, param_info{"terminal_priority_steps", "Terminal priority until", "", 0, 200, "Priority model: up to this step the terminal bud ranks first regardless of its light"});
+  v(p.priority_rank, param_info{"priority_rank", "Rank buds by", "", 0, 1, "Priority model: average: rank by the average light of the buds each candidate supports (seed 000); summed: by its total flow, which favours big lateral branches", 0, nullptr, so_priority_rank_names});
   v(p.w_default, param_info{"w_default", "Default weight", "ξ", 0, 4, "Weight of the default direction (previous internode or lateral bud)", 0, "Shoots"});
   v(p.w_optimal, param_info{"w_optimal", "Optimal weight", "ζ", 0, 4, "Weight of the optimal direction (least shadow / towards markers)"});
   v(p.w_tropism, param_info{"w_tropism", "Tropism weight", "η", 0, 4, "Weight of the tropism vector (seed 001's τ)"});

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include <glm/vec3.hpp>
 
 namespace sylva {
+
+struct wood_history;  // generators/wood.h
 
 inline constexpr uint16_t never_died = std::numeric_limits<uint16_t>::max();
 
@@ -40,6 +43,9 @@ struct tree_skeleton {               // node i is the tip of the internode from 
   float pipe_tip_radius = 0;
   int steps = 0;                     // number of growth steps taken
   int tree_count = 1;                // forests: roots are the nodes with parent -1, one per tree
+  // Set by the wood pass: what positions_at_step (generators/wood.h) replays to show the bend of
+  // an earlier step; null when the tree was not bent.
+  std::shared_ptr<const wood_history> wood;
 
   size_t size() const { return position.size(); }
   bool alive(size_t i, int step) const { return born[i] <= step && step < died[i]; }

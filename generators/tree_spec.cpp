@@ -57,6 +57,9 @@ tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* re
         "the axiom and productions drew no internode"};
     report->message = std::string("nothing grew beyond the seedling: ") + why[spec.params.index()];
   }
+  // The shared passes (DESIGN §3): the generator's radii are final, the foliage is placed later by
+  // the mesher on the bent skeleton. A cancelled growth is not bent: it is thrown away.
+  if (!(report && (report->cancelled || report->error)) && !opt.cancelled()) apply_wood(t, spec.wood, report);
   return t;
 }
 

@@ -8,6 +8,7 @@
 #include "generators/lsystem.h"
 #include "generators/self_organizing.h"
 #include "generators/space_colonization.h"
+#include "generators/wood.h"
 
 namespace sylva {
 
@@ -26,6 +27,7 @@ inline constexpr int generator_count = 4;
 struct tree_spec {
   generator_params params = lsystem_params{};
   uint64_t seed = 1;
+  wood_params wood;   // the wood pass every generator's skeleton goes through (generators/wood.h)
   bool operator==(const tree_spec&) const = default;
 };
 

@@ -1,5 +1,6 @@
 // Exporters: glTF 2.0 (.glb / .gltf + .bin + PNGs), OBJ + MTL + PNGs, and the skeleton JSON.
 #include "render/export.h"
+#include "render/export_wind.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -43,6 +44,7 @@ struct geometry {
   std::vector<glm::vec4> tangent;  // +u direction, w = handedness (written when a normal map is)
   std::vector<glm::vec3> color;    // crown occlusion as a grey vertex colour (COLOR_0), when the mesh has it
   std::vector<uint32_t> index;
+  std::vector<uint32_t> node;      // skeleton node per vertex (the wind skin's weights)
   bool empty() const { return index.empty(); }
 };
 
@@ -81,6 +83,7 @@ void bake_leaf(geometry& g, const leaf_instance& l) {
     g.uv.push_back(uv[k]);
     g.tangent.push_back(t);
     g.color.push_back(glm::vec3(float(l.occlusion) / 255.0f));
+    g.node.push_back(l.node);
   }
   for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
 }
@@ -146,6 +149,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       tan = len > 1e-12f ? tan / len : glm::vec3(1, 0, 0);
       g.tangent.push_back(glm::vec4(tan, 1.0f));
       if (m.occlusion.size() == nv) g.color.push_back(glm::vec3(m.occlusion[v]));
+      g.node.push_back(node);
     }
     g.index.push_back(local[v]);
   }
@@ -228,6 +232,7 @@ constexpr int array_buffer = 34962, element_array_buffer = 34963;
 struct gltf_doc {
   json j = json::object();
   std::string bin;
+  const wind_bake* wind = nullptr;   // set: primitives get JOINTS_0 / WEIGHTS_0 of its skin
 
   int add_view(const void* data, size_t bytes, int target) {
     while (bin.size() % 4) bin.push_back('\0');  // accessors need aligned offsets
@@ -273,6 +278,7 @@ struct gltf_doc {
     if (tangents && !g.tangent.empty()) attr["TANGENT"] = add_vectors(g.tangent, "VEC4", array_buffer);
     // Crown occlusion (issue 13), so the tree's inside is darker in other tools too.
     if (g.color.size() == g.position.size()) attr["COLOR_0"] = add_vectors(g.color, "VEC3", array_buffer);
+    if (wind && g.node.size() == g.position.size()) attr.update(wind_skin_attributes(j, bin, *wind, g.node));
     const int idx = add_indices(g.index, g.position.size());
     return {{"attributes", attr}, {"indices", idx}, {"material", material}};
   }
@@ -427,7 +433,7 @@ class material_source {
     material_pngs m;
     if (user_leaf_) {
       m.color = png_of(leaf_);
-    } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, o_.leaf_color, error)) {
+    } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, season_color(slot), error)) {
       m = *p;
     }
     if (!error.empty()) return nullptr;
@@ -438,6 +444,12 @@ class material_source {
   std::string error;  // a PNG that could not be encoded
 
  private:
+  // A deciduous archetype's material is tinted with the middle of the season's per-leaf range.
+  glm::vec3 season_color(int slot) const {
+    const season_look& s = o_.season;
+    if (slot < 32 && (s.deciduous_mask >> slot) & 1u) return 0.5f * (s.deciduous_color_a + s.deciduous_color_b);
+    return o_.leaf_color;
+  }
   void warn(const std::string& line) { warning_ += (warning_.empty() ? "" : "\n") + line; }
   bool load(const std::string& what, const std::string& path, const std::string& fallback, user_image& out) {
     if (path.empty()) return false;
@@ -546,7 +558,7 @@ struct gltf_materials {
 // primitive per leaf material). Returns the node ids to put under the parent; counts triangles.
 // "" or the error.
 std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v, int step, bool instanced,
-                           const std::string& prefix, size_t& triangles, std::vector<int>& out) {
+                           const std::string& prefix, size_t& triangles, std::vector<int>& out, int skin = -1) {
   const bool one = mats.src.one_leaf_material();
   std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one);
   for (size_t k = 0; k < parts.size(); ++k) {
@@ -570,6 +582,14 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
       triangles += g.index.size() / 3;
     }
     if (!prims.empty()) children.push_back(d.add_node({{"name", "leaves"}, {"mesh", d.add_mesh("leaves", std::move(prims))}}));
+    if (skin >= 0) {   // skinned meshes must be scene roots without transforms (glTF 2.0 §3.7.3)
+      for (const json& c : children) {
+        d.j["nodes"][c.get<size_t>()]["skin"] = skin;
+        d.j["nodes"][c.get<size_t>()]["name"] = prefix + d.j["nodes"][c.get<size_t>()]["name"].get<std::string>();
+        out.push_back(c.get<int>());
+      }
+      continue;
+    }
     if (!children.empty()) tree["children"] = children;
     out.push_back(d.add_node(tree));
   }
@@ -625,6 +645,71 @@ std::string glb_container(std::string js, std::string& b) {
   return out;
 }
 
+// --lods (issue 17): one root node per level, LOD0 carrying MSFT_lod with the lower levels' ids and
+// MSFT_screencoverage in its extras; the impostor a textured quad after them. Scene 0 shows LOD0
+// (the levels hang off it through the extension), scene 1 lists every level as its own root, so a
+// viewer without the extension still finds each one. "" or the error.
+std::string add_lod_nodes(gltf_doc& d, gltf_materials& mats, const tree_skeleton& t, const tree_mesh& m,
+                          const export_options& o, size_t& triangles, std::vector<int>& roots, std::vector<int>& all) {
+  const int last = std::max(t.steps, 0);
+  std::vector<const tree_mesh*> levels{&m};
+  std::vector<float> coverage{o.lod0_coverage};
+  for (const export_lod_level& l : o.lods)
+    if (l.mesh) levels.push_back(l.mesh), coverage.push_back(l.coverage);
+  std::vector<int> ids;
+  for (size_t k = 0; k < levels.size(); ++k) {
+    step_view v;
+    v.skeleton = &t;
+    v.mesh = levels[k];
+    std::vector<int> kids;
+    size_t tris = 0;
+    const std::string name = "LOD" + std::to_string(k);
+    if (std::string e = add_tree_nodes(d, mats, v, last, false, name + "_", tris, kids); !e.empty()) return e;
+    json node = {{"name", name}, {"extras", {{"sylva_lod", k}, {"triangles", tris}}}};
+    if (k > 0 && k - 1 < o.lods.size()) node["extras"]["budget_triangles"] = o.lods[k - 1].budget;
+    if (!kids.empty()) node["children"] = kids;
+    ids.push_back(d.add_node(node));
+    triangles += k == 0 ? tris : 0;   // the export's count is LOD0's; the levels are in extras
+  }
+  if (o.impostor && !o.impostor->color_png.empty()) {
+    const export_impostor& im = *o.impostor;
+    // Cell 0 (view from +Z) on a quad facing +Z, centred on the tree; the whole atlas is the texture
+    // so an engine can pick the cell for the view direction (extras: the layout).
+    geometry q;
+    const float hw = 0.5f * im.width, hh = 0.5f * im.height;
+    const float cu = 1.0f / float(std::max(im.columns, 1)), cv = 1.0f / float(std::max(im.rows, 1));
+    const glm::vec3 c = im.centre;
+    q.position = {c + glm::vec3(-hw, -hh, 0), c + glm::vec3(hw, -hh, 0), c + glm::vec3(hw, hh, 0), c + glm::vec3(-hw, hh, 0)};
+    q.normal.assign(4, glm::vec3(0, 0, 1));
+    q.uv = {{0, cv}, {cu, cv}, {cu, 0}, {0, 0}};   // glTF uv origin: the image's top-left corner
+    q.tangent.assign(4, glm::vec4(1, 0, 0, 1));
+    q.index = {0, 1, 2, 0, 2, 3};
+    json pbr = {{"baseColorTexture", {{"index", mats.texture(im.color_png, false, "impostor")}}},
+                {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}};
+    json mat = {{"name", "impostor"}, {"pbrMetallicRoughness", pbr}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.5}, {"doubleSided", true}};
+    const bool normals = !im.normal_png.empty();
+    if (normals) mat["normalTexture"] = {{"index", mats.texture(im.normal_png, false, "impostor_normal")}};
+    const int mesh = d.add_mesh("impostor", json::array({d.add_primitive(q, mats.add_material(mat), normals)}));
+    json layout = {{"views", im.views}, {"columns", im.columns}, {"rows", im.rows}, {"cell_width_m", im.width},
+                   {"cell_height_m", im.height}, {"first_view", "+Z"}, {"turn", "view k at 360*k/views degrees from +Z toward +X"}};
+    ids.push_back(d.add_node({{"name", "impostor"}, {"mesh", mesh}, {"extras", {{"sylva_impostor", layout}}}}));
+    coverage.push_back(im.coverage);
+  }
+  if (ids.size() > 1) {
+    json lower = json::array();
+    for (size_t k = 1; k < ids.size(); ++k) lower.push_back(ids[k]);
+    json& lod0 = d.j["nodes"][size_t(ids[0])];
+    lod0["extensions"] = {{"MSFT_lod", {{"ids", lower}}}};
+    lod0["extras"]["MSFT_screencoverage"] = coverage;
+    json& used = d.j["extensionsUsed"];
+    if (!used.is_array()) used = json::array();
+    used.push_back("MSFT_lod");
+  }
+  roots.push_back(ids[0]);
+  all = ids;
+  return "";
+}
+
 export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
                           const export_options& o, bool binary) {
   export_result r;
@@ -640,11 +725,27 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
 
   const int final_step = std::max(t.steps, 0);
   std::vector<int> roots;
-  if (!o.growth_animation) {
+  std::vector<int> lod_roots;
+  if (!o.lods.empty() || o.impostor) {
+    if (r.error = add_lod_nodes(d, mats, t, m, o, r.triangles, roots, lod_roots); !r.error.empty()) return r;
+  } else if (!o.growth_animation) {
     const int s = o.step < 0 ? final_step : std::min(o.step, final_step);
     step_view v;
     view_at(v, t, m, o.mesh, s);
-    if (r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "", r.triangles, roots); !r.error.empty()) return r;
+    wind_bake wind;
+    int skin = -1;
+    json wind_channels = json::array(), wind_samplers = json::array();
+    if (o.wind_seconds > 0) {   // issue 17: the wind as a skin and a seamless loop
+      wind = bake_wind(*v.skeleton, o.wind, o.wind_seconds);
+      d.wind = &wind;
+      skin = wind_add_skin(d.j, d.bin, wind, "", roots, wind_channels, wind_samplers);
+      r.warning += (r.warning.empty() ? "" : "\n") + wind.note;
+      if (o.gltf_instancing) r.warning += "\nwind: instanced leaves cannot be skinned and stay still; export without --instancing to sway them";
+    }
+    if (r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "", r.triangles, roots, skin); !r.error.empty()) return r;
+    d.wind = nullptr;
+    if (!wind_channels.empty())
+      d.j["animations"] = json::array({{{"name", "wind"}, {"channels", wind_channels}, {"samplers", wind_samplers}}});
   } else {
     // Growth over time: one node per step, shown in turn by STEP scale keyframes.
     int count = std::clamp(std::min(o.max_animation_steps, final_step + 1), 1, final_step + 1);
@@ -662,6 +763,11 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     r.animation_steps = count;
     const float sps = std::max(o.seconds_per_step, 1e-3f);
     json channels = json::array(), samplers = json::array();
+    json wind_channels = json::array(), wind_samplers = json::array();
+    if (o.wind_seconds > 0 && o.gltf_instancing) {
+      r.error = "--wind with --animation needs baked leaves: drop --instancing";
+      return r;
+    }
     for (int j = 0; j < count; ++j) {
       if (cancelled(o)) { r.error = "export cancelled"; return r; }
       const int s = sample(j, count);
@@ -669,8 +775,25 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       view_at(v, t, m, o.mesh, s);
       json node = {{"name", "step_" + std::to_string(s)}};
       std::vector<int> kids;
-      r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles, kids);
+      // With the wind each step gets its own small skin (16 joints); the growth's scale keys then
+      // go on the step's root joint, since a skinned mesh ignores its parents' transforms.
+      wind_bake wind;
+      int skin = -1;
+      std::vector<int> joint_roots;
+      if (o.wind_seconds > 0) {
+        wind = bake_wind(*v.skeleton, o.wind, o.wind_seconds, 16);
+        d.wind = &wind;
+        skin = wind_add_skin(d.j, d.bin, wind, "step_" + std::to_string(s) + "_", joint_roots, wind_channels, wind_samplers);
+        if (j + 1 == count) r.warning += (r.warning.empty() ? "" : "\n") + wind.note;
+      }
+      r.error = add_tree_nodes(d, mats, v, s, o.gltf_instancing, "step_" + std::to_string(s) + "_", r.triangles, kids, skin);
+      d.wind = nullptr;
       if (!r.error.empty()) return r;
+      if (skin >= 0) {
+        roots.insert(roots.end(), kids.begin(), kids.end());
+        kids.clear();
+        node = d.j["nodes"][size_t(joint_roots[0])];
+      }
       if (!kids.empty()) node["children"] = kids;
       std::vector<float> times, scales;
       auto key = [&](float time, float scale) { times.push_back(time); for (int k = 0; k < 3; ++k) scales.push_back(scale); };
@@ -678,7 +801,9 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       key(float(j) * sps, 1);
       if (j + 1 < count) key(float(j + 1) * sps, 0);
       if (j + 1 < count) node["scale"] = {0.0, 0.0, 0.0};  // a still viewer shows the last step
-      const int id = d.add_node(node);
+      int id = 0;
+      if (skin >= 0) d.j["nodes"][size_t(id = joint_roots[0])] = node;
+      else id = d.add_node(node);
       roots.push_back(id);
       const int in = d.add_accessor(d.add_view(times.data(), times.size() * 4, 0), gl_float, times.size(), "SCALAR",
                                     {{"min", {times.front()}}, {"max", {times.back()}}});
@@ -688,9 +813,12 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
       if (o.progress) o.progress(0.1f + 0.8f * float(j + 1) / float(count));
     }
     if (count > 1) d.j["animations"] = json::array({{{"name", "growth"}, {"channels", channels}, {"samplers", samplers}}});
+    if (!wind_channels.empty())
+      d.j["animations"].push_back({{"name", "wind"}, {"channels", wind_channels}, {"samplers", wind_samplers}});
   }
   if (cancelled(o)) { r.error = "export cancelled"; return r; }
   d.j["scenes"] = json::array({{{"name", "sylva"}, {"nodes", roots}}});
+  if (lod_roots.size() > 1) d.j["scenes"].push_back({{"name", "sylva_all_lods"}, {"nodes", lod_roots}});
   d.j["scene"] = 0;
   std::vector<std::pair<std::string, std::string>> files;
   if (binary) {
@@ -717,17 +845,21 @@ void put_float(std::string& s, float v) {
   s.append(buf, res.ptr);
 }
 
+// `collect` (--lods): the files are appended there, not written, for one all-or-nothing write of
+// every level; `png_stem` then names the PNGs (shared by the levels), and `m` is used as is.
 export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
-                         const export_options& o) {
+                         const export_options& o, std::vector<std::pair<std::string, std::string>>* collect = nullptr,
+                         const std::string& png_stem = "") {
   export_result r;
-  const std::string stem = stem_path(path), stem_name = file_name(stem);
-  const int s = o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
+  const std::string stem = stem_path(path), stem_name = png_stem.empty() ? file_name(stem) : png_stem;
+  const int s = collect ? std::max(t.steps, 0) : o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
   material_source src(o, r.warning);
   step_view v;
-  view_at(v, t, m, o.mesh, s);
+  if (collect) v.skeleton = &t, v.mesh = &m;
+  else view_at(v, t, m, o.mesh, s);
   std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material());
   std::string text = "# Sylva tree: generator " + info.generator + ", seed " + std::to_string(info.seed) +
-                     ", step " + std::to_string(s) + "\nmtllib " + stem_name + ".mtl\n";
+                     ", step " + std::to_string(s) + "\nmtllib " + file_name(stem) + ".mtl\n";
   size_t verts = 0;
   for (const tree_part& p : parts) {
     verts += p.bark.position.size();
@@ -818,6 +950,12 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   files.emplace_back(stem + ".mtl", std::move(mtl));
   files.emplace_back(path, std::move(text));
   r.bytes = files.back().second.size();
+  if (collect) {
+    for (auto& f : files)
+      if (std::none_of(collect->begin(), collect->end(), [&](const auto& c) { return c.first == f.first; }))
+        collect->push_back(std::move(f));
+    return r;
+  }
   if (o.dry_run) return r;
   r.error = write_all(files, r);
   return r;
@@ -853,11 +991,13 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
 void apply_render_params(export_options& o, const render_params& rp) {
   o.bark = rp.bark;
   o.bark_color = rp.bark_color;
-  o.leaf_color = rp.leaf_color;
+  o.season = season_leaf_look(rp);
+  o.leaf_color = o.season.evergreen_color;
   o.alpha_cutoff = rp.alpha_cutoff;
   o.bark_texture = rp.bark_texture;
   o.leaf_texture = rp.leaf_texture;
   o.leaf_opacity = rp.leaf_opacity;
+  o.wind = rp.wind;
 }
 
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
@@ -865,7 +1005,29 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   export_result r;
+  if ((ext == ".glb" || ext == ".gltf" || ext == ".obj") && season_changes_leaves(o.season)) {
+    const tree_mesh seasonal = apply_season(m, o.season);   // fallen leaves out, spring's smaller
+    if (ext == ".obj") return export_obj(t, seasonal, info, path, o);
+    return export_gltf(t, seasonal, info, path, o, ext == ".glb");
+  }
   if (ext == ".glb" || ext == ".gltf") return export_gltf(t, m, info, path, o, ext == ".glb");
+  if (ext == ".obj" && !o.lods.empty()) {
+    // One OBJ (and MTL) per level, PNGs shared: tree.obj is LOD0, tree_lod1.obj ... All or nothing.
+    const std::string stem = stem_path(path), ext_text = std::filesystem::path(path).extension().string();
+    std::vector<std::pair<std::string, std::string>> files;
+    r = export_obj(t, m, info, path, o, &files, file_name(stem));
+    for (size_t k = 0; k < o.lods.size() && r.error.empty(); ++k) {
+      if (!o.lods[k].mesh) continue;
+      const export_result l = export_obj(t, *o.lods[k].mesh, info, stem + "_lod" + std::to_string(k + 1) + ext_text, o,
+                                         &files, file_name(stem));
+      if (!l.error.empty()) r.error = l.error;
+    }
+    if (!r.error.empty() || o.dry_run) return r;
+    // The main OBJ last: write_all commits the last file last.
+    std::stable_partition(files.begin(), files.end(), [&](const auto& f) { return f.first != path; });
+    r.error = write_all(files, r);
+    return r;
+  }
   if (ext == ".obj") return export_obj(t, m, info, path, o);
   if (ext == ".json") {
     const std::string text = skeleton_json(t, info, o.step);

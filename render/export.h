@@ -4,6 +4,7 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -11,8 +12,25 @@
 #include "generators/tree_spec.h"
 #include "render/mesh.h"
 #include "render/render_params.h"
+#include "render/season.h"
 
 namespace sylva {
+
+// Level of detail (issue 17, render/lod.h): the lower levels written beside the main mesh (LOD0).
+struct export_lod_level {
+  const tree_mesh* mesh = nullptr;   // node ids of the exported skeleton, final tree
+  float coverage = 0;                // screen coverage down to which this level is shown
+  size_t budget = 0;                 // its triangle budget, recorded in extras
+};
+// The impostor: a billboard atlas of `views` views around the trunk, `columns` x `rows` cells, view
+// k at azimuth 360 k / views degrees from +Z toward +X; colour with alpha, and normals.
+struct export_impostor {
+  std::string color_png, normal_png;
+  int views = 8, columns = 4, rows = 2;
+  float width = 1, height = 1;       // metres one cell spans
+  glm::vec3 centre{0};               // world point at the centre of every cell
+  float coverage = 0;                // shown below this screen coverage
+};
 
 struct export_options {
   int step = -1;                        // export the tree as it stood at this step (-1: final)
@@ -33,11 +51,21 @@ struct export_options {
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
   float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
+  // The season (render/season.h): deciduous archetypes' materials take the middle of its colour
+  // range, and its fallen leaves are left out. The default changes nothing (leaf_color is used).
+  season_look season;
   // The user's PNGs instead of the procedural textures ("" = procedural). A user leaf texture
   // replaces every archetype's colour (one leaf material); leaf_opacity (same size, grey: white is
   // leaf) becomes its alpha. A missing, corrupt or huge file is a warning and the export falls back
   // to the procedural texture.
   std::string bark_texture, bark_normal_texture, leaf_texture, leaf_opacity;
+  // --lods: LOD1.. written with the main mesh as LOD0 (glTF: MSFT_lod; OBJ: one file per level).
+  std::vector<export_lod_level> lods;
+  float lod0_coverage = 0;
+  const export_impostor* impostor = nullptr;   // glTF only: a textured quad node after the levels
+  // glTF: > 0 bakes the wind (render/export_wind.h) as a skin and a loop of this many seconds.
+  float wind_seconds = 0;
+  wind_params wind;                     // from the preset's render section (apply_render_params)
 };
 
 // The material settings of a preset's render params: bark archetype, tints, alpha cutoff and the

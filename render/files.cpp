@@ -18,6 +18,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generators/lsystem_engine.h"
+
 namespace sylva {
 namespace {
 
@@ -383,9 +385,11 @@ load_result load_preset_doc(json& doc, preset& out) {
   if (!e.empty()) return fail(e);
   if (e = params_from_json(section("mesh"), "mesh", p.mesh, r.warnings); !e.empty()) return fail(e);
   if (e = params_from_json(section("render"), "render", p.render, r.warnings); !e.empty()) return fail(e);
+  // A preset without a "wood" section (every preset before issue 12) loads with the pass off.
+  if (e = params_from_json(section("wood"), "wood", p.spec.wood, r.warnings); !e.empty()) return fail(e);
 
   static const std::set<std::string> top = {"sylva_preset", "name", "description", "tags", "generator",
-                                            "seed",         "params", "mesh",      "render"};
+                                            "seed",         "params", "mesh",      "render", "wood"};
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (!top.count(it.key())) r.warnings.push_back(it.key() + ": unknown key, ignored");
 
@@ -477,12 +481,12 @@ std::string text_to_value(std::string_view s, T& out, const param_info& info) {
   return check_value_limits(out);
 }
 
-// Calls f(value, info) on the parameter `key` (optionally "params.", "mesh." or "render."
+// Calls f(value, info) on the parameter `key` (optionally "params.", "mesh.", "render." or "wood."
 // qualified). Returns "" or why no single parameter matched.
 template <class F>
 std::string with_param(preset& p, std::string_view key, F&& f) {
   std::string_view only;
-  for (std::string_view s : {"params", "mesh", "render"})
+  for (std::string_view s : {"params", "mesh", "render", "wood"})
     if (key.size() > s.size() && key.substr(0, s.size()) == s && key[s.size()] == '.') {
       only = s;
       key.remove_prefix(s.size() + 1);
@@ -500,6 +504,7 @@ std::string with_param(preset& p, std::string_view key, F&& f) {
   std::visit([&](auto& gp) { look("params", gp); }, p.spec.params);
   look("mesh", p.mesh);
   look("render", p.render);
+  look("wood", p.spec.wood);
   if (hits.empty())
     return "unknown parameter \"" + std::string(key) + "\" for generator " + generator_name(p.spec) +
            " (see `sylva params`)";
@@ -577,6 +582,7 @@ std::string save_preset_json(const preset& p) {
   doc["params"] = std::visit([](const auto& gp) { return params_to_json(gp); }, p.spec.params);
   doc["mesh"] = params_to_json(p.mesh);
   doc["render"] = params_to_json(p.render);
+  doc["wood"] = params_to_json(p.spec.wood);
   return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
@@ -604,11 +610,46 @@ bool valid_utf8(std::string_view s) {
   return true;
 }
 
+namespace {
+constexpr std::string_view define_prefix = "define.";
+bool is_define_key(std::string_view key) {
+  return key.size() > define_prefix.size() && key.substr(0, define_prefix.size()) == define_prefix;
+}
+
+// --set define.NAME=value: rewrites `#define NAME ...` in a text-mode L-system's source. The value
+// must lie in the constant's [min,max] (its comment, or the editor's default range around it).
+std::string set_preset_define(preset& p, std::string_view key, std::string_view text) {
+  auto* lp = std::get_if<lsystem_params>(&p.spec.params);
+  if (!lp || lp->mode != lsystem_mode::text)
+    return std::string(key) + ": define.NAME reaches the #define constants of a text-mode L-system; this preset has none";
+  const std::string name(key.substr(define_prefix.size()));
+  const std::vector<lsystem_constant> ks = lsystem_constants(lp->source);
+  const lsystem_constant* k = nullptr;
+  std::string names;
+  for (const lsystem_constant& c : ks) {
+    if (c.name == name) k = &c;
+    names += (names.empty() ? "" : ", ") + c.name;
+  }
+  if (!k) return std::string(key) + ": the L-system has no #define " + quote_text(name) +
+                (names.empty() ? " (it defines no constants)" : " (it defines " + names + ")");
+  float v;
+  if (!parse_float_text(text, v) || !std::isfinite(v)) return std::string(key) + ": " + quote_text(text) + " is not a number";
+  if (v < k->min || v > k->max) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " is outside [%g, %g]", double(k->min), double(k->max));
+    return std::string(key) + ": " + quote_text(text) + buf;
+  }
+  if (!set_lsystem_constant(lp->source, name, v)) return std::string(key) + ": could not rewrite #define " + name;
+  return "";
+}
+}  // namespace
+
 std::string set_preset_param(preset& p, std::string_view assignment) {
   const size_t eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0)
     return "--set expects key=value, got \"" + std::string(assignment) + "\"";
   const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  if (is_define_key(key)) return set_preset_define(p, key, text);
   std::string error;
   std::string found = with_param(p, key, [&](auto& value, const param_info& info) {
     auto v = value;
@@ -628,8 +669,8 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
   const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   const auto parts = split(text, ':');
   preset copy = p;
-  bool numeric = false, integral = false;
-  std::string found = with_param(copy, key, [&](auto& value, const param_info&) {
+  bool numeric = is_define_key(key), integral = false;
+  std::string found = numeric ? std::string() : with_param(copy, key, [&](auto& value, const param_info&) {
     using T = std::decay_t<decltype(value)>;
     numeric = std::is_same_v<T, float> || std::is_same_v<T, int>;
     integral = std::is_same_v<T, int>;

@@ -1,6 +1,8 @@
 // Skeleton -> generalized-cylinder bark (one ring per node) and leaf instances, sorted by birth step.
 #include "render/mesh.h"
 
+#include "generators/wood.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -305,10 +307,11 @@ tree_skeleton skeleton_at_step(const tree_skeleton& t, int step) {
   size_t count = 0;
   const std::vector<int32_t> remap = alive_remap(t, step, count);
   const std::vector<float> r = radii_at_step(t, step);
+  const std::vector<glm::vec3> x = positions_at_step(t, step);   // the bend of that step (wood.h)
   out.reserve(count);
   for (size_t i = 0; i < t.size(); ++i) {
     if (remap[i] < 0) continue;
-    out.add_node(t.position[i], t.parent[i] < 0 ? -1 : remap[t.parent[i]], r[i], t.born[i], t.order[i]);
+    out.add_node(x[i], t.parent[i] < 0 ? -1 : remap[t.parent[i]], r[i], t.born[i], t.order[i]);
     out.died.back() = t.died[i];
   }
   for (const leaf& l : t.leaves) {
@@ -316,6 +319,7 @@ tree_skeleton skeleton_at_step(const tree_skeleton& t, int step) {
     if (!(l.born <= step && step < l.died)) continue;
     leaf c = l;
     c.node = remap[l.node];
+    c.position += x[size_t(l.node)] - t.position[size_t(l.node)];
     out.leaves.push_back(c);
   }
   out.pipe_exponent = t.pipe_exponent;
@@ -336,9 +340,12 @@ tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const
   tree_mesh m = mesh_tree(s, bark_only);
   size_t count = 0;
   const std::vector<int32_t> remap = alive_remap(t, step, count);
+  // Leaves were placed on the final bend: they follow their node to its place at `step`.
+  const std::vector<glm::vec3> x = t.wood ? positions_at_step(t, step) : std::vector<glm::vec3>();
   for (const leaf_instance& l : full.leaves) {  // already sorted by born, so the filter stays sorted
     if (!(l.born <= step && step < l.died) || l.node >= remap.size() || remap[l.node] < 0) continue;
     leaf_instance c = l;
+    if (!x.empty()) c.position += x[l.node] - t.position[l.node];
     c.node = uint32_t(remap[l.node]);
     m.leaves.push_back(c);
     ++m.leaf_end[std::min<int>(l.born, step)];

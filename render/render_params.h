@@ -8,6 +8,8 @@
 
 #include "generators/archetypes.h"
 #include "generators/params.h"
+#include "render/lod_params.h"
+#include "render/wind.h"
 
 namespace sylva {
 
@@ -19,6 +21,15 @@ inline constexpr const char* shadow_filter_names[] = {"3x3", "5x5", "poisson", n
 // map (light in the air wherever the sun is).
 enum class light_shafts : int { off = 0, radial = 1, volumetric = 2 };
 inline constexpr const char* light_shafts_names[] = {"off", "radial", "volumetric", nullptr};
+
+// The season of the leaves (issue 12; render/season.h turns it into colours, sizes and bare twigs).
+// It never regrows: only the leaves' look and which of them are drawn or exported change.
+enum class leaf_season : int { spring = 0, summer = 1, autumn = 2, winter = 3 };
+inline constexpr const char* leaf_season_names[] = {"spring", "summer", "autumn", "winter", nullptr};
+// Which leaves fall in autumn: by archetype (needles, sprays and palm fronds stay; blades fall), or
+// every leaf of the preset (a larch's needles fall; a holly's blades stay).
+enum class leaf_habit : int { by_archetype = 0, deciduous = 1, evergreen = 2 };
+inline constexpr const char* leaf_habit_names[] = {"by_archetype", "deciduous", "evergreen", nullptr};
 
 struct render_params {
   // The first view: a low sun behind the tree, 15° to the side of the default camera's line of sight
@@ -45,6 +56,11 @@ struct render_params {
   float leaf_translucency = 0.6f;
   float alpha_cutoff = 0.5f;
   float leaf_color_variation = 0.15f;
+  // Season (render/season.h): the autumn colour runs from autumn_color to autumn_color_2 per leaf.
+  leaf_season season = leaf_season::summer;
+  leaf_habit habit = leaf_habit::by_archetype;
+  glm::vec3 autumn_color{0.62f, 0.36f, 0.04f};
+  glm::vec3 autumn_color_2{0.55f, 0.12f, 0.03f};
   // Sun shadow map (DESIGN §8 pass 1).
   bool shadows = true;
   int shadow_resolution = 2048;
@@ -70,6 +86,8 @@ struct render_params {
   std::string bark_texture;
   std::string leaf_texture;
   std::string leaf_opacity;
+  lod_params lod;                 // level of detail (render/lod.h): budgets, viewport choice, impostor
+  wind_params wind;   // issue 17: sway in the viewport, baked by `sylva export --wind` (render/wind.h)
   bool operator==(const render_params&) const = default;
 };
 
@@ -95,6 +113,10 @@ void visit_params(P& p, V&& v) {
   v(p.leaf_translucency, param_info{"leaf_translucency", "Leaf translucency", "", 0, 1, "Share of sunlight that glows through a leaf lit from behind"});
   v(p.alpha_cutoff, param_info{"alpha_cutoff", "Leaf alpha cutoff", "", 0.05f, 0.95f, "Leaf texels below this opacity are cut away"});
   v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Random per-leaf variation of the tint"});
+  v(p.season, param_info{"season", "Season", "", 0, 3, "Spring: fresh light green, smaller leaves still unfolding; summer: the leaf colour; autumn: the autumn colours, some leaves fallen; winter: deciduous trees bare (conifers and palms keep theirs). Only the leaves change: no regrow", 0, "Season", leaf_season_names});
+  v(p.habit, param_info{"leaf_habit", "Leaf habit", "", 0, 2, "Which leaves turn and fall: by archetype (needles, conifer sprays and palm fronds stay, blades fall), all (deciduous) or none (evergreen)", 0, nullptr, leaf_habit_names});
+  v(p.autumn_color, param_info{"autumn_color", "Autumn colour", "", 0, 1, "Autumn leaf tint at one end of the per-leaf range (linear RGB)"});
+  v(p.autumn_color_2, param_info{"autumn_color_2", "Autumn colour 2", "", 0, 1, "Autumn leaf tint at the other end of the per-leaf range (linear RGB)"});
   v(p.bark_texture, param_info{"bark_texture", "Bark texture", "", 0, 0, "Your own bark colour PNG (tiles: x around the branch, y along it); empty: procedural", param_path, "Textures"});
   v(p.leaf_texture, param_info{"leaf_texture", "Leaf texture", "", 0, 0, "Your own leaf colour PNG (petiole at the bottom edge; alpha is the outline unless an opacity map is given; it replaces every leaf archetype); empty: the procedural archetype cards", param_path});
   v(p.leaf_opacity, param_info{"leaf_opacity", "Leaf opacity", "", 0, 0, "Optional greyscale PNG, same size as the leaf texture: white is leaf, black is cut away", param_path});
@@ -115,6 +137,8 @@ void visit_params(P& p, V&& v) {
   v(p.ray_weight, param_info{"ray_weight", "Radial weight", "", 0, 5, "Radial: weight of each sample"});
   v(p.ray_decay, param_info{"ray_decay", "Radial decay", "", 0.9f, 1, "Radial: per-sample falloff of the samples' weight"});
   v(p.ray_exposure, param_info{"ray_exposure", "Radial exposure", "", 0, 0.5f, "Radial: overall strength of the rays"});
+  visit_params(p.lod, v);
+  visit_params(p.wind, v);
 }
 
 // The sun low and straight behind the tree as seen from a camera at `camera_yaw` degrees, so that
@@ -126,7 +150,10 @@ inline void place_sun_behind(render_params& p, float camera_yaw) {
 }
 
 // Sliders that do not apply to the chosen sky or shaft mode are hidden (presets still save them).
-inline bool param_relevant(const render_params& p, const void* field, const param_info&) {
+inline bool param_relevant(const render_params& p, const void* field, const param_info& info) {
+  const char* w = reinterpret_cast<const char*>(&p.wind);
+  if (static_cast<const char*>(field) >= w && static_cast<const char*>(field) < w + sizeof(wind_params))
+    return param_relevant(p.wind, field, info);
   if (field == &p.turbidity) return p.physical_sky;
   if (field == &p.sun_color || field == &p.sky_zenith || field == &p.sky_horizon) return !p.physical_sky;
   if (field == &p.shaft_samples) return p.shafts == light_shafts::volumetric;

@@ -353,6 +353,32 @@ TEST(LSystem, HondaTextPresetsGrowTheHondaPresetTrees) {
   }
 }
 
+// The turtle's handedness (lsystem_turtle.cpp): ABOP §1.5's matrices as printed, start frame
+// H = +Y, L = +X, U = −Z. A known sequence gives a known path and final frame.
+TEST(LSystem, TurtleHandednessIsPinned) {
+  const tree_skeleton t = grow_lsystem(text_params("#axiom F&(90)F/(90)+(90)FL\n", 0), {});
+  ASSERT_EQ(t.size(), 4u);
+  auto near = [](const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) < 1e-5f; };
+  EXPECT_TRUE(near(t.position[1], {0, 1, 0}));
+  EXPECT_TRUE(near(t.position[2], {0, 1, -1}));  // & = R_L(90°) pitches H onto U = −Z
+  EXPECT_TRUE(near(t.position[3], {0, 0, -1}));  // / = R_H(−90°) rolls L onto +Y; + = R_U(90°) turns H to −L
+  ASSERT_EQ(t.leaves.size(), 1u);
+  const glm::quat q = t.leaves[0].orientation;  // leaf axes: X = −L, Y = H, Z = U
+  EXPECT_TRUE(near(q * glm::vec3(0, 1, 0), {0, -1, 0}));   // H
+  EXPECT_TRUE(near(q * glm::vec3(1, 0, 0), {0, 0, 1}));    // −L, so L = (0, 0, −1)
+  EXPECT_TRUE(near(q * glm::vec3(0, 0, 1), {1, 0, 0}));    // U = H × L
+  // In the plane a viewer on +Z sees, + turns anticlockwise ("turn left") and - clockwise, so
+  // ABOP's 2D figures come out as printed.
+  EXPECT_TRUE(near(grow_lsystem(text_params("#axiom +(90)F\n", 0), {}).position[1], {-1, 0, 0}));
+  EXPECT_TRUE(near(grow_lsystem(text_params("#axiom -(90)F\n", 0), {}).position[1], {1, 0, 0}));
+  // \ and / undo each other; & and ^ too.
+  EXPECT_TRUE(near(grow_lsystem(text_params("#axiom &(30)\\(50)/(50)^(30)F\n", 0), {}).position[1], {0, 1, 0}));
+  // Honda's tree builds a daughter's frame [+(α)/(φ)...] with the same functions.
+  const glm::mat3 f = turtle_roll(turtle_turn(lsystem_start_frame(), 90), -90);
+  EXPECT_TRUE(near(f[0], {-1, 0, 0}));
+  EXPECT_TRUE(near(f[1], {0, 0, 1}));   // / = R_H(−90°) carries L = +Y to −U = +Z
+}
+
 TEST(LSystem, DollarRollsLeftVectorHorizontal) {
   // &(45) tilts H; /(30) then rolls about the tilted H, lifting L off the horizontal. $ brings it
   // back: L = V×H/|V×H| has no vertical component (ABOP §1.5). A leaf's local X axis is -L.

@@ -1,6 +1,9 @@
 // The frame renderer: programs, procedural textures, tree upload, and the passes of DESIGN §8.
 #include "render/gl/renderer.h"
 
+#include "generators/wood.h"
+#include "render/gl/wind_gl.h"
+#include "render/season.h"
 #include "render/textures.h"
 
 #include <algorithm>
@@ -59,10 +62,12 @@ layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node; layout(l
 uniform mat4 u_viewproj; uniform samplerBuffer u_radius;
 out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive; out float v_ao;
 void main() {
-  // (radius the vertex was built with, radius at the shown step or -1 when not alive)
-  vec2 r = texelFetch(u_radius, int(a_node)).xy;
-  v_alive = r.y >= 0.0 ? 1.0 : 0.0;
-  v_world = a_position + a_normal * (max(r.y, 0.0) - r.x);
+  // Per node: (where the wood pass had the node at the shown step minus where the mesh has it,
+  // radius at the shown step minus the radius the vertex was built with, or -1e30 when not alive)
+  vec4 r = texelFetch(u_radius, int(a_node));
+  v_alive = r.w > -1e29 ? 1.0 : 0.0;
+  v_world = a_position + r.xyz + a_normal * (v_alive > 0.5 ? r.w : 0.0);
+  v_world = wind_sway(v_world, int(a_node));   // render/wind.h; a no-op while the wind is off
   v_normal = a_normal; v_uv = a_uv; v_ao = a_ao;
   gl_Position = u_viewproj * vec4(v_world, 1.0);
 }
@@ -116,17 +121,36 @@ const char* leaf_vs = R"(#version 330 core
 layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
-uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers;
+layout(location = 7) in uint i_node;
+uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
+// The season (render/season.h season_look): deciduous archetypes' colour range, share kept, size.
+uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uint u_deciduous;
+uniform float u_keep; uniform float u_season_scale;
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
-flat out vec3 v_tint; flat out float v_ao;
+flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
+float leaf_random(uint i, uint salt) {   // season_leaf_random (render/season.cpp), line for line
+  uint x = i ^ (salt * 0x9e3779b9u);
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return float(x >> 8) * (1.0 / 16777216.0);
+}
 void main() {
   bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
+  bool deciduous = i_texture < 32u && ((u_deciduous >> i_texture) & 1u) != 0u;
+  float size = i_size;
+  v_color = u_leaf_color;
+  if (deciduous) {
+    alive = alive && leaf_random(uint(gl_InstanceID), 0u) < u_keep;
+    size *= u_season_scale;
+    v_color = mix(u_autumn_a, u_autumn_b, leaf_random(uint(gl_InstanceID), 1u));
+  }
   // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h).
-  vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * i_size;
-  v_world = i_position + rotate(i_rotation, local);
+  vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * size;
+  v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
+  // Wind (render/wind.h): the card follows its branch, and its tip flaps along the normal.
+  v_world = wind_flutter(wind_sway(v_world, int(i_node)), v_normal, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
   // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
@@ -141,9 +165,9 @@ void main() {
 
 const char* leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
-flat in vec3 v_tint; flat in float v_ao;
+flat in vec3 v_tint; flat in float v_ao; flat in vec3 v_color;
 uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
-uniform vec3 u_leaf_color; uniform float u_cutoff; uniform float u_translucency;
+uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
 void main() {
   vec3 uvl = vec3(v_uv, v_layer);
@@ -155,7 +179,7 @@ void main() {
   if (!gl_FrontFacing) { n = -n; n0 = -n0; }   // two-sided: light the side we see
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
   // tinted_texture's formula (render/textures.h), then the per-leaf variation.
-  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_leaf_color * t.rgb) * v_tint;
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * v_color * t.rgb) * v_tint;
   float sh = shadow_at(v_world, ndl0 >= 0.0 ? n0 : -n0);
   // Transmission: sunlight arriving on the far side glows through the blade, tinted by it, more
   // where the blade is thin (thickness map: white = thin) than through veins and stems.
@@ -858,6 +882,16 @@ uint32_t leaf_count(const renderer_state& r) {
 }
 
 // All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
+// The season's leaf colours, fallen share and size (render/season.h), for the leaf vertex shader.
+void set_season_uniforms(const gl_program& p, const season_look& s) {
+  set_uniform(p, "u_leaf_color", s.evergreen_color);
+  set_uniform(p, "u_autumn_a", s.deciduous_color_a);
+  set_uniform(p, "u_autumn_b", s.deciduous_color_b);
+  glUniform1ui(glGetUniformLocation(p.id, "u_deciduous"), s.deciduous_mask);
+  set_uniform(p, "u_keep", s.deciduous_keep);
+  set_uniform(p, "u_season_scale", s.deciduous_scale);
+}
+
 void draw_leaves(renderer_state& r) {
   uint32_t n = leaf_count(r);
   if (!n) return;
@@ -936,10 +970,11 @@ bool init_renderer(renderer_state& r) {
   const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
                     ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
                     occ_fs = sky_source(occlusion_fs_body);
-  r.bark = compile_program("bark", bark_vs, bark_fs.c_str());
-  r.bark_depth = compile_program("bark depth", bark_vs, depth_fs);
-  r.leaf = compile_program("leaf", leaf_vs, leaf_fs.c_str());
-  r.leaf_depth = compile_program("leaf depth", leaf_vs, leaf_depth_fs);
+  const std::string bark_vs_wind = with_wind_glsl(bark_vs), leaf_vs_wind = with_wind_glsl(leaf_vs);
+  r.bark = compile_program("bark", bark_vs_wind.c_str(), bark_fs.c_str());
+  r.bark_depth = compile_program("bark depth", bark_vs_wind.c_str(), depth_fs);
+  r.leaf = compile_program("leaf", leaf_vs_wind.c_str(), leaf_fs.c_str());
+  r.leaf_depth = compile_program("leaf depth", leaf_vs_wind.c_str(), leaf_depth_fs);
   r.sky = compile_program("sky", fullscreen_vs, sky_fs.c_str());
   r.ground = compile_program("ground", ground_vs, ground_fs.c_str());
   r.occlusion = compile_program("occlusion", fullscreen_vs, occ_fs.c_str());
@@ -948,7 +983,7 @@ bool init_renderer(renderer_state& r) {
   r.exposure = compile_program("auto exposure", fullscreen_vs, exposure_fs);
   r.composite = compile_program("composite", fullscreen_vs, sky_source(composite_fs_body).c_str());
   init_overlays(r.overlay);
-  r.fallback = compile_program("fallback", bark_vs, fallback_fs);
+  r.fallback = compile_program("fallback", bark_vs_wind.c_str(), fallback_fs);
   if (r.composite.failed || r.fallback.failed) {
     r.error = "renderer: " + gl_last_message();
     r.ok = false;
@@ -1003,7 +1038,9 @@ bool init_renderer(renderer_state& r) {
   glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
   glEnableVertexAttribArray(6);
   glVertexAttribPointer(6, 1, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void*)offsetof(leaf_instance, occlusion));
-  for (int i = 1; i <= 6; ++i) glVertexAttribDivisor(i, 1);
+  glEnableVertexAttribArray(7);
+  glVertexAttribIPointer(7, 1, GL_UNSIGNED_INT, stride, (void*)offsetof(leaf_instance, node));
+  for (int i = 1; i <= 7; ++i) glVertexAttribDivisor(i, 1);
 
   glBindVertexArray(0);
 
@@ -1012,7 +1049,7 @@ bool init_renderer(renderer_state& r) {
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferData(GL_TEXTURE_BUFFER, 8, nullptr, GL_DYNAMIC_DRAW);
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, r.node_radius.id);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.node_radius.id);
 
   // Procedural textures (render/textures.h): the app needs no asset files. All archetype sets are
   // made once per process, on two threads.
@@ -1034,8 +1071,10 @@ void destroy_renderer(renderer_state& r) {
     delete_gl(*p);
   for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
-                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius, &r.wind_nodes})
     delete_gl(*b);
+  delete_gl(r.wind_tex);
+  r.wind_node_count = 0;
   for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.bark_rough_tex, &r.leaf_tex, &r.leaf_normal_tex,
                         &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex, &r.march_tex,
                         &r.average_tex})
@@ -1088,11 +1127,12 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   r.leaf_end = m.leaf_end;
   r.final_radius = m.final_radius;
   r.node_count = int(m.final_radius.size());
-  r.radius_upload.assign(size_t(r.node_count) * 2, 0.0f);
+  r.radius_upload.assign(size_t(r.node_count) * 4, 0.0f);
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(8, r.radius_upload.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   ++r.uploads_total;
+  r.wind_node_count = 0;   // the wind table belongs to the previous tree until upload_wind
   r.steps = m.steps;
   r.step = m.steps;
   r.has_tree = !m.index.empty() || !m.leaves.empty();
@@ -1121,11 +1161,16 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
   r.step = std::clamp(step, 0, std::max(r.steps, 0));
   if (r.node_count == 0) return;
   std::vector<float> radii = radii_at_step(t, r.step);
+  // The bend of that step (generators/wood.h): replayed, never regrown; none when the tree is unbent.
+  const std::vector<glm::vec3> x = t.wood ? positions_at_step(t, r.step) : std::vector<glm::vec3>();
   const size_t n = std::min(radii.size(), size_t(r.node_count));
   for (size_t i = 0; i < size_t(r.node_count); ++i) {
     const bool alive = i < n && i < t.size() && t.alive(i, r.step);
-    r.radius_upload[2 * i] = r.final_radius[i];
-    r.radius_upload[2 * i + 1] = alive ? std::max(radii[i], min_radius) : -1.0f;
+    const glm::vec3 d = alive && i < x.size() ? x[i] - t.position[i] : glm::vec3(0);
+    r.radius_upload[4 * i] = d.x;
+    r.radius_upload[4 * i + 1] = d.y;
+    r.radius_upload[4 * i + 2] = d.z;
+    r.radius_upload[4 * i + 3] = alive ? std::max(radii[i], min_radius) - r.final_radius[i] : -1e30f;
   }
   glBindBuffer(GL_TEXTURE_BUFFER, r.node_radius.id);
   glBufferSubData(GL_TEXTURE_BUFFER, 0, r.radius_upload.size() * sizeof(float), r.radius_upload.data());
@@ -1181,6 +1226,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
+  const season_look season = season_leaf_look(rp);
   if (rp.shadows && r.has_tree && lit_ok) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(rp.shadow_slope_bias, 1.0f);
@@ -1189,14 +1235,18 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
     glUseProgram(r.bark_depth.id);
     set_uniform(r.bark_depth, "u_viewproj", light);
     set_uniform(r.bark_depth, "u_radius", 2);
+    set_wind_uniforms(r, r.bark_depth, rp);
     draw_bark(r);
     glDisable(GL_CULL_FACE);
     glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
     set_uniform(r.leaf_depth, "u_viewproj", light);
     set_uniform(r.leaf_depth, "u_step", r.step);
+    set_uniform(r.leaf_depth, "u_radius", 2);
     set_uniform(r.leaf_depth, "u_leaf", 3);
     set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
+    set_wind_uniforms(r, r.leaf_depth, rp);
+    set_season_uniforms(r.leaf_depth, season);
     draw_leaves(r);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -1256,26 +1306,30 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
       set_uniform(r.bark, "u_bark_rough", 7);
       set_uniform(r.bark, "u_eye", eye);
       set_uniform(r.bark, "u_bark_color", rp.bark_color);
+      set_wind_uniforms(r, r.bark, rp);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
       glUseProgram(r.leaf.id);
       set_lighting(r, r.leaf, rp, sun, light, texel_world);
       set_uniform(r.leaf, "u_viewproj", viewproj);
       set_uniform(r.leaf, "u_step", r.step);
+      set_uniform(r.leaf, "u_radius", 2);
       set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
       set_uniform(r.leaf, "u_leaf", 3);
       set_uniform(r.leaf, "u_layers", r.leaf_layers);
       set_uniform(r.leaf, "u_leaf_normal", 5);
       set_uniform(r.leaf, "u_leaf_thickness", 6);
-      set_uniform(r.leaf, "u_leaf_color", rp.leaf_color);
+      set_season_uniforms(r.leaf, season);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
+      set_wind_uniforms(r, r.leaf, rp);
       draw_leaves(r);
     } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
       glUseProgram(r.fallback.id);
       set_uniform(r.fallback, "u_viewproj", viewproj);
       set_uniform(r.fallback, "u_radius", 2);
       set_uniform(r.fallback, "u_color", rp.bark_color);
+      set_wind_uniforms(r, r.fallback, rp);
       draw_bark(r);
     }
   }

@@ -16,6 +16,7 @@
 #include "render/mesh.h"
 #include "render/render_params.h"
 #include "render/sky.h"
+#include "render/gl/wind_gl.h"   // upload_wind, set by every caller of upload_tree that shows wind
 
 namespace sylva {
 
@@ -66,7 +67,7 @@ struct renderer_state {
   // The uploaded tree.
   std::vector<uint32_t> index_end, leaf_end;
   std::vector<float> final_radius;
-  std::vector<float> radius_upload;   // reused scratch: (final, shown) per node
+  std::vector<float> radius_upload;   // reused scratch: (bend offset xyz, shown - built radius) per node
   int steps = 0, step = 0, node_count = 0;
   glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
   bool has_tree = false;
@@ -83,6 +84,12 @@ struct renderer_state {
   size_t triangles_drawn = 0, leaves_drawn = 0;
   frame_counts counts;                // of the last draw_frame
   uint64_t uploads_total = 0;         // every glBufferData/SubData, glTexImage* and storage call so far
+  // Wind (render/gl/wind_gl.h): per-node sway data uploaded once per tree; the time is a uniform.
+  gl_buffer wind_nodes;
+  gl_texture wind_tex;
+  int wind_node_count = 0;
+  float wind_ground = 0, wind_height = 1;
+  float wind_time = 0;                // seconds; the editor advances it, exports and tests set it
 };
 
 // Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.
@@ -91,7 +98,8 @@ void destroy_renderer(renderer_state& r);
 
 // Uploads a meshed tree; the scrub position is then set with set_tree_step.
 void upload_tree(renderer_state& r, const tree_mesh& m);
-// Shows the tree as it stood at `step`: draw counts plus one small per-node radius upload.
+// Shows the tree as it stood at `step`: draw counts plus one small per-node upload (radius and, for
+// a bent tree, the bend of that step replayed by positions_at_step).
 void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step);
 // The tree's growth-debug overlays, built with it on the worker (null clears them). No GL work
 // here: they are uploaded by the first draw_frame that shows them.

@@ -3,13 +3,14 @@
 //   node tools/viewer/render.mjs FILE.glb OUT.png [--view iso|front|side|top|ELEV,AZIM] [--size 768]
 //   node tools/viewer/render.mjs --ez "Oak Medium" OUT.png
 // --measure prints the coverage numbers as JSON too; --overlay FILE.png writes the measurement
-// picture (hull, leaves, bark).
+// picture (hull, leaves, bark). --animation NAME --time SECONDS poses the file's animation clip at
+// that moment (the camera is fitted to the rest pose), e.g. --animation wind --time 1.5.
 import path from 'node:path';
 import { openViewer, writeDataURL } from './lib/harness.mjs';
 
 function usage(code) {
   process.stderr.write(
-    'usage: node tools/viewer/render.mjs (FILE.glb | --ez PRESET) OUT.png [--view iso|front|side|top|ELEV,AZIM] [--size N] [--measure] [--overlay FILE.png] [--verbose]\n',
+    'usage: node tools/viewer/render.mjs (FILE.glb | --ez PRESET) OUT.png [--view iso|front|side|top|ELEV,AZIM] [--size N] [--measure] [--overlay FILE.png] [--animation NAME --time S] [--verbose]\n',
   );
   process.exit(code);
 }
@@ -25,6 +26,8 @@ for (let i = 0; i < args.length; i++) {
   else if (a === '--measure') opts.measure = true;
   else if (a === '--overlay') opts.overlay = args[++i];
   else if (a === '--verbose') opts.verbose = true;
+  else if (a === '--animation') opts.animation = args[++i];
+  else if (a === '--time') opts.time = Number(args[++i]);
   else if (a === '-h' || a === '--help') usage(0);
   else if (a.startsWith('--')) usage(2);
   else pos.push(a);
@@ -43,6 +46,8 @@ try {
     size: opts.size,
     measure: opts.measure || !!opts.overlay,
     overlay: !!opts.overlay,
+    animation: opts.animation,
+    time: opts.time,
   });
   writeDataURL(r.image, out);
   if (opts.overlay) writeDataURL(r.overlay, opts.overlay);

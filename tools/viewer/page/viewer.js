@@ -71,6 +71,7 @@ async function loadGLB(url) {
     root,
     leaves: meshes.filter(isLeafMesh),
     bark: meshes.filter((m) => !isLeafMesh(m)),
+    animations: gltf.animations || [],
   };
 }
 
@@ -253,6 +254,18 @@ async function show(spec, opts = {}) {
 
   renderer.setSize(size, size, false);
   fitCamera(outlinePoints(current.root), box, view, 1);
+  // An animation clip posed at opts.time seconds (issue 17's wind), after the camera is fitted to
+  // the rest pose so that two moments are seen from the same place.
+  let animation = null;
+  if (opts.animation) {
+    const clip = (current.animations || []).find((a) => a.name === opts.animation);
+    if (!clip) throw new Error(`no animation "${opts.animation}"; the file has: ${(current.animations || []).map((a) => a.name).join(', ')}`);
+    const mixer = new THREE.AnimationMixer(current.root);
+    mixer.clipAction(clip).play();
+    mixer.setTime(opts.time || 0);
+    current.root.updateMatrixWorld(true);
+    animation = { name: clip.name, duration: clip.duration, tracks: clip.tracks.length, time: opts.time || 0 };
+  }
 
   // Beauty pass: the whole tree on the plain background, to the canvas.
   setPass('whole');
@@ -271,6 +284,8 @@ async function show(spec, opts = {}) {
     load_ms: Math.round(loadMs),
     view,
     size,
+    animations: (current.animations || []).map((a) => a.name),
+    animation,
   };
   if (opts.image !== false) result.image = canvas.toDataURL('image/png');
 

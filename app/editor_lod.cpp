@@ -1,0 +1,56 @@
+// The editor's LOD choice (issue 17).
+#include "app/editor_lod.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+
+namespace sylva {
+
+void editor_lod_new_tree(editor_lod& s) {
+  s.chain.reset();
+  s.built_for = nullptr;
+  s.uploaded = 0;
+  s.wanted = 0;
+  s.tree_time = std::chrono::steady_clock::now();
+}
+
+void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t, const tree_mesh& m,
+                       const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step) {
+  const lod_params& p = rp.lod;
+  const bool budgets_changed = p.lod1_budget != s.built_params.lod1_budget || p.lod2_budget != s.built_params.lod2_budget ||
+                               p.lod3_budget != s.built_params.lod3_budget;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!s.chain && std::chrono::duration<double, std::milli>(t0 - s.tree_time).count() < editor_lod_settle_ms) return;
+  if (!s.chain || s.built_for != &m || budgets_changed) {
+    s.chain = std::make_unique<lod_chain>(build_lods(t, m, mp, p));
+    s.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    s.built_for = &m;
+    s.built_params = p;
+    if (s.uploaded != 0) s.uploaded = -1;   // the uploaded level is stale: upload again
+  }
+  // The bounding sphere's size on screen picks the level; scrubbing the growth shows LOD0.
+  const glm::vec3 half = 0.5f * (m.bounds_max - m.bounds_min);
+  const glm::vec3 centre = 0.5f * (m.bounds_max + m.bounds_min);
+  const float distance = glm::length(camera_eye(cam) - centre);
+  const float coverage = screen_coverage(glm::length(half), distance, cam.fov);
+  s.wanted = p.show >= 0 ? std::min(p.show, lod_levels - 1) : pick_lod(*s.chain, coverage, p.bias);
+  const int level = step < t.steps ? 0 : std::min(s.wanted, lod_levels - 1);
+  if (level == s.uploaded) return;
+  upload_tree(r, level == 0 ? m : s.chain->level[size_t(level) - 1]);
+  set_tree_step(r, t, mp.min_radius, step);
+  s.uploaded = level;
+}
+
+std::string editor_lod_status(const editor_lod& s) {
+  if (!s.chain) return "";
+  char buf[200];
+  const auto& n = s.chain->triangles;
+  std::snprintf(buf, sizeof buf, "LOD%d%s   LOD0-3 triangles %zu / %zu / %zu / %zu", std::max(s.uploaded, 0),
+                s.wanted >= lod_levels ? " (impostor distance)" : "", n[0], n[1], n[2], n[3]);
+  // Clamped budgets or a tree too small to reduce (build_lods says which).
+  return s.chain->message.empty() ? std::string(buf) : std::string(buf) + "   (" + s.chain->message + ")";
+}
+
+}  // namespace sylva

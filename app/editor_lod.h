@@ -1,0 +1,35 @@
+// The editor's level of detail (issue 17): builds the LOD chain of the shown tree, picks the level
+// by the tree's size on screen (or the "Show LOD" override) and keeps that level uploaded.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "render/gl/renderer.h"
+#include "render/lod.h"
+
+namespace sylva {
+
+struct editor_lod {
+  std::unique_ptr<lod_chain> chain;   // of `built_for`; rebuilt when the tree or the budgets change
+  const tree_mesh* built_for = nullptr;
+  lod_params built_params;
+  int uploaded = 0;                   // the level in the renderer (0: the tree's own mesh)
+  int wanted = 0;                     // the pick, lod_levels meaning "impostor distance" (LOD3 shown)
+  double build_ms = 0;
+  // The chain is built once a new tree has been shown this long, so that dragging a slider (a new
+  // tree every few frames) does not rebuild it for each one; until then LOD0 shows.
+  std::chrono::steady_clock::time_point tree_time{};
+};
+inline constexpr double editor_lod_settle_ms = 300;
+
+// Call after upload_tree of a new tree: the renderer now holds LOD0 and the chain is stale.
+void editor_lod_new_tree(editor_lod& s);
+// Once a frame before drawing. Levels apply at the final step only (scrubbing shows LOD0).
+void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t, const tree_mesh& m,
+                       const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step);
+// "LOD1 of 0-3: 120k 48k 18k 6k triangles" for the status bar ("" before the first build).
+std::string editor_lod_status(const editor_lod& s);
+
+}  // namespace sylva

@@ -1,0 +1,388 @@
+// The wood pass: each internode is a cantilever beam segment that bends under the wood and leaves
+// it carries; the growth is replayed by born step so that a branch sags as it gets heavier.
+//
+// Model (small deflection, Euler-Bernoulli): the bending moment at the middle of internode k is
+// M = Σ m_i (x_i - c_k) × g over the loads beyond that point, its curvature M / (E I) with
+// I = π r⁴ / 4, so the internode turns by θ = M⊥ L / (E I) about M. Half of θ is applied at the
+// internode's base and the rest at its tip (a hinge at its middle), which makes a chain of n equal
+// segments match the beam formulas to O(1/n²). Loads and moments are accumulated from the tips down
+// in one reverse sweep (parents precede children), positions in one forward sweep: O(n) per step.
+//
+// History (permanent set): as in Jirasek, Prusinkiewicz & Moulia 2000 ("Integrating biomechanics
+// into developmental plant models expressed using L-systems"), new wood is laid down on the bent
+// branch, so at each bend step an internode turns by the *increase* of its moment since the last
+// bend divided by its stiffness *now*: load added while the branch was thin bends it for good.
+// Reaction wood then turns young shoots back toward their set direction by a share per step.
+#include "generators/wood.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace sylva {
+
+namespace {
+
+constexpr float standard_gravity = 9.80665f;  // m/s² (CGPM 1901)
+constexpr float pi = 3.14159265358979f;
+constexpr float min_beam_radius = 1e-4f;      // metres: a zero radius would have no stiffness
+
+// The rotation by vector v (axis · angle in radians); a Taylor series for the small turns of one step.
+glm::quat rotation_quat(const glm::vec3& v) {
+  const float a2 = glm::dot(v, v);
+  if (!(a2 > 1e-24f)) return glm::quat(1, 0, 0, 0);
+  float c, s;
+  if (a2 < 1e-2f) {   // |v| < 0.1: cos(a/2) and sin(a/2)/a to better than 1e-10
+    c = 1 - a2 * (1.0f / 8) + a2 * a2 * (1.0f / 384);
+    s = 0.5f - a2 * (1.0f / 48) + a2 * a2 * (1.0f / 3840);
+  } else {
+    const float a = std::sqrt(a2);
+    c = std::cos(0.5f * a);
+    s = std::sin(0.5f * a) / a;
+  }
+  return glm::quat(c, v.x * s, v.y * s, v.z * s);
+}
+
+// x^y for x > 0 to about 1e-5 relative: the pass needs each node's pipe radius at every bend step,
+// and the library pow was a fifth of its time. log2 of the mantissa and exp2 of the fraction by
+// their Taylor-fitted polynomials (degree 6 / 5); the exponent from the float's bits.
+float fast_pow(float x, float y) {
+  if (!(x >= 1e-37f) || !(x < 1e37f)) return std::pow(x, y);   // normal floats only
+  uint32_t bits;
+  std::memcpy(&bits, &x, 4);
+  const int e = int((bits >> 23) & 0xff) - 126;
+  bits = (bits & 0x007fffffu) | 0x3f800000u;
+  float m;
+  std::memcpy(&m, &bits, 4);               // x = m · 2^(e-1), m in [1, 2)
+  // log2(m) = ln(m) / ln 2 with ln(1 + u) = 2 atanh(u / (2 + u)), t = u / (2 + u) in [0, 1/3).
+  const float t = (m - 1) / (m + 1), t2 = t * t;
+  const float ln_m = 2 * t * (1 + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7 + t2 * (1.0f / 9)))));
+  const float l = float(e - 1) + ln_m * 1.44269504f;
+  const float z = y * l;
+  if (!(std::fabs(z) < 120)) return std::pow(x, y);
+  int zi = int(z);
+  if (float(zi) > z) --zi;                                 // floor
+  const float f = (z - float(zi)) * 0.693147181f;          // 2^z = 2^zi · e^f, f in [0, ln 2)
+  const float ef = 1 + f * (1 + f * (0.5f + f * (1.0f / 6 + f * (1.0f / 24 + f * (1.0f / 120 + f * (1.0f / 720))))));
+  const uint32_t scale = uint32_t(zi + 127) << 23;   // 2^zi, |zi| < 120
+  float p2;
+  std::memcpy(&p2, &scale, 4);
+  return ef * p2;
+}
+
+// atan2(y, x) for y >= 0, to about 1e-5 rad: Abramowitz & Stegun 4.4.49's odd polynomial on [0, 1].
+float fast_atan2(float y, float x) {
+  const float ax = std::fabs(x);
+  const bool swap = y > ax;
+  const float q = swap ? ax / y : y / std::max(ax, 1e-30f), q2 = q * q;
+  float a = q * (0.9998660f + q2 * (-0.3302995f + q2 * (0.1801410f + q2 * (-0.0851330f + q2 * 0.0208351f))));
+  if (swap) a = 1.57079633f - a;
+  return x < 0 ? 3.14159265f - a : a;
+}
+
+// The square root of a unit quaternion with w >= 0: half the rotation about the same axis.
+glm::quat half_rotation(const glm::quat& q) {
+  return glm::normalize(glm::quat(1 + q.w, q.x, q.y, q.z));
+}
+
+struct engine {
+  const tree_skeleton& t;
+  const std::vector<glm::vec3>& rest;
+  wood_params p;
+  size_t n;
+  bool recover = true;
+  bool monotone = false;
+  const std::vector<float>* point_mass = nullptr;
+
+  // Parents are read at random (a node's parent was often born many steps earlier), so what a
+  // sweep reads of a parent sits in one record; the rest is read in index order.
+  struct pose {
+    glm::quat frame{1, 0, 0, 0};   // the rotation of everything beyond the node
+    glm::vec3 x{0};                // bent position
+  };
+  struct load {
+    glm::vec3 s{0};                // first moment of the mass beyond the node
+    float m = 0;                   // mass beyond the node
+    float pipe = 0;                // Σ r_tip^n of the pipes through it
+  };
+  std::vector<pose> at;
+  std::vector<load> acc;
+  std::vector<glm::vec4> rest_d;   // per internode: unbent vector from its parent (xyz) and length (w)
+  std::vector<glm::quat> bend;     // per internode: its turn relative to its parent's end frame
+  std::vector<glm::vec3> moment_prev;  // moment at the middle of each internode at the last bend
+  std::vector<uint8_t> clamped;
+  float recovery_share[65] = {};   // 1 - (1 - recovery)^k for k young steps
+  float max_turn = 0, cos_half_max = 1;
+
+  engine(const tree_skeleton& tree, const std::vector<glm::vec3>& rest_pos, const wood_params& params)
+      : t(tree), rest(rest_pos), p(params), n(tree.size()) {
+    at.resize(n);
+    for (size_t k = 0; k < n; ++k) at[k].x = rest[k];
+    acc.resize(n);
+    rest_d.assign(n, glm::vec4(0));
+    for (size_t k = 0; k < n; ++k)
+      if (t.parent[k] >= 0) {
+        const glm::vec3 d = rest[k] - rest[size_t(t.parent[k])];
+        rest_d[k] = glm::vec4(d, glm::length(d));
+      }
+    bend.assign(n, glm::quat(1, 0, 0, 0));
+    moment_prev.assign(n, glm::vec3(0));
+    clamped.assign(n, 0);
+    for (int k = 0; k <= 64; ++k) recovery_share[k] = 1.0f - std::pow(1.0f - p.recovery, float(k));
+    max_turn = p.max_bend * pi / 180.0f;
+    cos_half_max = std::cos(0.5f * max_turn);
+  }
+
+  std::vector<glm::vec3> positions() const {
+    std::vector<glm::vec3> out(n);
+    for (size_t k = 0; k < n; ++k) out[k] = at[k].x;
+    return out;
+  }
+
+  bool alive(size_t k, int s) const { return t.born[k] <= s && s < t.died[k]; }
+
+  // The turn of internode k for the bend of step s (previous bend step prev): its moment increase
+  // `m` over its stiffness now (squared radius rr2), plus reaction wood. `fp`: its parent's end frame.
+  void turn_internode(size_t k, const glm::quat& fp, glm::vec3 m, float rr2, int s, int prev) {
+    const glm::vec3 rd(rest_d[k]);
+    const float len = rest_d[k].w;
+    if (!(len > 1e-9f)) return;
+    const glm::vec3 dir = at[k].frame * (rd / len);   // the direction of its tip now
+    m -= glm::dot(m, dir) * dir;             // the axial part twists; only the rest bends
+    const float ei = p.modulus * 1e9f * pi * rr2 * rr2 * 0.25f;   // E·I, I = π r⁴ / 4
+    glm::vec3 turn = m * (len / ei);
+    // Reaction wood (gravitropic recovery): a young shoot turns its tip back toward its set
+    // direction by `recovery` of the angle between them per step it was young in (prev, s].
+    if (recover && p.recovery > 0) {
+      const int young = std::min(s, int(t.born[k]) + p.recovery_age) - std::max(prev + 1, int(t.born[k])) + 1;
+      if (young > 0) {
+        glm::vec3 target = rd / len;
+        if (p.recovery_up > 0) {
+          const glm::vec3 up = (1 - p.recovery_up) * target + glm::vec3(0, p.recovery_up, 0);
+          const float l = glm::length(up);
+          if (l > 1e-6f) target = up / l;
+        }
+        const glm::vec3& tip = dir;
+        const glm::vec3 c = glm::cross(tip, target);
+        const float sn = glm::length(c);
+        if (sn > 1e-7f) {
+          const float cs = glm::dot(tip, target);
+          const float angle = fast_atan2(sn, cs);
+          turn += c * (angle * recovery_share[std::min(young, 64)] / sn);
+        }
+      }
+    }
+    const float a2 = glm::dot(turn, turn);
+    // Below a microradian a turn moves nothing by more than microns: skip the quaternion work.
+    if (!(a2 > 1e-12f)) return;
+    if (!(a2 <= max_turn * max_turn)) {  // NaN or a fold: clamp
+      turn = std::isfinite(a2) ? turn * (max_turn / std::sqrt(a2)) : glm::vec3(0);
+      clamped[k] = 1;
+    }
+    // World rotation at the joint -> the parent's end frame: q' = rot(R_p⁻¹ θ) q.
+    glm::quat b = glm::normalize(rotation_quat(glm::conjugate(fp) * turn) * bend[k]);
+    if (b.w < 0) b = -b;
+    if (b.w < cos_half_max) {  // the accumulated bend of one internode stays below max_bend
+      const glm::vec3 v(b.x, b.y, b.z);
+      const float vl = glm::length(v);
+      b = vl > 1e-12f ? glm::angleAxis(max_turn, v / vl) : glm::quat(1, 0, 0, 0);
+      clamped[k] = 1;
+    }
+    bend[k] = b;
+  }
+
+  // One sweep parents-first over [0, end): positions and frames from the bends.
+  void forward(size_t end) {
+    for (size_t k = 0; k < end; ++k) {
+      const int32_t par = t.parent[k];
+      if (par < 0) {
+        at[k].x = rest[k];
+        at[k].frame = bend[k];
+        continue;
+      }
+      const glm::vec3 rd(rest_d[k]);
+      const pose pp = at[size_t(par)];
+      const glm::quat& b = bend[k];
+      if (b.x == 0 && b.y == 0 && b.z == 0) {  // unbent (young nodes): skip the half rotation
+        at[k].x = pp.x + pp.frame * rd;
+        at[k].frame = pp.frame;
+      } else {
+        at[k].x = pp.x + pp.frame * (half_rotation(b) * rd);
+        at[k].frame = pp.frame * b;
+      }
+    }
+  }
+
+  // One sweep tips-first over the nodes alive at s among [0, end): radii of that step (pipe radii
+  // as compute_pipe_radii in skeleton.cpp, else the fixed ones), loads, each internode's moment at
+  // its middle, M = Σ m_i (x_i - c) × g, and its turn from the increase since the last bend. The
+  // turns change the bends only: positions follow in the next forward sweep.
+  void reverse(int s, int prev, size_t end) {
+    std::fill(acc.begin(), acc.begin() + long(end), load{});
+    const bool pipe = t.pipe_exponent > 0;
+    float rt = 0, two_over_e = 0;
+    if (pipe) {
+      rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
+      two_over_e = 2.0f / t.pipe_exponent;
+    }
+    const glm::vec3 g(0, -standard_gravity * p.gravity, 0);
+    const float leaf_kg_per_m = p.leaf_mass * 1e-3f * p.leaves_per_metre;
+    for (size_t k = end; k-- > 0;) {
+      if (!alive(k, s)) continue;
+      const int32_t par = t.parent[k];
+      load& a = acc[k];
+      const glm::vec3 xk = at[k].x;
+      float sum = 0, r2;
+      if (pipe) {
+        sum = a.pipe > 0 ? a.pipe : rt;
+        r2 = fast_pow(sum, two_over_e);
+      } else {
+        r2 = t.radius[k] * t.radius[k];
+      }
+      r2 = std::max(r2, min_beam_radius * min_beam_radius);
+      if (point_mass && k < point_mass->size() && (*point_mass)[k] > 0) {
+        a.m += (*point_mass)[k];
+        a.s += (*point_mass)[k] * xk;
+      }
+      if (par < 0) continue;
+      const float len = rest_d[k].w;
+      // Wood (density × volume, the internode at its tip radius) and the foliage of a young shoot.
+      float m = p.density * pi * r2 * len;
+      if (s - int(t.born[k]) <= p.leaf_age) m += leaf_kg_per_m * len;
+      const pose& pp = at[size_t(par)];
+      const glm::vec3 seg = xk - pp.x;
+      const glm::vec3 c = xk - 0.5f * seg;
+      // The internode's own outer half acts at its three-quarter point.
+      const float tm = a.m + 0.5f * m;
+      const glm::vec3 ts = a.s + (0.5f * m) * (xk - 0.25f * seg);
+      const glm::vec3 moment = glm::cross(ts - tm * c, g);
+      turn_internode(k, pp.frame, moment - moment_prev[k], r2, s, prev);
+      moment_prev[k] = moment;
+      load& up = acc[size_t(par)];
+      up.m += a.m + m;
+      up.s += a.s + m * c;
+      up.pipe += sum;
+    }
+  }
+
+  // Replays the bend steps up to `step`, then leaves the positions of the tree at `step`.
+  void run(const std::vector<uint16_t>& steps, int step) {
+    int prev = -1;
+    for (uint16_t s : steps) {
+      if (int(s) > step) break;
+      const size_t reach = prefix_end(s);
+      forward(reach);
+      reverse(s, prev, reach);
+      prev = s;
+    }
+    forward(n);
+  }
+
+  // One past the last node born at or before s (all nodes when they are not born in index order).
+  size_t prefix_end(int s) const {
+    if (!monotone) return n;
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+      const size_t mid = (lo + hi) / 2;
+      if (t.born[mid] <= s) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  }
+};
+
+bool born_in_order(const tree_skeleton& t) {
+  for (size_t i = 1; i < t.size(); ++i)
+    if (t.born[i] < t.born[i - 1]) return false;
+  return true;
+}
+
+// The steps at which the pass bends the tree. Every step while that costs at most 3 sweeps of the
+// final tree; beyond, a step is kept when the tree has grown fourfold since the last kept one
+// (counted back from the last step), so a large tree costs about 1.33 sweeps whatever its step count.
+std::vector<uint16_t> choose_bend_steps(const tree_skeleton& t, bool monotone) {
+  std::vector<size_t> alive_end(size_t(t.steps) + 1, t.size());
+  if (monotone) {
+    size_t k = 0;
+    for (int s = 0; s <= t.steps; ++s) {
+      while (k < t.size() && t.born[k] <= s) ++k;
+      alive_end[size_t(s)] = k;
+    }
+  }
+  double total = 0;
+  for (size_t e : alive_end) total += double(e);
+  std::vector<uint16_t> steps;
+  if (total <= 3.0 * double(std::max<size_t>(t.size(), 1))) {
+    for (int s = 0; s <= t.steps; ++s) steps.push_back(uint16_t(s));
+    return steps;
+  }
+  size_t last = 0;
+  for (int s = t.steps; s >= 0; --s)
+    if (steps.empty() || double(alive_end[size_t(s)]) * 4 <= double(last) || alive_end[size_t(s)] < 64) {
+      steps.push_back(uint16_t(s));
+      last = alive_end[size_t(s)];
+    }
+  std::reverse(steps.begin(), steps.end());
+  return steps;
+}
+
+void add_message(grow_report* report, const std::string& m) {
+  if (!report) return;
+  report->message += (report->message.empty() ? "" : "; ") + m;
+}
+
+}  // namespace
+
+void apply_wood(tree_skeleton& t, const wood_params& params, grow_report* report) {
+  t.wood.reset();
+  if (!(params.gravity > 0) || t.size() < 2) return;
+  wood_params p = params;
+  const std::vector<std::string> fixed = clamp_all_params(p);
+  if (!fixed.empty()) {
+    std::string keys;
+    for (const std::string& k : fixed) keys += (keys.empty() ? "" : ", ") + k;
+    add_message(report, "wood: " + keys + " out of range, clamped");
+  }
+  auto h = std::make_shared<wood_history>();
+  h->rest = t.position;
+  h->params = p;
+  const bool monotone = born_in_order(t);
+  h->bend_steps = choose_bend_steps(t, monotone);
+  engine e(t, h->rest, p);
+  e.monotone = monotone;
+  e.run(h->bend_steps, t.steps);
+  size_t folds = 0;
+  for (uint8_t c : e.clamped) folds += c;
+  if (folds)
+    add_message(report, "wood: " + std::to_string(folds) + " internode" + (folds == 1 ? "" : "s") +
+                            " reached the maximum bend; the load is more than the wood can carry (check gravity, "
+                            "wood density, Young's modulus and leaf mass)");
+  std::vector<glm::vec3> x = e.positions();
+  for (leaf& l : t.leaves)
+    if (l.node >= 0 && size_t(l.node) < t.size()) l.position += x[size_t(l.node)] - h->rest[size_t(l.node)];
+  t.position = std::move(x);
+  t.wood = std::move(h);
+}
+
+std::vector<glm::vec3> positions_at_step(const tree_skeleton& t, int step) {
+  if (!t.wood || t.wood->rest.size() != t.size()) return t.position;
+  if (step >= t.steps) return t.position;
+  engine e(t, t.wood->rest, t.wood->params);
+  e.monotone = born_in_order(t);
+  e.run(t.wood->bend_steps, std::max(step, 0));
+  return e.positions();
+}
+
+std::vector<glm::vec3> bend_static(const tree_skeleton& t, const wood_params& p, const std::vector<float>* point_mass) {
+  engine e(t, t.position, p);
+  e.recover = false;
+  e.point_mass = point_mass;
+  e.run({uint16_t(std::max(t.steps, 0))}, t.steps);
+  return e.positions();
+}
+
+}  // namespace sylva

@@ -1,0 +1,195 @@
+// Impostor atlas: the uploaded tree drawn unlit (albedo and normals, two render targets) from 8 or
+// 16 azimuths into one atlas, with the renderer's own vertex arrays and textures.
+#include "render/gl/impostor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render/textures.h"
+
+namespace sylva {
+namespace {
+
+const char* bark_vs = R"(#version 330 core
+layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_normal; layout(location = 2) in vec2 a_uv;
+uniform mat4 u_viewproj;
+out vec3 v_normal; out vec2 v_uv;
+void main() { v_normal = a_normal; v_uv = a_uv; gl_Position = u_viewproj * vec4(a_position, 1.0); }
+)";
+
+const char* bark_fs = R"(#version 330 core
+in vec3 v_normal; in vec2 v_uv;
+uniform sampler2D u_bark; uniform vec3 u_tint;
+layout(location = 0) out vec4 o_color; layout(location = 1) out vec4 o_normal;
+void main() {
+  // The viewport's tint (render/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
+  vec3 albedo = min(vec3(1.0), u_tint * texture(u_bark, v_uv).rgb);
+  o_color = vec4(pow(albedo, vec3(1.0 / 2.2)), 1.0);
+  o_normal = vec4(normalize(v_normal) * 0.5 + 0.5, 1.0);
+}
+)";
+
+const char* leaf_vs = R"(#version 330 core
+layout(location = 0) in vec2 a_corner;
+layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
+layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture;
+uniform mat4 u_viewproj; uniform int u_step; uniform int u_layers;
+out vec3 v_normal; out vec2 v_uv; flat out float v_layer;
+vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
+void main() {
+  bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
+  vec3 world = i_position + rotate(i_rotation, vec3(a_corner, 0.0) * i_size);
+  v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
+  v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);
+  v_layer = float(int(i_texture) % u_layers);
+  gl_Position = alive ? u_viewproj * vec4(world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+}
+)";
+
+const char* leaf_fs = R"(#version 330 core
+in vec3 v_normal; in vec2 v_uv; flat in float v_layer;
+uniform sampler2DArray u_leaf; uniform vec3 u_tint; uniform float u_cutoff;
+layout(location = 0) out vec4 o_color; layout(location = 1) out vec4 o_normal;
+void main() {
+  vec4 t = texture(u_leaf, vec3(v_uv, v_layer));
+  if (t.a < u_cutoff) discard;
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;   // two-sided: the side facing the view
+  o_color = vec4(pow(min(vec3(1.0), u_tint * t.rgb), vec3(1.0 / 2.2)), 1.0);
+  o_normal = vec4(n * 0.5 + 0.5, 1.0);
+}
+)";
+
+}  // namespace
+
+impostor_atlas render_impostor(renderer_state& r, const render_params& rp, int views, int cell) {
+  impostor_atlas a;
+  const auto start = std::chrono::steady_clock::now();
+  a.views = views > 12 ? 16 : 8;
+  a.columns = 4;
+  a.rows = a.views / a.columns;
+  a.cell = std::clamp(cell, 16, 2048);
+  a.width = a.columns * a.cell;
+  a.height = a.rows * a.cell;
+  if (!r.ok) { a.error = "renderer not initialised"; return a; }
+  if (!r.has_tree) { a.error = "no tree to render"; return a; }
+
+  gl_program bark = compile_program("impostor bark", bark_vs, bark_fs);
+  gl_program leaf = compile_program("impostor leaf", leaf_vs, leaf_fs);
+  gl_texture color, normal;
+  gl_renderbuffer depth;
+  gl_framebuffer fbo;
+  auto cleanup = [&] {
+    delete_gl(bark), delete_gl(leaf), delete_gl(color), delete_gl(normal), delete_gl(depth), delete_gl(fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  };
+  if (bark.failed || leaf.failed) { a.error = "impostor shaders: " + gl_last_message(); cleanup(); return a; }
+  for (gl_texture* t : {&color, &normal}) {
+    glGenTextures(1, &t->id);
+    glBindTexture(GL_TEXTURE_2D, t->id);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, a.width, a.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  glGenRenderbuffers(1, &depth.id);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth.id);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, a.width, a.height);
+  glGenFramebuffers(1, &fbo.id);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal.id, 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id);
+  const GLenum targets[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(2, targets);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    a.error = "impostor framebuffer incomplete";
+    cleanup();
+    return a;
+  }
+  glViewport(0, 0, a.width, a.height);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  // One square cell fits the tree from every azimuth: the box's horizontal radius about its centre
+  // line and its half height.
+  const glm::vec3 lo = r.bounds_min, hi = r.bounds_max;
+  a.centre = 0.5f * (lo + hi);
+  const float half = 1.02f * std::max(0.5f * glm::length(glm::vec2(hi.x - lo.x, hi.z - lo.z)), 0.5f * (hi.y - lo.y));
+  a.cell_metres = 2 * half;
+  const float far = 4 * half + 1;
+  const uint32_t bark_count = r.index_end.empty() ? 0 : r.index_end.back();
+  const uint32_t leaf_count = r.leaf_end.empty() ? 0 : r.leaf_end.back();
+  const glm::vec3 bark_tint = rp.bark_color, leaf_tint = rp.leaf_color;
+  for (int k = 0; k < a.views; ++k) {
+    const float az = 6.2831853f * float(k) / float(a.views);
+    const glm::vec3 dir(std::sin(az), 0, std::cos(az));   // toward the camera
+    const glm::mat4 view = glm::lookAt(a.centre + dir * (2 * half + 0.5f), a.centre, glm::vec3(0, 1, 0));
+    const glm::mat4 proj = glm::ortho(-half, half, -half, half, 0.01f, far);
+    const glm::mat4 vp = proj * view;
+    const int col = k % a.columns, row = k / a.columns;
+    glViewport(col * a.cell, (a.rows - 1 - row) * a.cell, a.cell, a.cell);   // row 0 at the image's top
+    if (bark_count) {
+      glUseProgram(bark.id);
+      set_uniform(bark, "u_viewproj", vp);
+      set_uniform(bark, "u_bark", 0);
+      set_uniform(bark, "u_tint", bark_tint);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
+      glBindVertexArray(r.bark_vao.id);
+      glDrawElements(GL_TRIANGLES, GLsizei(bark_count), GL_UNSIGNED_INT, nullptr);
+    }
+    if (leaf_count) {
+      glUseProgram(leaf.id);
+      set_uniform(leaf, "u_viewproj", vp);
+      set_uniform(leaf, "u_leaf", 1);
+      set_uniform(leaf, "u_tint", leaf_tint);
+      set_uniform(leaf, "u_cutoff", rp.alpha_cutoff);
+      set_uniform(leaf, "u_step", r.steps);
+      set_uniform(leaf, "u_layers", std::max(r.leaf_layers, 1));
+      glActiveTexture(GL_TEXTURE1);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
+      glBindVertexArray(r.leaf_vao.id);
+      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(leaf_count));
+    }
+  }
+  glBindVertexArray(0);
+  glActiveTexture(GL_TEXTURE0);
+  // Read back, flipping GL's bottom-up rows.
+  auto read = [&](GLenum attachment, std::vector<unsigned char>& out) {
+    std::vector<unsigned char> raw(size_t(a.width) * a.height * 4);
+    glReadBuffer(attachment);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, a.width, a.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+    out.resize(raw.size());
+    const size_t row = size_t(a.width) * 4;
+    for (int y = 0; y < a.height; ++y) std::copy_n(&raw[size_t(a.height - 1 - y) * row], row, &out[size_t(y) * row]);
+  };
+  read(GL_COLOR_ATTACHMENT0, a.color);
+  read(GL_COLOR_ATTACHMENT1, a.normal);
+  if (check_gl("impostor atlas")) a.error = "GL error while rendering the impostor atlas: " + gl_last_message();
+  cleanup();
+  a.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return a;
+}
+
+std::string impostor_pngs(const impostor_atlas& a, std::string& color_png, std::string& normal_png) {
+  image img;
+  img.width = a.width;
+  img.height = a.height;
+  img.channels = 4;
+  img.pixels.assign(a.color.begin(), a.color.end());
+  if (std::string e = encode_png(img, color_png); !e.empty()) return e;
+  img.pixels.assign(a.normal.begin(), a.normal.end());
+  return encode_png(img, normal_png);
+}
+
+}  // namespace sylva

@@ -1,0 +1,60 @@
+// Wind in the viewport: the per-node table upload and the per-frame uniforms.
+#include "render/gl/wind_gl.h"
+
+#include <algorithm>
+#include <string>
+
+#include "render/gl/renderer.h"
+#include "render/wind.h"
+
+namespace sylva {
+
+constexpr int wind_texture_unit = 8;   // units 0-7 hold the tree's textures and the shadow map
+
+void upload_wind(renderer_state& r, const tree_skeleton& t) {
+  const wind_rig rig = build_wind_rig(t);
+  if (!r.wind_nodes.id) glGenBuffers(1, &r.wind_nodes.id);
+  if (!r.wind_tex.id) glGenTextures(1, &r.wind_tex.id);
+  glBindBuffer(GL_TEXTURE_BUFFER, r.wind_nodes.id);
+  const size_t bytes = rig.nodes.size() * sizeof(wind_node);
+  glBufferData(GL_TEXTURE_BUFFER, std::max<size_t>(bytes, 48), bytes ? rig.nodes.data() : nullptr, GL_STATIC_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, r.wind_tex.id);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.wind_nodes.id);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  ++r.uploads_total;
+  r.wind_node_count = int(rig.nodes.size());
+  r.wind_ground = rig.ground;
+  r.wind_height = rig.height;
+  check_gl("upload wind");
+}
+
+std::string with_wind_glsl(const char* vertex_src) {
+  std::string s(vertex_src);
+  const size_t eol = s.find('\n');
+  return eol == std::string::npos ? s : s.substr(0, eol + 1) + wind_glsl() + s.substr(eol + 1);
+}
+
+void set_wind_uniforms(const renderer_state& r, const gl_program& p, const render_params& rp) {
+  const wind_motion m = make_wind_motion(rp.wind);
+  const bool on = m.strength > 0 && r.wind_node_count >= r.node_count && r.wind_node_count > 0 && r.wind_tex.id;
+  set_uniform(p, "u_wind_on", on ? 1 : 0);
+  set_uniform(p, "u_wind", wind_texture_unit);   // always: a buffer sampler may not share unit 0 with a 2D one
+  if (!on) return;
+  glActiveTexture(GL_TEXTURE0 + wind_texture_unit);
+  glBindTexture(GL_TEXTURE_BUFFER, r.wind_tex.id);
+  glActiveTexture(GL_TEXTURE0);
+  set_uniform(p, "u_wind_time", r.wind_time);
+  set_uniform(p, "u_wind_strength", m.strength);
+  set_uniform(p, "u_wind_gust", wind_gust(m, r.wind_time));
+  set_uniform(p, "u_wind_trunk", wind_trunk_angle(m, r.wind_time));
+  set_uniform(p, "u_wind_toward", m.toward);
+  set_uniform(p, "u_wind_axis", m.bend_axis);
+  set_uniform(p, "u_wind_branch_hz", m.branch_hz);
+  set_uniform(p, "u_wind_leaf_hz", m.leaf_hz);
+  set_uniform(p, "u_wind_flutter", m.flutter);
+  set_uniform(p, "u_wind_ground", r.wind_ground);
+  set_uniform(p, "u_wind_height", r.wind_height);
+}
+
+}  // namespace sylva

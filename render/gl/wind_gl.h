@@ -1,0 +1,24 @@
+// Wind in the viewport (issue 17): the per-node sway table as a buffer texture, and the uniforms
+// of render/wind.h's GLSL. The bark and leaf programs (lit and shadow) all sway; nothing is
+// re-uploaded per frame and no draw call is added.
+#pragma once
+
+#include "generators/skeleton.h"
+#include "render/gl/gl_util.h"
+#include "render/render_params.h"
+
+namespace sylva {
+
+struct renderer_state;
+
+// Builds the tree's wind_rig and uploads it (3 RGBA32F texels per node). Call after upload_tree
+// with the skeleton the mesh was built from; until then (or for an empty tree) nothing sways.
+void upload_wind(renderer_state& r, const tree_skeleton& t);
+
+// The vertex shader source with render/wind.h's GLSL inserted after its #version line.
+std::string with_wind_glsl(const char* vertex_src);
+
+// Sets the wind uniforms of program `p` for this frame (time r.wind_time); binds the table to unit 8.
+void set_wind_uniforms(const renderer_state& r, const gl_program& p, const render_params& rp);
+
+}  // namespace sylva
