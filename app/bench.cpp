@@ -18,7 +18,7 @@
 
 #include "app/cli.h"
 #include "app/headless.h"
-#include "app/timing.h"
+#include "generators/timing.h"
 #include "render/export.h"
 #include "render/files.h"
 #include "render/gl/renderer.h"

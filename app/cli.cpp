@@ -19,7 +19,7 @@
 
 #include "app/cli_textures.h"
 #include "app/headless.h"
-#include "app/timing.h"
+#include "generators/timing.h"
 #include "generators/lsystem_engine.h"
 #include "render/export.h"
 #include "render/files.h"

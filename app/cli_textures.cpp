@@ -13,7 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/timing.h"
+#include "generators/timing.h"
 #include "render/textures.h"
 
 namespace sylva {

@@ -11,7 +11,7 @@
 
 #include "app/bench.h"
 #include "app/headless.h"
-#include "app/timing.h"
+#include "generators/timing.h"
 #include "app/worker.h"
 #include "render/files.h"
 #include "render/gl/renderer.h"

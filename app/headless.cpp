@@ -11,7 +11,7 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
-#include "app/timing.h"
+#include "generators/timing.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

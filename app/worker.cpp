@@ -4,7 +4,7 @@
 #include <chrono>
 #include <new>
 
-#include "app/timing.h"
+#include "generators/timing.h"
 
 namespace sylva {
 

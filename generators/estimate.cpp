@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "generators/timing.h"
+
 namespace sylva {
 
 double extrapolate_nodes(const std::vector<double>& born, int complete_steps, int total_steps, double cap,
@@ -59,9 +61,7 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
       trial.params);
   std::atomic<uint32_t> stop{0};
   const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed_ms = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  };
+  auto elapsed_ms = [&] { return ms_since(t0); };
   grow_options to;
   to.steps = o.steps;
   to.cancel = &stop;

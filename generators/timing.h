@@ -1,4 +1,4 @@
-// Wall-clock helpers for the commands and the worker: elapsed milliseconds and medians.
+// Wall-clock helpers for every layer: elapsed milliseconds and medians.
 #pragma once
 
 #include <algorithm>
