@@ -21,6 +21,7 @@
 #include "app/headless.h"
 #include "generators/timing.h"
 #include "generators/lsystem_engine.h"
+#include "generators/memory_bound.h"
 #include "render/export.h"
 #include "render/files.h"
 
@@ -138,6 +139,13 @@ int run_params(bool as_json, const std::string& preset_path) {
     const json saved = json::parse(save_preset_json(p));
     std::visit([&](const auto& gp) { list_params(gp, saved["params"], "params", generator_names[g], all); },
                p.spec.params);
+    // Growth phases: whether `--set key@STEP=value` can key it, and why not.
+    for (json& r : all)
+      if (r["generator"] == generator_names[g] && r["section"] == "params") {
+        const std::string why = keyframe_refusal(p.spec, r["key"].get<std::string>());
+        r["keyable"] = why.empty();
+        if (!why.empty()) r["keyframe_refusal"] = why;
+      }
     if (g == 0) {
       list_params(p.mesh, saved["mesh"], "mesh", nullptr, all);
       list_params(p.render, saved["render"], "render", nullptr, all);
@@ -155,6 +163,8 @@ int run_params(bool as_json, const std::string& preset_path) {
                                                      : "params of generator " + r["generator"].get<std::string>();
     if (h != heading) {
       std::printf("%s%s\n", heading.empty() ? "" : "\n", h.c_str());
+      if (r["section"] == "params" && !r["generator"].is_null())  // the documented bound (memory_bound.h)
+        std::printf("  (%s)\n", memory_bound_text(generator_index(r["generator"].get<std::string>())).c_str());
       heading = h;
     }
     const std::string sym = r["symbol"].get<std::string>();
@@ -163,7 +173,9 @@ int run_params(bool as_json, const std::string& preset_path) {
                 r["max"].get<double>(), r["default"].dump().c_str(), r["help"].get<std::string>().c_str());
   }
   std::printf("\n--set takes any key above as key=value (vec3 as x,y,z); prefix params., mesh., render. or wood. "
-              "when a key is ambiguous.\n");
+              "when a key is ambiguous.\n"
+              "--set key@STEP=value keys a generator parameter from growth step STEP on (a growth phase); "
+              "`sylva params --json` says which keys can be keyed (\"keyable\") and why not.\n");
   return 0;
 }
 
@@ -231,7 +243,15 @@ int run_export(const export_args& a) {
   std::vector<variant> variants;
   for (uint64_t s : seeds) variants.push_back({s, {}});
   bool swept = false;
+  std::vector<std::string> keyed;   // key@step of each keyframe --set: twice is a contradiction
   for (const std::string& set : a.sets) {
+    if (const size_t at = set.find('@'), eq = set.find('='); at != std::string::npos && at < eq) {
+      std::string key_at = set.substr(0, eq);
+      if (key_at.rfind("params.", 0) == 0) key_at.erase(0, 7);
+      if (std::find(keyed.begin(), keyed.end(), key_at) != keyed.end())
+        return usage_error(cmd, "--set " + key_at + " is given twice: two values for one key at one step contradict each other");
+      keyed.push_back(key_at);
+    }
     std::vector<std::string> values;
     if (std::string e = expand_param_sweep(base, set, values); !e.empty()) return usage_error(cmd, e);
     swept |= values.size() > 1;
@@ -351,7 +371,7 @@ int run_cli(int argc, char** argv) {
   exp->add_option("-o,--output", ex.output, "Output file: .glb .gltf .obj .json (skeleton) .png (render)")->required();
   ex.seed_opt = exp->add_option("--seed", ex.seed, "Seed (default: the preset's)");
   exp->add_option("--step", ex.step, "Export the tree as it stood at this growth step (-1: final)");
-  exp->add_option("--set", ex.sets, "key=value, or key=from:to:count to sweep a number (repeatable)");
+  exp->add_option("--set", ex.sets, "key=value, key=from:to:count to sweep a number, or key@STEP=value for a keyframe (repeatable)");
   exp->add_option("--seeds", ex.seeds, "A-B: one file per seed, OUT-A ... OUT-B");
   exp->add_option("--width", ex.width, ".png width")->check(CLI::Range(16, 8192));
   exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));

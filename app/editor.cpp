@@ -27,6 +27,8 @@
 #include "app/editor_files.h"
 #include "app/editor_generators.h"
 #include "app/editor_lod.h"
+#include "app/editor_keyframes.h"
+#include "app/editor_prune.h"
 #include "app/export_dialog.h"
 #include "app/headless.h"
 #include "app/input_queue.h"
@@ -45,7 +47,8 @@ namespace fs = std::filesystem;
 // Layout sizes at a content scale of 1; multiplied by ui_scale (the monitor's content scale).
 float ui_scale = 1;
 float panel_width() { return 420 * ui_scale; }
-float timeline_height() { return 38 * ui_scale; }
+bool timeline_markers = false;   // the document has keyframes: the timeline shows a row of markers
+float timeline_height() { return (timeline_markers ? 54 : 38) * ui_scale; }
 float status_height() { return 26 * ui_scale; }
 
 struct editor_state {
@@ -102,6 +105,8 @@ struct editor_state {
   export_dialog_state exporter;   // app/export_dialog.h
   preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
   generator_panel_state generator_panels;   // app/editor_generators.h
+  keyframe_panel_state keys;                // app/editor_keyframes.h: growth phases
+  prune_panel_state prune;                  // app/editor_prune.h: picking, cuts, the brush
   GLFWwindow* window = nullptr;
   float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
   // Growth state (issue 14): the status bar shows exactly one of these.
@@ -180,6 +185,8 @@ struct param_drawer {
   const char* last_header = nullptr;      // the header drawn last
   bool relevant = true;                   // param_relevant() for the parameter being visited
   std::vector<step_column>* steps = nullptr;   // the struct's per-step schedules, drawn as one table
+  const tree_spec* keyed_spec = nullptr;       // growth phases: mark the parameters keyed at keyed_step
+  int keyed_step = -1;
   bool steps_drawn = false;
   size_t index = 0;
 
@@ -270,6 +277,11 @@ struct param_drawer {
       ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
     if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) value = def;
     if ((info.flags & param_on_release) && ImGui::IsItemActive()) hold = true;
+    if (keyed_spec && keyed_at(*keyed_spec, info.key, keyed_step)) {
+      ImGui::SameLine(0, 2);
+      ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "•");
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keyed at step %d (Growth phases)", keyed_step);
+    }
     ImGui::PopID();
   }
 };
@@ -311,12 +323,14 @@ const char* param_source() {
 
 // Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
 template <class P>
-void draw_params(P& p, const char* section, editor_state& e) {
+void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
   std::vector<step_column> steps = collect_step_columns(p);
   d.steps = &steps;
+  d.keyed_spec = keyed;
+  d.keyed_step = e.step;
   visit_params(p, [&](auto& value, const param_info& info) {
     d.relevant = param_relevant(std::as_const(p), &value, info);
     d(value, info);
@@ -641,6 +655,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
     spec.params = default_params(g);
+    spec.keyframes.clear();   // they name the old generator's parameters
     e.frame_new = true;
   }
   int seed = int(spec.seed & 0x7fffffff);
@@ -656,7 +671,20 @@ void draw_panel(editor_state& e, float top, float bottom) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && !random_tree)
     ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
                                     : "This generator is deterministic and leaves are off: the seed changes nothing");
-  std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e); }, spec.params);
+  // Growth phases: with "from this step on", the panel shows the values in effect at the scrubbed
+  // step and an edit keys the new value there (app/editor_keyframes.h).
+  std::string key_error;
+  if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
+  if (draw_prune_panel(e.prune, spec, e.shown.get(), e.step, key_error)) clear_error(e);
+  if (e.keys.from_step && e.step >= 1) {
+    const generator_params before = params_at_step(spec, e.step);
+    generator_params shown = before;
+    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, shown);
+    if (!(shown == before)) key_error = key_edits(spec, before, shown, e.step);
+  } else {
+    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, spec.params);
+  }
+  if (!key_error.empty()) set_status(e, key_error, true);
   draw_generator_panel(e.generator_panels, spec, e.shown.get());
   draw_params(spec.wood, "Wood", e);
   draw_params(e.doc.mesh, "Mesh", e);
@@ -717,6 +745,14 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderInt("##step", &e.step, 0, std::max(steps, 0), "step %d");
+  if (timeline_markers) {   // growth phases: a marker per keyed step under the slider
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    const float grab = ImGui::GetStyle().GrabMinSize * 0.5f + ImGui::GetStyle().FramePadding.x;
+    std::string key_error;
+    draw_keyframe_markers(e.keys, e.doc.spec, std::max(steps, last_keyframe_step(e.doc.spec)), lo.x + grab,
+                          hi.x - grab, hi.y + 2, e.step, key_error);
+    if (!key_error.empty()) set_status(e, key_error, true);
+  }
   ImGui::End();
 }
 
@@ -1137,9 +1173,13 @@ void handle_keys(editor_state& e) {
   if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) e.step = std::min(steps, e.step + 1);
 }
 
-void handle_mouse(editor_state& e, int viewport_height) {
+void handle_mouse(editor_state& e, const view_rect& view) {
+  const int viewport_height = int(view.h);
   ImGuiIO& io = ImGui::GetIO();
   if (io.WantCaptureMouse) return;
+  // A click that did not drag picks the branch under the mouse (Pruning).
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 9 && e.shown && e.shown->skeleton)
+    pick_in_view(e.prune, *e.shown->skeleton, e.step, e.camera, view, io.MousePos.x, io.MousePos.y);
   const ImVec2 d = io.MouseDelta;
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) orbit_camera_rotate(e.camera, d.x, d.y);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0))
@@ -1572,6 +1612,7 @@ int run_editor(const editor_options& o) {
 
     // Build the UI first; only then read the state for drawing (DESIGN §9).
     e->hold_post = false;
+    timeline_markers = !e->doc.spec.keyframes.empty();
     e->prompts_shown.clear();
     if (e->close_requested) {
       e->close_requested = false;
@@ -1592,7 +1633,10 @@ int run_editor(const editor_options& o) {
     if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
     draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
     handle_keys(*e);
-    handle_mouse(*e, int(bottom - top));
+    const view_rect view{left, top, float(win_w) - left, bottom - top};
+    handle_mouse(*e, view);
+    draw_prune_overlay(e->prune, e->shown && e->shown->skeleton ? e->shown->skeleton.get() : nullptr, e->step,
+                       e->camera, view);
     record_undo(*e);
     autosave(*e, dt);
 

@@ -13,13 +13,16 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "generators/keyframes.h"
+#include "generators/pruning.h"
+
 namespace sylva {
 namespace {
 
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr glm::vec3 up(0, 1, 0);
 // 64 Mi cells (256 MB of grid) is far beyond any interactive tree; past it we refuse, not crash.
-constexpr uint64_t max_grid_cells = uint64_t(1) << 26;
+constexpr uint64_t max_grid_cells = gv_grid_cell_cap;
 constexpr int32_t kd_leaf = 32;
 
 bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -192,7 +195,8 @@ void add_arrow(growth_debug& d, const glm::vec3& from, const glm::vec3& dir, flo
 }  // namespace
 
 bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& first, float r, int k,
-                         uint64_t seed, const grow_options& o, std::vector<glm::vec3>& out, std::string* error) {
+                         uint64_t seed, const grow_options& o, std::vector<glm::vec3>& out, std::string* error,
+                         int64_t point_cap) {
   out.clear();
   auto fail = [&](const std::string& why) {
     if (error) *error = why;
@@ -277,6 +281,12 @@ bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::ve
         }
       }
       if (!free) continue;
+      if (int64_t(out.size()) >= point_cap) {
+        out.clear();
+        out.shrink_to_fit();
+        return fail("the graph would pass " + std::to_string(point_cap) +
+                    " points (its memory cap); raise the spacing or shrink the domain");
+      }
       grid[own] = int32_t(out.size());
       out.push_back(cand);
     }
@@ -420,8 +430,9 @@ bool search_gv_paths(gv_graph& g, const std::vector<int32_t>& sources, const std
   return true;
 }
 
-tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_options& o, grow_report* report,
+tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const grow_options& o, grow_report* report,
                                    growth_debug* debug) {
+  guiding_vectors_params p = p_in;   // growth phases change it from a keyed step on
   grow_report local;
   grow_report& rep = report ? *report : local;
   const int steps = o.steps >= 0 ? o.steps : p.steps;
@@ -474,9 +485,32 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
   std::vector<glm::vec3> source_guide{up};
   std::vector<int32_t> candidates, endpoints, path, fresh;
   const int node_cap = std::max(p.node_cap, 1);
+  bool pruned = false;                  // a cut removed nodes: the tree's vertices are the live ones
+  std::vector<int32_t> live_vertices;
 
   for (int k = 1; k <= steps; ++k) {
     if (o.cancelled()) { rep.cancelled = true; break; }
+    if (apply_keyframes(p, o.keyframes, k)) clamp_all_params(p);
+    // Pruning: the cut branch's vertices leave the tree, so later searches, border sets and paths
+    // can take them again; sources on the cut branch go (the root stands in when none is left).
+    if (const std::vector<int32_t> cut = apply_cuts(t, o.cuts, k, rep); !cut.empty()) {
+      for (int32_t c : cut) tree_node[node_vertex[size_t(c)]] = -1;
+      std::vector<int32_t> kept_sources;
+      std::vector<glm::vec3> kept_guides;
+      for (size_t i = 0; i < sources.size(); ++i)
+        if (tree_node[sources[i]] >= 0) kept_sources.push_back(sources[i]), kept_guides.push_back(source_guide[i]);
+      if (kept_sources.empty()) kept_sources.push_back(root), kept_guides.push_back(up);
+      sources = std::move(kept_sources);
+      source_guide = std::move(kept_guides);
+      pruned = true;
+    }
+    const std::vector<int32_t>* tree_vertices = &node_vertex;
+    if (pruned) {
+      live_vertices.clear();
+      for (size_t j = 0; j < t.size(); ++j)
+        if (t.died[j] == never_died) live_vertices.push_back(node_vertex[j]);
+      tree_vertices = &live_vertices;
+    }
     // Xu & Mould 2015 §D: step 1 samples the volume, later steps the border set B_h.
     candidates.clear();
     for (int32_t v : level_touched) level[v] = -1;
@@ -514,7 +548,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
       // stray that far. search_corridor = 0 is the paper's exact, unbounded search.
       const bool bounded = p.search_corridor > 0;
       const int depth = bounded ? std::max(h, int(std::lround(std::min(p.search_corridor * float(h), 1e6f)))) : h;
-      candidates = hop_levels(g, node_vertex, h, depth, level, level_touched, o, stop);
+      candidates = hop_levels(g, *tree_vertices, h, depth, level, level_touched, o, stop);
       corridor = bounded ? &level : nullptr;
       if (stop) { rep.cancelled = true; break; }
       const float floor_y = g.point[root].y + p.clear_trunk;

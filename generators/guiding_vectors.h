@@ -20,6 +20,10 @@ inline constexpr const char* gv_t_mode_names[] = {"constant", "hop_ramp", "radia
 enum class gv_volume : int { sphere = 0, annulus = 1, box = 2, cone = 3 };
 inline constexpr const char* gv_volume_names[] = {"sphere", "annulus", "box", "cone", nullptr};
 
+// Memory caps (memory_bound.h): Poisson points of the graph, and cells of the sampling grid.
+inline constexpr int64_t gv_point_cap = 4000000;
+inline constexpr uint64_t gv_grid_cell_cap = uint64_t(1) << 26;
+
 struct guiding_vectors_params {
   int steps = 5;
   // Per-step schedules; entry k-1 drives step k, the last entry repeats for later steps.
@@ -88,7 +92,8 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p, const grow_o
 // FIFO queue and k candidates in the shell [r, 2r] around each point (Xu & Mould 2015 §A). Returns
 // false (and no points) when the background grid would be too large or growth was cancelled.
 bool sample_poisson_disc(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& first, float r, int k,
-                         uint64_t seed, const grow_options& o, std::vector<glm::vec3>& out, std::string* error = nullptr);
+                         uint64_t seed, const grow_options& o, std::vector<glm::vec3>& out, std::string* error = nullptr,
+                         int64_t point_cap = gv_point_cap);
 
 // The vertices with lazily built Yao-8 out-edges. `point` is reordered into an implicit k-d tree.
 struct gv_graph {

@@ -5,6 +5,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "generators/keyframes.h"
+#include "generators/pruning.h"
 #include "generators/lsystem.h"
 
 namespace sylva {
@@ -21,7 +23,8 @@ struct apex {
 
 }  // namespace
 
-tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_report* report) {
+tree_skeleton grow_honda(const lsystem_params& p_in, const grow_options& o, grow_report* report) {
+  lsystem_params p = p_in;   // growth phases change it from a keyed derivation on
   grow_report local;
   grow_report& rep = report ? *report : local;
   const int steps = o.steps >= 0 ? o.steps : p.derivations;
@@ -35,10 +38,19 @@ tree_skeleton grow_honda(const lsystem_params& p, const grow_options& o, grow_re
   // Derivations proceed in parallel over all apices (breadth first), so the nodes of derivation
   // k follow those of k-1: growing s steps yields exactly the prefix born <= s.
   std::vector<apex> current{{frame0, glm::vec3(0), p.s0, p.w0, 0, 0}}, next;
-  const float wq1 = std::pow(p.q, p.e), wq2 = std::pow(1 - p.q, p.e);
+  float wq1 = std::pow(p.q, p.e), wq2 = std::pow(1 - p.q, p.e);
   int step = 0;
   for (int k = 1; k <= steps && !current.empty(); ++k) {
     if (o.cancelled()) { rep.cancelled = true; break; }
+    // Growth phases: derivation k rewrites with the values keyed up to k (the daughters it
+    // creates carry them into the internodes of derivation k+1).
+    if (apply_keyframes(p, o.keyframes, k)) {
+      clamp_all_params(p);
+      wq1 = std::pow(p.q, p.e), wq2 = std::pow(1 - p.q, p.e);
+    }
+    // Pruning: the apices on a cut branch go with it; nothing else in the model responds.
+    if (!apply_cuts(t, o.cuts, k, rep).empty())
+      std::erase_if(current, [&](const apex& a) { return t.died[size_t(a.node)] != never_died; });
     next.clear();
     for (const apex& a : current) {
       if (!(a.s >= p.min_length)) continue;  // condition fails: A stays as it is, forever

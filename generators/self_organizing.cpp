@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "generators/keyframes.h"
+#include "generators/pruning.h"
 #include "generators/self_organizing_grid.h"
 #include "generators/vec_util.h"
 
@@ -115,9 +117,9 @@ struct marker_state {
     best_bud.assign(pos.size(), -1);
     best_d2.assign(pos.size(), 0);
   }
-  // Calls f(marker) for the live markers within distance d of p.
+  // Calls f(marker) for the live markers (all when dead_too) within distance d of p.
   template <class F>
-  void visit_near(const glm::vec3& p, float d, F&& f) const {
+  void visit_near(const glm::vec3& p, float d, F&& f, bool dead_too = false) const {
     const glm::ivec3 lo = cell_of(p - d), hi = cell_of(p + d);
     const float d2 = d * d;
     for (int z = lo.z; z <= hi.z; ++z)
@@ -129,7 +131,7 @@ struct marker_state {
           const size_t c = size_t(it - cell_key.begin());
           for (uint32_t j = cell_start[c]; j < cell_start[c + 1]; ++j) {
             const uint32_t m = order[j];
-            if (!alive[m]) continue;
+            if (!alive[m] && !dead_too) continue;
             const glm::vec3 dv = pos[m] - p;
             if (glm::dot(dv, dv) <= d2) f(m, dv);
           }
@@ -367,6 +369,25 @@ struct so_state {
     return any;
   }
 
+  // Pruning (Palubicki et al. 2009, §7 and fig. 12): a cut branch goes as a shed one does. Its
+  // buds and its shadow go with it, so the next step's light and flow send the resource it took to
+  // the rest of the tree and the buds near the cut break. In the marker environment the markers
+  // it had occupied come back, unless a remaining node still occupies them.
+  void prune(const std::vector<int32_t>& cut) {
+    for (int32_t i : cut) {
+      const int32_t par = t.parent[i];
+      if (main[par] == i) main[par] = no_bud;
+      if (lat[par] == i) lat[par] = no_bud;
+      if (p.environment == so_environment::shadow)
+        add_shadow_pyramid(grid, voxel[i], p.shadow_a, p.shadow_b, p.q_max, -1);
+    }
+    if (p.environment != so_environment::markers) return;
+    for (int32_t i : cut)
+      markers.visit_near(t.position[i], p.occupancy_radius * l, [&](uint32_t m, const glm::vec3&) { markers.alive[m] = 1; }, true);
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t.died[i] == never_died) remove_markers_near(t.position[i]);
+  }
+
   // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v).
   void allocate(int step, const std::vector<int32_t>& roots) {
     for (int32_t root : roots) flow[root] = p.alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
@@ -502,9 +523,17 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     // Markers fill an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1).
     const float bottom = std::min(p.envelope_bottom, p.envelope_top), top = std::max(p.envelope_bottom, p.envelope_top);
     const glm::vec3 radii(p.envelope_radius, 0.5f * (top - bottom), p.envelope_radius);
+    // Memory cap (memory_bound.h): at most so_marker_cap markers in all, shared by the trees.
+    int per_tree = p.marker_count;
+    if (int64_t(per_tree) * int64_t(roots_at.size()) > so_marker_cap) {
+      per_tree = int(so_marker_cap / int64_t(roots_at.size()));
+      rep.message = "markers capped at " + std::to_string(so_marker_cap) + " in all: " + std::to_string(per_tree) +
+                    " per tree instead of " + std::to_string(p.marker_count);
+    }
+    st.markers.pos.reserve(size_t(per_tree) * roots_at.size());
     for (const glm::vec3& at : roots_at) {
       const glm::vec3 centre = at + glm::vec3(0, 0.5f * (top + bottom), 0);
-      for (int k = 0; k < p.marker_count; ++k) {
+      for (int k = 0; k < per_tree; ++k) {
         glm::vec3 u;
         do u = glm::vec3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
         while (glm::dot(u, u) > 1);
@@ -516,12 +545,21 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     for (int32_t i : roots) st.remove_markers_near(t.position[i]);
   }
 
-  const float div = glm::radians(p.divergence);
+  float div = glm::radians(p.divergence);
   std::vector<int32_t> grown;  // nodes made this step
   std::vector<float> last_flow;
   int step = 0;
   for (int T = 1; T <= steps; ++T) {
     if (o.cancelled()) { rep.cancelled = true; break; }
+    // Growth phases: new values from this step on; what the state derives from them follows.
+    if (apply_keyframes(p, o.keyframes, T)) {
+      clamp_all_params(p);
+      st.cos_theta = std::cos(glm::radians(p.perception_angle));
+      st.age_pow.clear();   // memoised powers of σ and BE/n
+      st.tips_pow.clear();
+      div = glm::radians(p.divergence);
+    }
+    if (const std::vector<int32_t> cut = apply_cuts(t, o.cuts, T, rep); !cut.empty()) st.prune(cut);
     st.compute_bud_light(T);
     st.sweep_flow();
     if (st.shed(uint16_t(T))) st.sweep_flow();
@@ -576,7 +614,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     }
     step = T;
     if (o.progress) o.progress(float(T) / float(std::max(steps, 1)));
-    if (rep.hit_node_cap || rep.cancelled) break;
+    if (rep.hit_node_cap || rep.cancelled || st.grid.full) break;
   }
   t.steps = step;
   apply_pipe_radii(t, p.pipe_exponent, p.tip_radius);
@@ -584,8 +622,13 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) in step " + std::to_string(step) +
                   "; raise node_cap or lower the step count";
-  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
-  rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
+  else if (st.grid.full)
+    rep.message = "shadow grid memory cap reached (" + std::to_string(st.grid.chunk_cap) + " chunks, " +
+                  std::to_string((st.grid.chunk_cap * shadow_grid::chunk_cells * sizeof(float)) >> 20) +
+                  " MiB) in step " + std::to_string(step) + "; raise voxel_size, lower q_max or the step count";
+  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled
+             : st.grid.full ? grow_stop::memory_cap : grow_stop::finished;
+  rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : st.grid.full ? "memory cap" : "steps done";
 
   if (debug) {
     if (shadow) {

@@ -26,6 +26,9 @@ inline constexpr const char* so_light_count_names[] = {"per_bud", "per_node", nu
 enum class so_upkeep_form : int { relative = 0, seed001 = 1 };
 inline constexpr const char* so_upkeep_form_names[] = {"relative", "seed001", nullptr};
 
+// Memory cap: markers of the space-colonization environment, all trees together.
+inline constexpr int64_t so_marker_cap = 8000000;
+
 struct self_organizing_params {
   int steps = 27;                     // about 20,000 internodes with the defaults
   float internode_length = 0.1f;      // metres

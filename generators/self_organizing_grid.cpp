@@ -69,6 +69,11 @@ float* get_chunk(shadow_grid& g, const glm::ivec3& c) {
     if (g.keys[s] == key) return g.cells.data() + size_t(g.chunk_of[s]) * shadow_grid::chunk_cells;
     if (g.keys[s] == shadow_grid::empty_key) break;
   }
+  if (g.chunk_pos.size() >= g.chunk_cap) {  // over the memory cap: the write goes nowhere
+    g.full = true;
+    g.scratch.assign(shadow_grid::chunk_cells, 0.0f);
+    return g.scratch.data();
+  }
   // Keep the load factor under 1/2 so probes stay short.
   if (2 * (g.chunk_pos.size() + 1) > g.keys.size()) {
     std::vector<uint64_t> old_keys = std::move(g.keys);

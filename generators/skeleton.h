@@ -105,12 +105,19 @@ struct growth_debug {
 
 using progress_fn = std::function<void(float)>;
 
+struct keyframe;   // generators/keyframes.h
+struct prune_cut;  // generators/pruning.h
+
 struct grow_options {
   uint64_t seed = 1;
   int steps = -1;                                  // -1: the params' own step count
   const std::atomic<uint32_t>* cancel = nullptr;   // non-zero: stop and return what is grown
   uint32_t cancel_value = 0;                       // cancelled when *cancel != cancel_value
   progress_fn progress;
+  // Growth phases: applied by the generator at the top of each step (grow() checks them first).
+  const std::vector<keyframe>* keyframes = nullptr;
+  // Pruning: cuts the generator makes at the top of their steps (grow() checks them first).
+  const std::vector<prune_cut>* cuts = nullptr;
   bool cancelled() const {
     return cancel && cancel->load(std::memory_order_relaxed) != cancel_value;
   }
@@ -121,6 +128,7 @@ enum class grow_stop : uint8_t {
   finished,           // ran its steps or derivations, or ran out of room to grow (stop_reason says which)
   node_cap,
   module_cap,         // L-systems: the derived string hit its module cap
+  memory_cap,         // self-organizing: the shadow grid hit its memory cap
   cancelled,
   parse_error,        // L-systems: the source does not parse (the editor keeps the last good tree)
   evaluation_error,   // L-systems: an expression failed while deriving
@@ -135,6 +143,7 @@ struct grow_report {
   std::string stop_reason;    // e.g. "no attraction points left"
   std::string message;        // warning or error for the status bar ("" when all is well)
   bool error = false;         // true when the result is not a tree the user asked for
+  std::vector<int> missed_cuts;   // indices of the cuts that found no branch (generators/pruning.h)
 };
 
 // A small, fast, seedable RNG (SplitMix64, Steele et al. 2014) owned by each generator.

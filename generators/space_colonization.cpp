@@ -8,6 +8,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "generators/keyframes.h"
+#include "generators/pruning.h"
+
 namespace sylva {
 namespace {
 
@@ -206,6 +209,7 @@ void place_spiral_leaves(tree_skeleton& t, const std::vector<uint8_t>& has_child
       l.orientation = glm::normalize(glm::quat_cast(glm::mat3(lx, ly, glm::cross(lx, ly))));
       l.size = r.uniform(smin, smax);
       l.born = t.born[i];
+      l.died = t.died[i];   // a cut (pruning) takes the leaves with the branch
       l.node = int32_t(i);
       t.leaves.push_back(l);
     }
@@ -241,7 +245,9 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   space_colonization_params p = p_in;
   clamp_all_params(p);  // bad input (NaN, out of range) never reaches the loop
   const int steps = std::min(o.steps >= 0 ? o.steps : p.steps, int(never_died) - 1);
-  const float D = p.segment_length, d_i = p.influence_radius;
+  float D = p.segment_length;
+  const float d_i = p.influence_radius;
+
 
   tree_skeleton t;
   std::vector<uint8_t> has_child;
@@ -291,6 +297,18 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // internodes, so any length works), then on until some point is within d_i of the tree.
   const int trunk_min = int(std::ceil(p.trunk_length / D - 1e-4f));
   int32_t tip = 0;
+  // The top of each step: growth phases (new segment length or tropism from this step on), then
+  // cuts. A cut gives back the points its branch had killed: the point state is rebuilt from the
+  // remaining nodes, so other branches take the freed points (Runions 2007's competition for space).
+  auto key_step = [&](int k) {
+    if (apply_keyframes(p, o.keyframes, k)) clamp_all_params(p), D = p.segment_length;
+    if (apply_cuts(t, o.cuts, k, rep).empty()) return;
+    s = colonization_state{};
+    init_state(s, pts, d_i, d_k);
+    for (size_t j = 0; j < t.size(); ++j)
+      if (t.died[j] == never_died) visit_new_node(s, t.position[j], int32_t(j), k);
+    while (t.died[size_t(tip)] != never_died) tip = t.parent[size_t(tip)];   // a cut trunk regrows from below
+  };
   for (int k = 0; stop.empty(); ++k) {
     compact_active(s);
     const bool reached = !s.active.empty();
@@ -312,6 +330,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     else if (o.cancelled()) rep.cancelled = true, stop = "cancelled";
     else if (room()) {
       ++step;
+      key_step(step);
       add(t.position[size_t(tip)] + glm::vec3(0, D, 0), tip, step);
       tip = int32_t(t.size() - 1);
       visit_new_node(s, t.position[size_t(tip)], tip, step);
@@ -330,6 +349,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     if (step >= steps) { stop = "step limit"; break; }
     if (o.cancelled()) { rep.cancelled = true; stop = "cancelled"; break; }
     ++step;
+    key_step(step);
     if (debug) debug->lines.clear(), debug->line_color.clear(), debug->line_kind.clear();
     touched.clear();
     for (int32_t i : s.active) {

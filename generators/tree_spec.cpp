@@ -36,6 +36,18 @@ int default_steps(const generator_params& p) {
 tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* report, growth_debug* debug) {
   grow_options opt = o;
   opt.seed = spec.seed;
+  // Keyframes that fail their checks never reach a generator: the editor and the loaders refuse
+  // them, so this only catches a spec built by hand.
+  std::string bad_keys;
+  if (!spec.keyframes.empty()) {
+    bad_keys = check_keyframes(spec);
+    opt.keyframes = bad_keys.empty() ? &spec.keyframes : nullptr;
+  }
+  std::string bad_cuts;
+  if (!spec.cuts.empty()) {
+    bad_cuts = check_cuts(spec);
+    opt.cuts = bad_cuts.empty() ? &spec.cuts : nullptr;
+  }
   tree_skeleton t = std::visit(
       [&](const auto& p) -> tree_skeleton {
         using P = std::decay_t<decltype(p)>;
@@ -45,6 +57,10 @@ tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* re
         else return grow_lsystem(p, opt, report, debug);
       },
       spec.params);
+  if (report && !bad_keys.empty() && report->message.empty())
+    report->message = "keyframes ignored: " + bad_keys;
+  if (report && !bad_cuts.empty() && report->message.empty())
+    report->message = "cuts ignored: " + bad_cuts;
   // Some values inside the published ranges leave nothing to grow (no endpoints, no resource for
   // any bud): say so rather than show a bare root without a word.
   const int wanted = o.steps >= 0 ? o.steps : default_steps(spec.params);

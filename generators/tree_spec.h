@@ -5,7 +5,9 @@
 #include <variant>
 
 #include "generators/guiding_vectors.h"
+#include "generators/keyframes.h"
 #include "generators/lsystem.h"
+#include "generators/pruning.h"
 #include "generators/self_organizing.h"
 #include "generators/space_colonization.h"
 #include "generators/wood.h"
@@ -28,6 +30,8 @@ struct tree_spec {
   generator_params params = lsystem_params{};
   uint64_t seed = 1;
   wood_params wood;   // the wood pass every generator's skeleton goes through (generators/wood.h)
+  std::vector<keyframe> keyframes;   // growth phases (generators/keyframes.h), sorted by step
+  std::vector<prune_cut> cuts;       // pruning (generators/pruning.h), in the order they were made
   bool operator==(const tree_spec&) const = default;
 };
 

@@ -271,6 +271,120 @@ std::string params_from_json(const json& o, const std::string& section, P& p, st
 }
 
 // ---------------------------------------------------------------------------------------------
+// Growth phases: "keyframes": [{"step": k, "key": "...", "value": v}], v typed as its parameter.
+
+// Calls f(value, info) on the keyable generator parameter `key` of a copy of the spec's params;
+// false when there is none (check_keyframe then names the problem).
+template <class F>
+bool with_keyable(const tree_spec& spec, std::string_view key, F&& f) {
+  bool found = false;
+  std::visit(
+      [&](const auto& gp) {
+        auto copy = gp;
+        visit_params(copy, [&](auto& value, const param_info& info) {
+          using T = std::remove_cvref_t<decltype(value)>;
+          if constexpr (keyable_type<T>)
+            if (key == info.key) {
+              found = true;
+              f(value, info);
+            }
+        });
+      },
+      spec.params);
+  return found;
+}
+
+json keyframes_to_json(const tree_spec& spec) {
+  json a = json::array();
+  for (const keyframe& k : spec.keyframes) {
+    json v = float_for_json(k.value.x);
+    with_keyable(spec, k.key, [&](auto& value, const param_info& info) {
+      from_key_value(k.value, value);
+      v = value_to_json(value, info);
+    });
+    a.push_back(json{{"step", k.step}, {"key", k.key}, {"value", v}});
+  }
+  return a;
+}
+
+// Reads the list into spec.keyframes (after its params); every keyframe passes check_keyframe.
+std::string keyframes_from_json(const json& a, tree_spec& spec, std::vector<std::string>& warnings) {
+  if (!a.is_array()) return std::string("keyframes: expected an array, got ") + json_type_name(a);
+  if (a.size() > max_preset_list) return "keyframes: more than " + std::to_string(max_preset_list) + " entries";
+  for (size_t i = 0; i < a.size(); ++i) {
+    const json& o = a[i];
+    const std::string at = "keyframes[" + std::to_string(i) + "]";
+    if (!o.is_object()) return at + ": expected an object {\"step\", \"key\", \"value\"}, got " + json_type_name(o);
+    auto step = o.find("step"), key = o.find("key"), value = o.find("value");
+    if (step == o.end() || !step->is_number_integer()) return at + ": \"step\" must be an integer";
+    if (key == o.end() || !key->is_string()) return at + ": \"key\" must be a string";
+    if (value == o.end()) return at + ": \"value\" is missing";
+    keyframe k;
+    k.step = int(std::clamp<int64_t>(step->get<int64_t>(), -1, 1000000));
+    k.key = key->get<std::string>();
+    std::string error;
+    with_keyable(spec, k.key, [&](auto& v, const param_info& info) {
+      std::vector<std::string> notes;
+      error = json_to_value(*value, v, info, notes);
+      for (const std::string& n : notes) warnings.push_back(at + ": " + n);
+      k.value = to_key_value(v);
+    });
+    if (!error.empty()) return at + " (" + k.key + "): " + error;
+    for (auto it = o.begin(); it != o.end(); ++it)
+      if (it.key() != "step" && it.key() != "key" && it.key() != "value")
+        warnings.push_back(at + "." + it.key() + ": unknown key, ignored");
+    // check_keyframe also refuses a second value for a key at one step (set_keyframe would replace it).
+    if (std::string e = check_keyframe(spec, k); !e.empty()) return e;
+    set_keyframe(spec, k);
+  }
+  return "";
+}
+
+// Pruning: "cuts": [{"step": k, "shape": "branch", "point": [x, y, z], "reach": r}] or, for a
+// brush, {"step": k, "shape": "outside_box", "point": [...], "size": [...]}.
+json cuts_to_json(const tree_spec& spec) {
+  json a = json::array();
+  for (const prune_cut& c : spec.cuts) {
+    json o = {{"step", c.step}, {"shape", prune_shape_names[int(c.shape)]},
+              {"point", json::array({float_for_json(c.point.x), float_for_json(c.point.y), float_for_json(c.point.z)})}};
+    if (c.shape == prune_shape::branch) o["reach"] = float_for_json(c.reach);
+    else o["size"] = json::array({float_for_json(c.size.x), float_for_json(c.size.y), float_for_json(c.size.z)});
+    a.push_back(std::move(o));
+  }
+  return a;
+}
+
+std::string cuts_from_json(const json& a, tree_spec& spec, std::vector<std::string>& warnings) {
+  if (!a.is_array()) return std::string("cuts: expected an array, got ") + json_type_name(a);
+  if (a.size() > max_preset_list) return "cuts: more than " + std::to_string(max_preset_list) + " entries";
+  for (size_t i = 0; i < a.size(); ++i) {
+    const json& o = a[i];
+    const std::string at = "cuts[" + std::to_string(i) + "]";
+    if (!o.is_object()) return at + ": expected an object, got " + json_type_name(o);
+    prune_cut c;
+    auto step = o.find("step");
+    if (step == o.end() || !step->is_number_integer()) return at + ": \"step\" must be an integer";
+    c.step = int(std::clamp<int64_t>(step->get<int64_t>(), -1, 1000000));
+    if (auto it = o.find("shape"); it != o.end()) {
+      int shape = -1;
+      for (int k = 0; it->is_string() && prune_shape_names[k]; ++k)
+        if (it->get<std::string>() == prune_shape_names[k]) shape = k;
+      if (shape < 0) return at + ": \"shape\" must be one of branch, outside_ellipsoid, outside_box";
+      c.shape = prune_shape(shape);
+    }
+    auto point = o.find("point");
+    if (point == o.end() || !json_to_vec3(*point, c.point)) return at + ": \"point\" must be [x, y, z]";
+    if (auto it = o.find("size"); it != o.end() && !json_to_vec3(*it, c.size)) return at + ": \"size\" must be [x, y, z]";
+    if (auto it = o.find("reach"); it != o.end() && !json_to_float(*it, c.reach)) return at + ": \"reach\" must be a number";
+    for (auto it = o.begin(); it != o.end(); ++it)
+      if (it.key() != "step" && it.key() != "shape" && it.key() != "point" && it.key() != "size" && it.key() != "reach")
+        warnings.push_back(at + "." + it.key() + ": unknown key, ignored");
+    if (std::string e = add_cut(spec, c); !e.empty()) return at + ": " + e;
+  }
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------
 // Versions. upgrade_steps[v - 1] turns a version-v document into version v+1; when the schema
 // changes, bump preset_version and append one step (renamed keys, changed units ...), so a file
 // of any older version is walked forward one version at a time before it is read.
@@ -388,8 +502,13 @@ load_result load_preset_doc(json& doc, preset& out) {
   // A preset without a "wood" section (every preset before issue 12) loads with the pass off.
   if (e = params_from_json(section("wood"), "wood", p.spec.wood, r.warnings); !e.empty()) return fail(e);
 
+  if (auto it = doc.find("keyframes"); it != doc.end())
+    if (e = keyframes_from_json(*it, p.spec, r.warnings); !e.empty()) return fail(e);
+  if (auto it = doc.find("cuts"); it != doc.end())
+    if (e = cuts_from_json(*it, p.spec, r.warnings); !e.empty()) return fail(e);
+
   static const std::set<std::string> top = {"sylva_preset", "name", "description", "tags", "generator",
-                                            "seed",         "params", "mesh",      "render", "wood"};
+                                            "seed",         "params", "mesh",      "render",    "wood", "keyframes", "cuts"};
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (!top.count(it.key())) r.warnings.push_back(it.key() + ": unknown key, ignored");
 
@@ -583,6 +702,8 @@ std::string save_preset_json(const preset& p) {
   doc["mesh"] = params_to_json(p.mesh);
   doc["render"] = params_to_json(p.render);
   doc["wood"] = params_to_json(p.spec.wood);
+  if (!p.spec.keyframes.empty()) doc["keyframes"] = keyframes_to_json(p.spec);
+  if (!p.spec.cuts.empty()) doc["cuts"] = cuts_to_json(p.spec);
   return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
@@ -644,12 +765,33 @@ std::string set_preset_define(preset& p, std::string_view key, std::string_view 
 }
 }  // namespace
 
+// `--set key@step=value`: a keyframe of the generator's parameter `key` (issue 18).
+static std::string set_preset_keyframe(preset& p, std::string_view key_at, std::string_view text) {
+  const size_t at = key_at.find('@');
+  std::string_view key = key_at.substr(0, at);
+  if (key.substr(0, 7) == "params.") key.remove_prefix(7);
+  float step_f = 0;
+  if (!parse_float_text(key_at.substr(at + 1), step_f) || step_f != std::floor(step_f) || std::fabs(step_f) > 1e6f)
+    return std::string(key_at) + ": the step after @ must be a whole number";
+  keyframe k;
+  k.step = int(step_f);
+  k.key = std::string(key);
+  std::string error;
+  with_keyable(p.spec, k.key, [&](auto& value, const param_info& info) {
+    error = text_to_value(text, value, info);
+    k.value = to_key_value(value);
+  });
+  if (!error.empty()) return std::string(key_at) + ": " + error;
+  return set_keyframe(p.spec, k);
+}
+
 std::string set_preset_param(preset& p, std::string_view assignment) {
   const size_t eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0)
     return "--set expects key=value, got \"" + std::string(assignment) + "\"";
   const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   if (is_define_key(key)) return set_preset_define(p, key, text);
+  if (key.find('@') != std::string_view::npos) return set_preset_keyframe(p, key, text);
   std::string error;
   std::string found = with_param(p, key, [&](auto& value, const param_info& info) {
     auto v = value;
@@ -667,6 +809,12 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
   if (eq == std::string_view::npos || eq == 0)
     return "--set expects key=value, got \"" + std::string(assignment) + "\"";
   const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  if (key.find('@') != std::string_view::npos) {
+    // A keyframe: one value, checked when it is set, after the --set before it (which may raise
+    // the step count it is checked against).
+    out.emplace_back(assignment);
+    return "";
+  }
   const auto parts = split(text, ':');
   preset copy = p;
   bool numeric = is_define_key(key), integral = false;

@@ -53,8 +53,9 @@ std::string save_preset_json(const preset& p);
 // Writes through a temporary file and a rename; returns "" or the error.
 std::string save_preset_file(const preset& p, const std::string& path);
 
-// `key=value` for the current generator's params, mesh or render params (CLI --set).
-// Returns "" or the error.
+// `key=value` for the current generator's params, mesh or render params (CLI --set), or
+// `key@step=value` for a keyframe of a generator parameter (generators/keyframes.h).
+// Returns "" or the error; on an error the preset is unchanged.
 std::string set_preset_param(preset& p, std::string_view assignment);
 // CLI `--set key=a:b:n` for a numeric parameter: appends n assignments from a to b, evenly spaced
 // (rounded for integers); any other assignment is appended unchanged. Every value is checked as

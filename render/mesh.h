@@ -19,6 +19,19 @@ struct mesh_params {
   int radial_segments = 8;      // vertices per ring
   float uv_repeat = 2.0f;       // bark texture repeats per metre along a branch
   float min_radius = 0.0005f;   // radii below this are raised to it (keeps thin twigs visible)
+  // Bark shape (issue 12): curved axes, gnarl, twist, collars, root flare, caps.
+  float curve_angle = 12.0f;    // degrees the curve may turn between two rings of an internode
+  int curve_rings = 2;          // at most this many rings inserted per internode (0: polyline)
+  float detail_budget = 1.45f;  // curve and collar rings stop at this x the triangles of one ring per node
+  float gnarl = 3.0f;           // degrees of seeded angular noise per internode, for old wood
+  float twist = 0.0f;           // spiral grain: degrees the bark texture leans around the axis
+  float collar = 0.35f;         // a lateral's base swells by this fraction of its radius
+  float collar_length = 2.0f;   // ... fading over this many lateral radii beyond the parent's bark
+  float collar_min_radius = 0.01f;  // thinner laterals get no collar ring (metres)
+  int flare_lobes = 5;          // buttress lobes at the trunk's base
+  float flare_height = 1.0f;    // metres of trunk the flare spans (at most 6 trunk radii)
+  float flare_strength = 0.5f;  // extra radius at the ground, as a fraction of the trunk's (0: off)
+  bool caps = true;             // close every tube end
   bool leaves_enabled = true;
   leaf_params leaves;           // used when the generator places no leaves itself
   float leaf_scale = 1.0f;      // multiplies every leaf's size (generator-placed leaves too)
@@ -30,6 +43,18 @@ void visit_params(P& p, V&& v) {
   v(p.radial_segments, param_info{"radial_segments", "Radial segments", "", 3, 32, "Vertices around each bark ring", 0, "Bark mesh"});
   v(p.uv_repeat, param_info{"uv_repeat", "Bark UV repeat", "", 0.05f, 20, "Bark texture repeats per metre along a branch", param_log});
   v(p.min_radius, param_info{"min_radius", "Minimum radius", "", 0.00001f, 0.05f, "Thinner branches are drawn at this radius (metres)", param_log});
+  v(p.curve_angle, param_info{"curve_angle", "Curve ring angle", "", 2, 90, "A ring is inserted into an internode for every this many degrees its centripetal Catmull-Rom curve turns", param_degrees, "Bark shape"});
+  v(p.curve_rings, param_info{"curve_rings", "Curve rings", "", 0, 8, "Most rings inserted into one internode where the branch curves (0: straight tubes)"});
+  v(p.detail_budget, param_info{"detail_budget", "Detail budget", "", 1, 4, "Curve and collar rings go where they show most (wide branches, sharp turns) until the bark has this many times the triangles of one ring per node"});
+  v(p.gnarl, param_info{"gnarl", "Gnarl", "", 0, 30, "Seeded angular noise per internode, growing with age and branch order (degrees)", param_degrees});
+  v(p.twist, param_info{"twist", "Bark twist", "", -45, 45, "Spiral grain: the bark texture leans by this angle around the axis", param_degrees});
+  v(p.collar, param_info{"collar", "Collar swell", "", 0, 1, "A lateral's base swells by this fraction of its radius where it leaves its parent"});
+  v(p.collar_length, param_info{"collar_length", "Collar length", "", 0.5f, 8, "The collar fades over this many lateral radii beyond the parent's bark"});
+  v(p.collar_min_radius, param_info{"collar_min_radius", "Collar min radius", "", 0.0001f, 0.5f, "Laterals thinner than this get no collar (metres)", param_log});
+  v(p.flare_lobes, param_info{"flare_lobes", "Flare lobes", "", 3, 6, "Buttress lobes at the trunk's base (up to half the radial segments show)"});
+  v(p.flare_height, param_info{"flare_height", "Flare height", "", 0.05f, 3, "Metres of trunk the root flare spans (at most 6 trunk radii)"});
+  v(p.flare_strength, param_info{"flare_strength", "Flare strength", "", 0, 2, "Extra radius of the lobes at the ground, as a fraction of the trunk's (0: no flare)"});
+  v(p.caps, param_info{"caps", "Tip caps", "", 0, 1, "Close every tube end with a cap"});
   v(p.leaves_enabled, param_info{"leaves", "Leaves", "", 0, 1, "Show and export leaves", 0, "Leaves"});
   v(p.leaf_scale, param_info{"leaf_scale", "Leaf scale", "", 0.05f, 10, "Multiplies every leaf's size", param_log});
   visit_params(p.leaves, v);
@@ -54,7 +79,10 @@ struct leaf_instance {
 };
 
 struct tree_mesh {
-  // Bark: one ring of radial_segments+1 vertices per node (the seam is duplicated for UVs).
+  // Bark: rings of radial_segments+1 vertices (the seam is duplicated for UVs): one per node, a
+  // base ring per lateral, rings inserted where a branch curves, collars and the root flare, and
+  // a cap's apex ring (all its vertices at the apex) per tube end. Every ring belongs to the node
+  // that ends its internode, so per-node radii and visibility apply to it.
   std::vector<glm::vec3> position;   // metres
   std::vector<glm::vec3> normal;     // unit, radial for tube vertices
   std::vector<glm::vec2> uv;         // u around, v along by length (metres * uv_repeat)
@@ -80,6 +108,15 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed 
 // depth d (0 at the centre, 1 on the surface) is 0.35 + 0.65 d, and 1 outside. Fills
 // m.occlusion and each leaf's occlusion; O(vertices + leaves). mesh_tree calls it.
 void bake_crown_occlusion(tree_mesh& m);
+
+// Gnarl (issue 12): per node, the rotation vector (axis * angle) of its internode, from seeded noise
+// scaled by age and order; and the offset of every node once each internode is turned and its
+// subtree carried along (O(n)). mesh_tree moves bark and leaves by them.
+std::vector<glm::vec3> gnarl_rotations(const tree_skeleton& t, const mesh_params& p);
+std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<glm::vec3>& rot);
+// Where a point hung on node k (a leaf) goes once the gnarl has turned k's internode.
+glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& rot, const std::vector<glm::vec3>& disp,
+                        size_t k, const glm::vec3& at);
 
 // Checks the mesh invariants (indices in range, offsets monotone, no NaN); "" when valid.
 std::string validate_mesh(const tree_mesh& m);

@@ -32,5 +32,5 @@ for s in $SPECIES; do
           -label "autumn" "$TMP/$s-autumn.png" -label "winter" "$TMP/$s-winter.png")
   echo "species-sheet: $s"
 done
-montage "${tiles[@]}" -tile 8x -geometry "${SIZE}x${SIZE}+3+3" -pointsize 14 -background white "$OUT"
+montage "${tiles[@]}" -tile 8x -geometry "${SIZE}x${SIZE}+3+3" -font DejaVu-Sans -pointsize 14 -background white "$OUT"
 echo "species-sheet: wrote $OUT"

@@ -794,7 +794,7 @@ glm::mat4 light_viewproj(const renderer_state& r, const glm::vec3& sun, float* t
     a = glm::min(a, v);
     b = glm::max(b, v);
   }
-  const float pad = radius * 0.02f;
+  const float pad = radius * 0.02f + r.wind_reach;   // the swaying crown stays inside the map
   glm::mat4 proj = glm::ortho(a.x - pad, b.x + pad, a.y - pad, b.y + pad, -b.z - pad, -a.z + pad);
   if (texel_world) *texel_world = std::max(b.x - a.x, b.y - a.y) / float(std::max(r.shadow_size, 1));
   return proj * view;
@@ -1212,6 +1212,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   const glm::mat4 view = glm::lookAt(eye, cam.target, glm::vec3(0, 1, 0));
   const glm::mat4 viewproj = proj * view;
   float texel_world = 0;
+  r.wind_reach = wind_reach(r, rp);
   const glm::mat4 light = light_viewproj(r, sun, &texel_world);
   const bool lit_ok = !r.bark.failed && !r.leaf.failed;
   r.triangles_drawn = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)] / 3;

@@ -90,6 +90,7 @@ struct renderer_state {
   int wind_node_count = 0;
   float wind_ground = 0, wind_height = 1;
   float wind_time = 0;                // seconds; the editor advances it, exports and tests set it
+  float wind_reach = 0;               // metres the sway may carry the tree past its bounds (shadow fit)
 };
 
 // Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.

@@ -35,6 +35,15 @@ std::string with_wind_glsl(const char* vertex_src) {
   return eol == std::string::npos ? s : s.substr(0, eol + 1) + wind_glsl() + s.substr(eol + 1);
 }
 
+float wind_reach(const renderer_state& r, const render_params& rp) {
+  const wind_motion m = make_wind_motion(rp.wind);
+  if (m.strength <= 0 || r.wind_node_count == 0) return 0.0f;
+  // Trunk: tip offset theta H / 2 at the strongest gust; branches: a share of the height that
+  // grows with the strength (their angles are capped at 0.8 rad, their lengths well under H).
+  const float gust = 1.0f + m.gustiness;
+  return r.wind_height * std::min(0.5f, 0.05f * m.strength * gust * 0.5f + 0.08f * m.strength * gust);
+}
+
 void set_wind_uniforms(const renderer_state& r, const gl_program& p, const render_params& rp) {
   const wind_motion m = make_wind_motion(rp.wind);
   const bool on = m.strength > 0 && r.wind_node_count >= r.node_count && r.wind_node_count > 0 && r.wind_tex.id;

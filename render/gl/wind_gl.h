@@ -18,6 +18,10 @@ void upload_wind(renderer_state& r, const tree_skeleton& t);
 // The vertex shader source with render/wind.h's GLSL inserted after its #version line.
 std::string with_wind_glsl(const char* vertex_src);
 
+// How far (metres) the sway can carry any point past the tree's rest bounds, for the sun's shadow
+// frustum; 0 while the wind is off. Bounded by the motion's caps (render/wind.h).
+float wind_reach(const renderer_state& r, const render_params& rp);
+
 // Sets the wind uniforms of program `p` for this frame (time r.wind_time); binds the table to unit 8.
 void set_wind_uniforms(const renderer_state& r, const gl_program& p, const render_params& rp);
 

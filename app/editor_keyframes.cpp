@@ -1,0 +1,284 @@
+// Growth phases in the editor: "from this step on" edits, the keyframe list and the timeline markers.
+#include "app/editor_keyframes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <imgui.h>
+
+namespace sylva {
+
+generator_params params_at_step(const tree_spec& spec, int step) {
+  return std::visit([&](const auto& p) -> generator_params { return params_at_step(p, spec.keyframes, step); },
+                    spec.params);
+}
+
+std::string key_edits(tree_spec& spec, const generator_params& before, const generator_params& after, int step) {
+  if (before.index() != after.index() || before.index() != spec.params.index()) return "the generator changed";
+  tree_spec out = spec;
+  std::string error;
+  std::visit(
+      [&](const auto& b) {
+        using P = std::decay_t<decltype(b)>;
+        const P& a = std::get<P>(after);
+        std::vector<const void*> old;
+        visit_params(b, [&](const auto& value, const param_info&) { old.push_back(&value); });
+        size_t i = 0;
+        visit_params(a, [&](const auto& value, const param_info& info) {
+          using T = std::remove_cvref_t<decltype(value)>;
+          const T& was = *static_cast<const T*>(old[i++]);
+          if (!error.empty() || value == was) return;
+          if constexpr (!keyable_type<T>) {
+            error = std::string("\"") + info.key + "\" is a text or a list, which cannot be keyed; switch off \"from this step on\" to edit it";
+          } else {
+            if (std::string why = keyframe_refusal(out, info.key); !why.empty()) {
+              error = why + "; switch off \"from this step on\" to change it for the whole growth";
+              return;
+            }
+            // What would be in effect at `step` without a keyframe of this key there.
+            tree_spec without = out;
+            std::erase_if(without.keyframes, [&](const keyframe& k) { return k.step == step && k.key == info.key; });
+            const glm::vec3 v = to_key_value(value);
+            bool same = false;
+            const generator_params in_effect = params_at_step(without, step);
+            visit_params(std::get<P>(in_effect), [&](const auto& w, const param_info& wi) {
+              using W = std::remove_cvref_t<decltype(w)>;
+              if constexpr (keyable_type<W>)
+                if (wi.key == info.key) same = to_key_value(w) == v;
+            });
+            if (same) out.keyframes = std::move(without.keyframes);
+            else error = set_keyframe(out, {step, info.key, v});
+          }
+        });
+      },
+      before);
+  if (error.empty()) spec = std::move(out);
+  return error;
+}
+
+std::string move_keyframes(tree_spec& spec, int from, int to) {
+  if (from == to) return "";
+  tree_spec out = spec;
+  std::vector<keyframe> moving;
+  std::erase_if(out.keyframes, [&](const keyframe& k) {
+    if (k.step != from) return false;
+    moving.push_back(k);
+    return true;
+  });
+  for (keyframe k : moving) {
+    k.step = to;
+    if (std::string e = check_keyframe(out, k); !e.empty()) return e;
+    out.keyframes.push_back(k);
+  }
+  std::stable_sort(out.keyframes.begin(), out.keyframes.end(), [](const keyframe& a, const keyframe& b) {
+    return a.step != b.step ? a.step < b.step : a.key < b.key;
+  });
+  spec = std::move(out);
+  return "";
+}
+
+std::vector<int> keyed_steps(const tree_spec& spec) {
+  std::vector<int> s;
+  for (const keyframe& k : spec.keyframes)
+    if (s.empty() || s.back() != k.step) s.push_back(k.step);
+  std::sort(s.begin(), s.end());
+  s.erase(std::unique(s.begin(), s.end()), s.end());
+  return s;
+}
+
+std::string keyframe_text(const tree_spec& spec, const keyframe& k) {
+  std::string text = k.key + " = ?";
+  std::visit(
+      [&](const auto& p) {
+        auto copy = p;
+        visit_params(copy, [&](auto& value, const param_info& info) {
+          using T = std::remove_cvref_t<decltype(value)>;
+          if constexpr (keyable_type<T>) {
+            if (k.key != info.key) return;
+            from_key_value(k.value, value);
+            char b[96];
+            if constexpr (std::is_same_v<T, float>) std::snprintf(b, sizeof b, "%.4g", double(value));
+            else if constexpr (std::is_same_v<T, bool>) std::snprintf(b, sizeof b, "%s", value ? "on" : "off");
+            else if constexpr (std::is_enum_v<T>) std::snprintf(b, sizeof b, "%s", int(value) < option_count(info) ? info.options[int(value)] : "?");
+            else if constexpr (std::is_same_v<T, int>) std::snprintf(b, sizeof b, "%d", value);
+            else std::snprintf(b, sizeof b, "(%.3g, %.3g, %.3g)", double(value.x), double(value.y), double(value.z));
+            text = k.key + " = " + b;
+          }
+        });
+      },
+      spec.params);
+  return text;
+}
+
+bool keyed_at(const tree_spec& spec, const char* key, int step) {
+  for (const keyframe& k : spec.keyframes)
+    if (k.step == step && k.key == key) return true;
+  return false;
+}
+
+namespace {
+
+// Edits one keyframe's value with a widget of its parameter's type; true when it changed.
+bool edit_keyframe_value(tree_spec& spec, keyframe& k, std::string& error) {
+  bool changed = false;
+  std::visit(
+      [&](const auto& p) {
+        auto copy = p;
+        visit_params(copy, [&](auto& value, const param_info& info) {
+          using T = std::remove_cvref_t<decltype(value)>;
+          if constexpr (keyable_type<T>) {
+            if (k.key != info.key) return;
+            from_key_value(k.value, value);
+            bool edited = false;
+            if constexpr (std::is_same_v<T, float>)
+              edited = ImGui::SliderFloat("##v", &value, info.min, info.max, "%.4g",
+                                          (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0);
+            else if constexpr (std::is_same_v<T, int>)
+              edited = ImGui::SliderInt("##v", &value, int(info.min), int(info.max));
+            else if constexpr (std::is_same_v<T, bool>)
+              edited = ImGui::Checkbox("##v", &value);
+            else if constexpr (std::is_enum_v<T>) {
+              int v = int(value);
+              if (ImGui::Combo("##v", &v, info.options, option_count(info))) value = T(v), edited = true;
+            } else
+              edited = ImGui::DragFloat3("##v", &value.x, 0.01f, info.min, info.max);
+            if (!edited) return;
+            clamp_param(value, info);
+            keyframe changed_k = k;
+            changed_k.value = to_key_value(value);
+            tree_spec out = spec;
+            if (std::string e = set_keyframe(out, changed_k); !e.empty()) error = e;
+            else spec = std::move(out), changed = true;
+          }
+        });
+      },
+      spec.params);
+  return changed;
+}
+
+}  // namespace
+
+bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std::string& error) {
+  if (!ImGui::CollapsingHeader("Growth phases", spec.keyframes.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen)) return false;
+  bool changed = false;
+  const char* meaning = keyframe_step_meaning(spec);
+  const auto* l = std::get_if<lsystem_params>(&spec.params);
+  const bool available = !(l && l->mode == lsystem_mode::text);
+  if (!available) ImGui::BeginDisabled();
+  ImGui::Checkbox("From this step on", &s.from_step);
+  if (!available) {
+    ImGui::EndDisabled();
+    s.from_step = false;
+  }
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("On: moving a generator slider keys its new value from the timeline's step on (a growth\n"
+                      "phase); the tree before that step stays exactly as it is. Off: the slider sets the value\n"
+                      "for the whole growth.\n\n%s",
+                      meaning);
+  ImGui::TextWrapped("%s.", meaning);
+  if (s.from_step && step < 1) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "Scrub to step 1 or later to key a value.");
+  else if (s.from_step) ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "Slider edits are keyed at step %d (marked •).", step);
+  int remove = -1;
+  if (!spec.keyframes.empty() && ImGui::BeginTable("##keys", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) {
+    ImGui::TableSetupColumn("step", ImGuiTableColumnFlags_WidthFixed, 44);
+    ImGui::TableSetupColumn("key");
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 24);
+    for (size_t i = 0; i < spec.keyframes.size(); ++i) {
+      keyframe& k = spec.keyframes[i];
+      ImGui::PushID(int(i));
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      if (k.step == step) ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "%d", k.step);
+      else ImGui::Text("%d", k.step);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(k.key.c_str());
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(-1);
+      changed |= edit_keyframe_value(spec, k, error);
+      ImGui::TableNextColumn();
+      if (ImGui::SmallButton("x")) remove = int(i);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Delete this keyframe");
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  if (remove >= 0) {
+    spec.keyframes.erase(spec.keyframes.begin() + remove);
+    changed = true;
+  }
+  if (spec.keyframes.empty()) ImGui::TextDisabled("No keyframes.");
+  return changed;
+}
+
+bool draw_keyframe_markers(keyframe_panel_state& s, tree_spec& spec, int steps, float x0, float x1, float y,
+                           int& step, std::string& error) {
+  if (spec.keyframes.empty() || steps <= 0) return false;
+  bool changed = false;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  auto x_of = [&](int k) { return x0 + (x1 - x0) * float(std::clamp(k, 0, steps)) / float(steps); };
+  const float h = 6;
+  for (int k : keyed_steps(spec)) {
+    ImGui::PushID(k);
+    const float x = x_of(s.drag_from == k && s.drag_to >= 0 ? s.drag_to : k);
+    ImGui::SetCursorScreenPos(ImVec2(x - h - 1, y));
+    ImGui::InvisibleButton("##marker", ImVec2(2 * h + 2, 2 * h + 2), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
+    if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2)) {
+      s.drag_from = k;
+      const float f = (ImGui::GetIO().MousePos.x - x0) / std::max(x1 - x0, 1.0f);
+      s.drag_to = std::clamp(int(std::lround(f * float(steps))), 1, steps);
+    }
+    if (ImGui::IsItemDeactivated()) {
+      if (s.drag_from == k && s.drag_to >= 0 && s.drag_to != k) {
+        if (std::string e = move_keyframes(spec, k, s.drag_to); !e.empty()) error = e;
+        else step = s.drag_to, changed = true;
+      } else if (s.drag_from < 0) {
+        step = k;  // a click: jump to the keyed step
+      }
+      s.drag_from = s.drag_to = -1;
+    }
+    if (ImGui::IsItemClicked(ImGuiMouseButton_Right)) {
+      s.popup_step = k;
+      ImGui::OpenPopup("##keyed");
+    }
+    const ImU32 col = hovered || active ? IM_COL32(140, 220, 255, 255) : k == step ? IM_COL32(90, 190, 255, 255)
+                                                                              : IM_COL32(255, 200, 90, 255);
+    const float cy = y + h + 1;
+    dl->AddQuadFilled(ImVec2(x, cy - h), ImVec2(x + h, cy), ImVec2(x, cy + h), ImVec2(x - h, cy), col);
+    if (hovered && !active) {
+      std::string tip = "Step " + std::to_string(k) + " (drag to move, right-click to edit or delete):";
+      for (const keyframe& kf : spec.keyframes)
+        if (kf.step == k) tip += "\n  " + keyframe_text(spec, kf);
+      ImGui::SetTooltip("%s", tip.c_str());
+    }
+    if (ImGui::BeginPopup("##keyed")) {
+      ImGui::Text("Keyframes at step %d", s.popup_step);
+      ImGui::Separator();
+      int remove = -1;
+      for (size_t i = 0; i < spec.keyframes.size(); ++i) {
+        keyframe& kf = spec.keyframes[i];
+        if (kf.step != s.popup_step) continue;
+        ImGui::PushID(int(i));
+        ImGui::TextUnformatted(kf.key.c_str());
+        ImGui::SameLine(140);
+        ImGui::SetNextItemWidth(160);
+        changed |= edit_keyframe_value(spec, kf, error);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Delete")) remove = int(i);
+        ImGui::PopID();
+      }
+      if (remove >= 0) spec.keyframes.erase(spec.keyframes.begin() + remove), changed = true;
+      if (ImGui::Button("Delete all at this step")) {
+        std::erase_if(spec.keyframes, [&](const keyframe& kf) { return kf.step == s.popup_step; });
+        changed = true;
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+    ImGui::PopID();
+  }
+  return changed;
+}
+
+}  // namespace sylva

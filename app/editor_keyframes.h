@@ -1,0 +1,48 @@
+// Growth phases in the editor: "from this step on" edits, the keyframe list and the timeline markers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "generators/tree_spec.h"
+
+namespace sylva {
+
+struct keyframe_panel_state {
+  bool from_step = false;   // slider edits of generator parameters become keyframes at the current step
+  int drag_from = -1;       // the step of the marker being dragged (-1: none)
+  int drag_to = -1;         // where it would land
+  int popup_step = -1;      // the marker whose popup is open
+};
+
+// ---------------------------------------------------------------- display-free (tested)
+
+// The generator params in effect during growth step `step`.
+generator_params params_at_step(const tree_spec& spec, int step);
+// The panel showed `before` (params_at_step(spec, step)) and the user turned it into `after`: each
+// parameter that differs becomes a keyframe at `step`. A value equal to what is in effect without
+// the keyframe at `step` removes that keyframe. Returns "" or why a key cannot be keyed; on an
+// error nothing changes.
+std::string key_edits(tree_spec& spec, const generator_params& before, const generator_params& after, int step);
+// Moves every keyframe at step `from` to step `to`. Refused (spec unchanged) when `to` is out of
+// 1..last step or one of the keys is already keyed at `to`.
+std::string move_keyframes(tree_spec& spec, int from, int to);
+// The steps that hold keyframes, ascending, without repeats.
+std::vector<int> keyed_steps(const tree_spec& spec);
+// "lambda = 0.7" for a keyframe, the value written as its parameter's type.
+std::string keyframe_text(const tree_spec& spec, const keyframe& k);
+
+// ---------------------------------------------------------------- ImGui
+
+// The "Growth phases" section of the parameter panel: the "from this step on" switch, what a step
+// means for this generator, and the list (step, key, value, delete). Returns true when the spec
+// changed; `error` gets a message for the status bar.
+bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std::string& error);
+// Markers under the timeline's step slider, spanning [x0, x1] on screen at height y: click jumps to
+// the step, drag moves the step's keyframes, right-click edits or deletes them.
+bool draw_keyframe_markers(keyframe_panel_state& s, tree_spec& spec, int steps, float x0, float x1, float y,
+                           int& step, std::string& error);
+// Whether a parameter is keyed exactly at `step` (the panel marks it).
+bool keyed_at(const tree_spec& spec, const char* key, int step);
+
+}  // namespace sylva

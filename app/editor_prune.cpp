@@ -1,0 +1,203 @@
+// Pruning in the editor: click a branch in the view, "cut here", the list of cuts and the brush.
+#include "app/editor_prune.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <imgui.h>
+
+#include "generators/timing.h"
+#include "render/pick.h"
+
+namespace sylva {
+
+namespace {
+
+struct camera_frame {
+  glm::vec3 eye, fwd, right, up;
+};
+
+camera_frame frame_of(const orbit_camera& cam) {
+  camera_frame f;
+  f.eye = camera_eye(cam);
+  f.fwd = glm::normalize(cam.target - f.eye);
+  f.right = glm::normalize(glm::cross(f.fwd, glm::vec3(0, 1, 0)));
+  f.up = glm::cross(f.right, f.fwd);
+  return f;
+}
+
+// Window pixel of a world point; false when it is behind the eye.
+bool project(const camera_frame& f, const orbit_camera& cam, const view_rect& v, const glm::vec3& p, ImVec2& out) {
+  const glm::vec3 d = p - f.eye;
+  const float z = glm::dot(d, f.fwd);
+  if (z < 1e-3f) return false;
+  const float t = std::tan(glm::radians(cam.fov) * 0.5f), aspect = v.w / v.h;
+  const float x = glm::dot(d, f.right) / (z * t * aspect), y = glm::dot(d, f.up) / (z * t);
+  out = ImVec2(v.x + (x + 1) * 0.5f * v.w, v.y + (1 - y) * 0.5f * v.h);
+  return true;
+}
+
+void line(ImDrawList* dl, const camera_frame& f, const orbit_camera& cam, const view_rect& v, const glm::vec3& a,
+          const glm::vec3& b, ImU32 col, float width) {
+  ImVec2 pa, pb;
+  if (project(f, cam, v, a, pa) && project(f, cam, v, b, pb)) dl->AddLine(pa, pb, col, width);
+}
+
+const char* const brush_labels[] = {"Outside an ellipsoid", "Outside a box"};
+
+}  // namespace
+
+void view_ray(const orbit_camera& cam, const view_rect& v, float mx, float my, glm::vec3& origin, glm::vec3& dir) {
+  const camera_frame f = frame_of(cam);
+  const float t = std::tan(glm::radians(cam.fov) * 0.5f), aspect = v.w / std::max(v.h, 1.0f);
+  const float x = 2 * (mx - v.x) / std::max(v.w, 1.0f) - 1, y = 1 - 2 * (my - v.y) / std::max(v.h, 1.0f);
+  origin = f.eye;
+  dir = glm::normalize(f.fwd + x * t * aspect * f.right + y * t * f.up);
+}
+
+void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const orbit_camera& cam, const view_rect& v,
+                  float mx, float my) {
+  const auto t0 = std::chrono::steady_clock::now();
+  glm::vec3 o, d;
+  view_ray(cam, v, mx, my, o, d);
+  // Three pixels of slack, so that a twig thinner than a pixel can be clicked.
+  const float pixel = 2 * std::tan(glm::radians(cam.fov) * 0.5f) / std::max(v.h, 1.0f);
+  const pick_hit h = pick_branch(t, radii_at_step(t, step), step, o, d, 3 * pixel);
+  s.pick_ms = ms_since(t0);
+  s.selected = h.node;
+  s.picked_in = &t;
+  s.picked_step = step;
+}
+
+bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* shown, int& step, std::string& error) {
+  if (!ImGui::CollapsingHeader("Pruning", spec.cuts.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen)) return false;
+  const tree_skeleton* t = shown && shown->skeleton ? shown->skeleton.get() : nullptr;
+  if (s.picked_in != t || s.picked_step != step) s.selected = -1;   // a new tree or step: pick again
+  bool changed = false;
+  ImGui::TextWrapped("Click a branch in the view, then cut it: %s.", cut_response(spec));
+  const int last = last_keyframe_step(spec);
+  if (t && s.selected >= 0 && size_t(s.selected) < t->size()) {
+    const size_t i = size_t(s.selected);
+    const glm::vec3 a = t->position[size_t(t->parent[i])], b = t->position[i];
+    ImGui::Text("Branch: node %d, order %d, born in step %d (picked in %.2f ms)", s.selected, int(t->order[i]),
+                int(t->born[i]), s.pick_ms);
+    if (ImGui::Button("Cut here")) {
+      prune_cut c;
+      c.step = step + 1;   // made before the next step grows: the tree of this step keeps it
+      c.point = b;
+      c.reach = std::clamp(1.5f * glm::length(b - a), 0.02f, 1.0f);
+      if (c.step > last) error = "cut at step " + std::to_string(step) + ": this is the last step, so nothing would regrow; scrub back first";
+      else if (std::string e = add_cut(spec, c); !e.empty()) error = e;
+      else step = c.step, s.selected = -1, changed = true;
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("The branch goes from step %d on and the tree regrows without it. The cut finds its branch\n"
+                        "again as the node nearest this point, so it survives changes to earlier steps.",
+                        step + 1);
+    ImGui::SameLine();
+    if (ImGui::Button("Clear pick")) s.selected = -1;
+  } else {
+    ImGui::TextDisabled(t ? "No branch picked." : "No tree yet.");
+  }
+
+  // The cuts, oldest first; those the last growth of this spec could not find are marked.
+  const bool current = shown && shown->spec == spec;
+  int remove = -1;
+  for (size_t k = 0; k < spec.cuts.size(); ++k) {
+    const prune_cut& c = spec.cuts[k];
+    ImGui::PushID(int(k));
+    const bool missed = current && std::find(shown->report.missed_cuts.begin(), shown->report.missed_cuts.end(),
+                                             int(k)) != shown->report.missed_cuts.end();
+    char b[160];
+    if (c.shape == prune_shape::branch)
+      std::snprintf(b, sizeof b, "step %d: branch at (%.2f, %.2f, %.2f)", c.step, double(c.point.x), double(c.point.y),
+                    double(c.point.z));
+    else
+      std::snprintf(b, sizeof b, "step %d: %s (%.2f, %.2f, %.2f)", c.step, brush_labels[int(c.shape) - 1],
+                    double(c.size.x), double(c.size.y), double(c.size.z));
+    if (ImGui::SmallButton("x")) remove = int(k);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Delete this cut");
+    ImGui::SameLine();
+    if (missed) ImGui::TextColored(ImVec4(1, 0.45f, 0.35f, 1), "%s: no branch found", b);
+    else ImGui::TextUnformatted(b);
+    if (ImGui::IsItemClicked()) step = std::max(0, c.step);
+    ImGui::PopID();
+  }
+  if (remove >= 0) spec.cuts.erase(spec.cuts.begin() + remove), changed = true;
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Brush (topiary, hedges)");
+  int shape = std::clamp(int(s.brush_shape) - 1, 0, 1);
+  if (ImGui::Combo("Shape##brush", &shape, brush_labels, 2)) s.brush_shape = prune_shape(shape + 1);
+  ImGui::DragFloat3("Centre##brush", &s.brush_centre.x, 0.02f, -100, 100, "%.2f");
+  ImGui::DragFloat3("Half size##brush", &s.brush_size.x, 0.02f, 0.01f, 100, "%.2f");
+  ImGui::Checkbox("Show the brush", &s.brush_preview);
+  ImGui::SameLine();
+  if (ImGui::Button("Fit to the tree") && t) {
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (size_t i = 0; i < t->size(); ++i)
+      if (t->alive(i, step)) lo = glm::min(lo, t->position[i]), hi = glm::max(hi, t->position[i]);
+    if (lo.x <= hi.x) s.brush_centre = 0.5f * (lo + hi), s.brush_size = glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
+    s.brush_preview = true;
+  }
+  if (ImGui::Button("Cut outside from the next step")) {
+    prune_cut c;
+    c.step = step + 1;
+    c.shape = s.brush_shape;
+    c.point = s.brush_centre;
+    c.size = s.brush_size;
+    if (c.step > last) error = "brush at step " + std::to_string(step) + ": this is the last step; scrub back first";
+    else if (std::string e = add_cut(spec, c); !e.empty()) error = e;
+    else step = c.step, changed = true;
+  }
+  return changed;
+}
+
+void draw_prune_overlay(prune_panel_state& s, const tree_skeleton* t, int step, const orbit_camera& cam,
+                        const view_rect& v) {
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const camera_frame f = frame_of(cam);
+  if (t && s.picked_in == t && s.picked_step == step && s.selected >= 0 && size_t(s.selected) < t->size()) {
+    // The picked branch: its internode and, thinner, everything it carries.
+    std::vector<uint8_t> in(t->size(), 0);
+    for (size_t i = size_t(s.selected); i < t->size(); ++i) {
+      in[i] = int32_t(i) == s.selected || (t->parent[i] >= 0 && in[size_t(t->parent[i])]);
+      if (in[i] && t->alive(i, step))
+        line(dl, f, cam, v, t->position[size_t(t->parent[i])], t->position[i],
+             int32_t(i) == s.selected ? IM_COL32(255, 90, 60, 255) : IM_COL32(255, 150, 60, 160),
+             int32_t(i) == s.selected ? 4.0f : 1.5f);
+    }
+  }
+  if (!s.brush_preview) return;
+  const ImU32 col = IM_COL32(120, 255, 160, 200);
+  const glm::vec3 c = s.brush_centre, h = s.brush_size;
+  if (s.brush_shape == prune_shape::outside_box) {
+    for (int e = 0; e < 12; ++e) {   // the 12 edges: 4 along each axis
+      const int axis = e / 4, a = (axis + 1) % 3, b = (axis + 2) % 3;
+      glm::vec3 p(0), q(0);
+      p[a] = q[a] = (e & 1) ? 1.0f : -1.0f;
+      p[b] = q[b] = (e & 2) ? 1.0f : -1.0f;
+      p[axis] = -1, q[axis] = 1;
+      line(dl, f, cam, v, c + p * h, c + q * h, col, 1.5f);
+    }
+    return;
+  }
+  for (int plane = 0; plane < 3; ++plane) {   // three principal ellipses
+    const int a = plane, b = (plane + 1) % 3;
+    glm::vec3 prev(0);
+    for (int k = 0; k <= 48; ++k) {
+      const float th = 6.2831853f * float(k) / 48.0f;
+      glm::vec3 p(0);
+      p[a] = std::cos(th), p[b] = std::sin(th);
+      const glm::vec3 w = c + p * h;
+      if (k) line(dl, f, cam, v, prev, w, col, 1.5f);
+      prev = w;
+    }
+  }
+}
+
+}  // namespace sylva

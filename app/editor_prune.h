@@ -1,0 +1,45 @@
+// Pruning in the editor: click a branch in the view, "cut here", the list of cuts and the brush.
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "app/worker.h"
+#include "generators/tree_spec.h"
+#include "render/gl/renderer.h"
+
+namespace sylva {
+
+struct prune_panel_state {
+  int32_t selected = -1;                 // the node whose internode was clicked (-1: none)
+  const tree_skeleton* picked_in = nullptr;   // the tree it was picked in; another tree drops the pick
+  int picked_step = -1;
+  double pick_ms = 0;                    // the last pick's time, shown in the panel
+  prune_shape brush_shape = prune_shape::outside_ellipsoid;
+  glm::vec3 brush_centre{0, 3, 0}, brush_size{2, 2, 2};
+  bool brush_preview = false;
+};
+
+// The view rectangle in window pixels (origin top left), for rays and overlays.
+struct view_rect {
+  float x = 0, y = 0, w = 1, h = 1;
+};
+
+// The ray through window pixel (mx, my) for the editor's camera (the renderer's projection).
+void view_ray(const orbit_camera& cam, const view_rect& v, float mx, float my, glm::vec3& origin, glm::vec3& dir);
+
+// A click in the view at (mx, my): selects the branch under it in the tree at `step`.
+void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const orbit_camera& cam, const view_rect& v,
+                  float mx, float my);
+
+// The "Pruning" section of the parameter panel: the picked branch and "Cut here", the cut list
+// (with the cuts the last growth could not find), the brush. Returns true when the spec changed;
+// `step` may move to show a new cut; `error` gets a message for the status bar.
+bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* shown, int& step, std::string& error);
+
+// The picked internode and the brush outline, drawn over the view.
+void draw_prune_overlay(prune_panel_state& s, const tree_skeleton* shown, int step, const orbit_camera& cam,
+                        const view_rect& v);
+
+}  // namespace sylva

@@ -1,0 +1,37 @@
+// The editor's picking ray matches the renderer's projection: the ray through the pixel where a
+// point is drawn passes through that point, and a click there picks the branch drawn there.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "app/editor_prune.h"
+#include "render/pick.h"
+
+using namespace sylva;
+
+TEST(EditorPrune, RayThroughAProjectedPointPassesThroughIt) {
+  orbit_camera cam;
+  cam.target = {0.3f, 2, -0.2f}, cam.distance = 7, cam.yaw = 50, cam.pitch = 12;
+  const view_rect v{420, 22, 780, 600};
+  // The renderer's projection (render/gl/renderer.cpp draw_frame): perspective over the view's aspect, lookAt.
+  const glm::mat4 vp = glm::perspective(glm::radians(cam.fov), v.w / v.h, 0.07f, 100.0f) *
+                       glm::lookAt(camera_eye(cam), cam.target, glm::vec3(0, 1, 0));
+  for (const glm::vec3 p : {glm::vec3(0), glm::vec3(1, 3, 0.5f), glm::vec3(-2, 1, 1), glm::vec3(0.5f, 4, -1)}) {
+    glm::vec4 c = vp * glm::vec4(p, 1);
+    c /= c.w;
+    glm::vec3 o, d;
+    view_ray(cam, v, v.x + (c.x + 1) * 0.5f * v.w, v.y + (1 - c.y) * 0.5f * v.h, o, d);
+    const glm::vec3 w = p - o;
+    EXPECT_LT(glm::length(w - glm::dot(w, d) * d), 1e-4f * glm::length(w));
+  }
+  // A click on the drawn middle of an internode picks it.
+  tree_skeleton t;
+  t.add_node({0, 0, 0}, -1, 0.05f, 0, 0);
+  t.add_node({0, 2, 0}, 0, 0.05f, 1, 0);
+  t.steps = 1;
+  glm::vec4 c = vp * glm::vec4(0, 1, 0, 1);
+  c /= c.w;
+  prune_panel_state s;
+  pick_in_view(s, t, 1, cam, v, v.x + (c.x + 1) * 0.5f * v.w, v.y + (1 - c.y) * 0.5f * v.h);
+  EXPECT_EQ(s.selected, 1);
+}
