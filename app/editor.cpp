@@ -81,6 +81,7 @@ struct editor_state {
   bool frame_now = false;         // frame the tree on screen now (F)
   uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
+  overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
@@ -628,7 +629,7 @@ void draw_menu(editor_state& e) {
   }
   if (ImGui::BeginMenu("View")) {
     ImGui::MenuItem("Growth overlays", nullptr, &e.show_overlays);
-    draw_overlay_menu(e.renderer.overlay.view, e.renderer.overlay);
+    draw_overlay_menu(e.overlays, e.renderer.overlay);
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
@@ -759,7 +760,8 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
 // The overlays' legend in the viewport's bottom left corner: each visible layer, its colour and units.
 void draw_overlay_legend(editor_state& e, float left, float bottom) {
   const overlay_gpu& g = e.renderer.overlay;
-  const uint32_t shown = g.view.kinds & g.present;
+  const overlay_view& v = e.overlays;
+  const uint32_t shown = v.kinds & g.present;
   if (!e.show_overlays || !shown) return;
   ImGui::SetNextWindowPos(ImVec2(left + 10, bottom - 10), 0, ImVec2(0, 1));
   ImGui::SetNextWindowBgAlpha(0.85f);
@@ -793,8 +795,8 @@ void draw_overlay_legend(editor_state& e, float left, float bottom) {
     if (!((shown >> k) & 1u)) continue;
     switch (k) {
       case overlay_shadow_grid:
-        ImGui::Text("Shadow grid: shade s of each voxel%s", g.view.shadow_slice ? "" : " (whole grid)");
-        if (g.view.shadow_slice) ImGui::Text("  slice at %.2f m of %.2f to %.2f m", g.view.slice_height, g.shadow_min_y, g.shadow_max_y);
+        ImGui::Text("Shadow grid: shade s of each voxel%s", v.shadow_slice ? "" : " (whole grid)");
+        if (v.shadow_slice) ImGui::Text("  slice at %.2f m of %.2f to %.2f m", v.slice_height, g.shadow_min_y, g.shadow_max_y);
         std::snprintf(hi, sizeof hi, "%.3g (densest)", g.max_shade);
         ramp("  0", hi);
         break;
@@ -1280,9 +1282,10 @@ void take_new_tree(editor_state& e) {
   editor_lod_new_tree(e.lod);
   upload_wind(e.renderer, *r->skeleton);
   set_overlays(e.renderer, r->overlays);
+  fit_shadow_slice(e.overlays, e.renderer.overlay);
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
-    overlay_view& v = e.renderer.overlay.view;
+    overlay_view& v = e.overlays;
     if (!v.combine) v.kinds = 1u << overlay_default_kind(e.overlay_generator, e.renderer.overlay.present);
   }
   const int steps = r->skeleton->steps;
@@ -1688,7 +1691,7 @@ int run_editor(const editor_options& o) {
                         e->camera, e->step);
     // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
     if (e->doc.render.wind.enabled) e->renderer.wind_time = float(std::fmod(double(e->renderer.wind_time) + dt, 3600.0));
-    if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
+    if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;
       if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);

@@ -47,6 +47,11 @@ int overlay_default_kind(int generator, uint32_t present) {
   return overlay_shadow_grid;
 }
 
+void fit_shadow_slice(overlay_view& v, const overlay_ranges& r) {
+  if (v.slice_height < 0 || v.slice_height > r.shadow_max_y || v.slice_height < r.shadow_min_y)
+    v.slice_height = 0.5f * (r.shadow_min_y + r.shadow_max_y);
+}
+
 overlay_geometry build_overlays(const growth_debug& d, const tree_skeleton* t) {
   assert(d.point_kind.size() == d.points.size() && "growth_debug: one kind per point");
   assert(d.line_kind.size() == d.lines.size() / 2 && "growth_debug: one kind per line");

@@ -68,6 +68,9 @@ struct overlay_geometry : overlay_ranges {
   std::vector<overlay_vertex> points;
 };
 
+// Puts the shadow slice in the middle of the grid when it lies outside it (or is not set yet).
+void fit_shadow_slice(overlay_view& v, const overlay_ranges& r);
+
 // Splits a generator's debug output into overlay kinds by each item's debug_kind. `t` (may be null)
 // supplies node positions for fates and flow and the last step for the last-iteration layers.
 overlay_geometry build_overlays(const growth_debug& d, const tree_skeleton* t);

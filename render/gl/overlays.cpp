@@ -62,8 +62,6 @@ void destroy_overlays(overlay_gpu& g) {
 
 void set_overlays(overlay_gpu& g, std::shared_ptr<const overlay_geometry> geo) {
   static_cast<overlay_ranges&>(g) = geo ? static_cast<const overlay_ranges&>(*geo) : overlay_ranges{};
-  if (g.view.slice_height < 0 || g.view.slice_height > g.shadow_max_y || g.view.slice_height < g.shadow_min_y)
-    g.view.slice_height = 0.5f * (g.shadow_min_y + g.shadow_max_y);
   g.geometry = std::move(geo);
   g.stale = true;
 }
@@ -89,14 +87,14 @@ bool sync_overlays(overlay_gpu& g) {
   return true;
 }
 
-int draw_overlays(const overlay_gpu& g, const glm::mat4& viewproj, int step) {
-  if (g.program.failed || g.line_vertices + g.point_vertices == 0 || g.view.kinds == 0) return 0;
+int draw_overlays(const overlay_gpu& g, const overlay_view& v, const glm::mat4& viewproj, int step) {
+  if (g.program.failed || g.line_vertices + g.point_vertices == 0 || v.kinds == 0) return 0;
   glUseProgram(g.program.id);
   set_uniform(g.program, "u_viewproj", viewproj);
-  set_uniform(g.program, "u_kinds", int(g.view.kinds));
+  set_uniform(g.program, "u_kinds", int(v.kinds));
   set_uniform(g.program, "u_step", float(step));
-  set_uniform(g.program, "u_slice", g.view.shadow_slice ? 1 : 0);
-  set_uniform(g.program, "u_slice_y", g.view.slice_height);
+  set_uniform(g.program, "u_slice", v.shadow_slice ? 1 : 0);
+  set_uniform(g.program, "u_slice_y", v.slice_height);
   // One layer of voxels: half the spacing between layers (a sliver when the grid has one layer).
   set_uniform(g.program, "u_slice_half", g.shadow_layer > 0 ? 0.5f * g.shadow_layer : 1e-3f);
   glEnable(GL_PROGRAM_POINT_SIZE);

@@ -20,7 +20,6 @@ struct overlay_gpu : overlay_ranges {   // the ranges of the geometry set last
   int line_vertices = 0, point_vertices = 0;
   std::shared_ptr<const overlay_geometry> geometry;   // the shown tree's; uploaded when `stale` and drawn
   bool stale = false;
-  overlay_view view;
 };
 
 bool init_overlays(overlay_gpu& g);
@@ -30,7 +29,8 @@ void destroy_overlays(overlay_gpu& g);
 void set_overlays(overlay_gpu& g, std::shared_ptr<const overlay_geometry> geo);
 // Uploads the geometry set last if it is not on the GPU yet; returns whether it uploaded.
 bool sync_overlays(overlay_gpu& g);
-// Draws into the bound framebuffer with the current depth buffer; returns the draw calls issued.
-int draw_overlays(const overlay_gpu& g, const glm::mat4& viewproj, int step);
+// Draws the kinds `v` shows into the bound framebuffer with the current depth buffer; returns the
+// draw calls issued.
+int draw_overlays(const overlay_gpu& g, const overlay_view& v, const glm::mat4& viewproj, int step);
 
 }  // namespace sylva

@@ -1185,7 +1185,7 @@ void set_overlays(renderer_state& r, std::shared_ptr<const overlay_geometry> g) 
 // ---------------------------------------------------------------- the frame
 
 void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
-                gl_framebuffer target, bool overlays, glm::ivec2 origin) {
+                gl_framebuffer target, const overlay_view* overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
   r.counts = {};
   const uint64_t uploads_before = r.uploads_total;
@@ -1336,7 +1336,7 @@ void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& 
   }
   if (overlays) {
     if (sync_overlays(r.overlay)) ++r.uploads_total;
-    r.counts.draw_calls += draw_overlays(r.overlay, viewproj, r.step);
+    r.counts.draw_calls += draw_overlays(r.overlay, *overlays, viewproj, r.step);
   }
   if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);

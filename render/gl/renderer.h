@@ -77,7 +77,7 @@ struct renderer_state {
   sky_model daylight;
   render_params sky_inputs;
   bool sky_valid = false;
-  overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); .view is the user's choice
+  overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); what shows is the caller's overlay_view
   // Measurements.
   bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
   pass_timings timings;
@@ -106,9 +106,10 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
 // here: they are uploaded by the first draw_frame that shows them.
 void set_overlays(renderer_state& r, std::shared_ptr<const overlay_geometry> g);
 
-// Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
+// Draws one frame into `target` (id 0: the window). `overlays`, when given, draws the growth-debug
+// layers it chooses (UI state, kept by the editor).
 // `origin` places the image inside the target (the editor's viewport beside its panels).
 void draw_frame(renderer_state& r, const render_params& p, const orbit_camera& cam, int width, int height,
-                gl_framebuffer target = {}, bool overlays = false, glm::ivec2 origin = {0, 0});
+                gl_framebuffer target = {}, const overlay_view* overlays = nullptr, glm::ivec2 origin = {0, 0});
 
 }  // namespace sylva
