@@ -246,7 +246,7 @@ struct render_bench_result {
 
 // Steady-state frames, not the PNG path's single first frame: one warm-up frame allocates the
 // targets and lets the driver compile its shader variants, then `repeat` frames are timed, each
-// pass closed by glFinish (renderer_state::measure_passes). With `all_effects` the sun is put behind
+// pass closed by glFinish (renderer_gpu::measure_passes). With `all_effects` the sun is put behind
 // the tree as the editor's "Backlit rays" button does, with shadows on, and the frames are drawn
 // once with the radial shafts and once with the volumetric ones (the reported frame), so that every
 // pass runs and a regression in any of them shows; otherwise the preset's own light is used.
@@ -264,7 +264,7 @@ std::string measure_render(const preset& p, int repeat, int width, int height, b
   if (std::string why = open_hidden_gl_context(context, "sylva bench", false); !why.empty()) return why;
 
   std::string error;
-  renderer_state r;
+  renderer_gpu r;
   gl_texture color;
   gl_framebuffer target;
   if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;

@@ -19,7 +19,7 @@ std::string make_impostor(const tree_mesh& m, const tree_skeleton& t, const pres
   if (std::string why = display_missing("the impostor atlas"); !why.empty()) return why;
   hidden_gl_context ctx;
   if (std::string why = open_hidden_gl_context(ctx, "sylva impostor", false); !why.empty()) return why;
-  renderer_state r;
+  renderer_gpu r;
   std::string error;
   if (!init_renderer(r)) {
     error = r.error;
@@ -71,7 +71,7 @@ std::string write_sheet(const std::string& dir, const std::string& name, const t
   if (std::string why = display_missing("--sheet"); !why.empty()) return why;
   hidden_gl_context ctx;
   if (std::string why = open_hidden_gl_context(ctx, "sylva lod sheet", false); !why.empty()) return why;
-  renderer_state r;
+  renderer_gpu r;
   std::string error;
   if (!init_renderer(r)) error = r.error;
   orbit_camera cam;

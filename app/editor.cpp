@@ -74,7 +74,7 @@ struct editor_state {
   float speed = 4;                // steps per second
   double play_accum = 0;
   // View.
-  renderer_state renderer;
+  renderer_gpu renderer;
   orbit_camera camera;
   float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)

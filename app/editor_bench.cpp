@@ -47,7 +47,7 @@ edit_result measure(const preset& p, int repeat, int width, int height) {
     out.error = why;
     return out;
   }
-  renderer_state r;
+  renderer_gpu r;
   worker_state w;
   if (!init_renderer(r)) out.error = r.error.empty() ? "renderer initialisation failed" : r.error;
   start_worker(w);

@@ -18,7 +18,7 @@ void editor_lod_new_tree(editor_lod& s) {
   s.tree_time = std::chrono::steady_clock::now();
 }
 
-void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t, const tree_mesh& m,
+void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, const tree_mesh& m,
                        const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step) {
   const lod_params& p = rp.lod;
   const bool budgets_changed = p.lod1_budget != s.built_params.lod1_budget || p.lod2_budget != s.built_params.lod2_budget ||

@@ -14,7 +14,7 @@
 
 namespace sylva {
 
-struct renderer_state;
+struct renderer_gpu;
 struct orbit_camera;
 
 struct export_dialog_state {
@@ -41,7 +41,7 @@ struct export_context {
   std::shared_ptr<const grow_result> tree;   // the shown tree (kept alive by the export thread)
   int step = 0;                              // the timeline's step
   const preset& doc;
-  renderer_state& renderer;                  // .png renders the current view (main thread)
+  renderer_gpu& renderer;                  // .png renders the current view (main thread)
   const orbit_camera& camera;
 };
 

@@ -24,7 +24,7 @@ std::string glfw_error(const std::string& what) {
 }
 }  // namespace
 
-std::string save_view_png(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+std::string save_view_png(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                           const std::string& path, double* frame_ms) {
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
     return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 16..8192";
@@ -127,7 +127,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
   const int errors_before = gl_error_count();
 
   std::string error;
-  renderer_state r;
+  renderer_gpu r;
   if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
   if (error.empty()) {
     upload_tree(r, mesh);

@@ -9,7 +9,7 @@ struct GLFWwindow;
 
 namespace sylva {
 
-struct renderer_state;
+struct renderer_gpu;
 struct orbit_camera;
 
 // glfwInit, retried once (a display shared with other clients now and then refuses a connection).
@@ -56,7 +56,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
 
 // Renders the current view of an initialised renderer off-screen and writes a PNG ("" or error).
 // Needs a current GL context; the editor uses it for File > Export as .png.
-std::string save_view_png(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+std::string save_view_png(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                           const std::string& path, double* frame_ms = nullptr);
 
 }  // namespace sylva

@@ -158,14 +158,14 @@ void update_thumbnails(preset_browser_state& b) {
     return;
   }
   if (!b.renderer) {
-    b.renderer = std::make_unique<renderer_state>();
+    b.renderer = std::make_unique<renderer_gpu>();
     if (!init_renderer(*b.renderer)) {
       b.renderer_failed = true;
       b.failed.insert(finished.key);
       return;
     }
   }
-  renderer_state& r = *b.renderer;
+  renderer_gpu& r = *b.renderer;
   upload_tree(r, *finished.mesh);
   set_tree_step(r, *finished.skeleton, finished.doc.mesh.min_radius, finished.skeleton->steps);
   // Framed as the editor and PNG export frame it (frame_camera), for a square picture.

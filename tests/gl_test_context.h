@@ -49,7 +49,7 @@ class renderer_test : public ::testing::Test {
     if (ready) sylva::destroy_renderer(r);   // before the context goes
   }
   std::unique_ptr<gl_context> ctx;
-  sylva::renderer_state r;
+  sylva::renderer_gpu r;
   bool ready = false;
 };
 

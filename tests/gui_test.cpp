@@ -183,7 +183,7 @@ TEST(HeadlessRender, BrokenShaderIsReportedAndFallsBack) {
   EXPECT_NE(gl_last_message().find("broken test shader"), std::string::npos) << gl_last_message();
 
   // A renderer whose lit bark program failed still draws a frame (flat fallback), without GL errors.
-  renderer_state r;
+  renderer_gpu r;
   ASSERT_TRUE(init_renderer(r));
   delete_gl(r.bark);
   r.bark = bad;

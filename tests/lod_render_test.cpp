@@ -20,14 +20,14 @@ namespace {
 constexpr int screen = 720;
 
 struct mask_render {
-  renderer_state& r;
+  renderer_gpu& r;
   render_params rp;
   orbit_camera cam;
   gl_texture color;
   gl_framebuffer fbo;
   std::vector<unsigned char> background;
 
-  mask_render(renderer_state& rs, const tree_mesh& m, float coverage) : r(rs) {
+  mask_render(renderer_gpu& rs, const tree_mesh& m, float coverage) : r(rs) {
     // Plain light: no shadows, shafts, fog or ground, fixed exposure, so only the tree differs.
     rp.shadows = false;
     rp.shafts = light_shafts::off;

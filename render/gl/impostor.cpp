@@ -66,7 +66,7 @@ void main() {
 
 }  // namespace
 
-impostor_atlas render_impostor(renderer_state& r, const render_params& rp, int views, int cell) {
+impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int views, int cell) {
   impostor_atlas a;
   const auto start = std::chrono::steady_clock::now();
   a.views = views > 12 ? 16 : 8;

@@ -543,7 +543,7 @@ void upload_2d(gl_texture& t, const image& img, GLenum internal_format) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
-void upload_bark_textures(renderer_state& r, const image& color, const image& normal, const image& rough) {
+void upload_bark_textures(renderer_gpu& r, const image& color, const image& normal, const image& rough) {
   upload_2d(r.bark_tex, color, GL_SRGB8_ALPHA8);
   upload_2d(r.bark_normal_tex, normal, GL_RGB8);
   upload_2d(r.bark_rough_tex, rough, GL_RGB8);
@@ -632,7 +632,7 @@ int upload_array(gl_texture& t, const std::vector<const image*>& layers, GLenum 
 
 // All leaf layers share one array texture per map, so every leaf is drawn in one instanced call;
 // layer k is leaf archetype k (leaf_instance::texture). Colour mips keep their alpha coverage.
-void upload_leaf_textures(renderer_state& r, const std::vector<const image*>& color, const std::vector<const image*>& normal,
+void upload_leaf_textures(renderer_gpu& r, const std::vector<const image*>& color, const std::vector<const image*>& normal,
                           const std::vector<const image*>& thickness) {
   std::vector<std::vector<image>> mips;
   for (const image* c : color) mips.push_back(coverage_mips(*c, 0.5f));
@@ -643,7 +643,7 @@ void upload_leaf_textures(renderer_state& r, const std::vector<const image*>& co
   if (layers) r.leaf_layers = layers;
 }
 
-void upload_procedural_leaves(renderer_state& r) {
+void upload_procedural_leaves(renderer_gpu& r) {
   std::vector<const image*> color, normal, thickness;
   for (int i = 0; i < leaf_archetype_count; ++i) {
     const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), 512);
@@ -652,7 +652,7 @@ void upload_procedural_leaves(renderer_state& r) {
   upload_leaf_textures(r, color, normal, thickness);
 }
 
-void upload_procedural_bark(renderer_state& r, bark_archetype a) {
+void upload_procedural_bark(renderer_gpu& r, bark_archetype a) {
   const bark_texture_set& t = bark_archetype_textures(a, 512);
   upload_bark_textures(r, t.color, t.normal, t.roughness);
   r.bark_shown = int(a);
@@ -671,7 +671,7 @@ std::string load_checked(const std::string& path, image& out) {
 
 // Loads the user's PNGs when their paths change (a failure says why in texture_message and keeps
 // the procedural textures), and uploads the procedural bark archetype when it changes.
-void update_user_textures(renderer_state& r, const render_params& rp) {
+void update_user_textures(renderer_gpu& r, const render_params& rp) {
   const bool paths_changed = rp.bark_texture != r.bark_texture_path || rp.leaf_texture != r.leaf_texture_path ||
                              rp.leaf_opacity != r.leaf_opacity_path;
   if (paths_changed) {
@@ -726,7 +726,7 @@ void update_user_textures(renderer_state& r, const render_params& rp) {
   if (paths_changed) check_gl("user textures");
 }
 
-void resize_targets(renderer_state& r, int w, int h, int samples) {
+void resize_targets(renderer_gpu& r, int w, int h, int samples) {
   GLint max_samples = 0;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   samples = std::clamp(samples, 0, int(max_samples));
@@ -769,7 +769,7 @@ void resize_targets(renderer_state& r, int w, int h, int samples) {
   check_gl("resize targets");
 }
 
-void resize_shadow(renderer_state& r, int size) {
+void resize_shadow(renderer_gpu& r, int size) {
   if (r.shadow_size == size) return;
   r.shadow_size = size;
   delete_gl(r.shadow_fbo);
@@ -781,7 +781,7 @@ void resize_shadow(renderer_state& r, int size) {
 }
 
 // Orthographic sun frustum fitted to the tree's bounds (DESIGN §8 pass 1).
-glm::mat4 light_viewproj(const renderer_state& r, const glm::vec3& sun, float* texel_world) {
+glm::mat4 light_viewproj(const renderer_gpu& r, const glm::vec3& sun, float* texel_world) {
   glm::vec3 lo = r.bounds_min, hi = r.bounds_max;
   glm::vec3 center = 0.5f * (lo + hi);
   float radius = std::max(glm::length(hi - lo) * 0.5f, 0.01f);
@@ -800,7 +800,7 @@ glm::mat4 light_viewproj(const renderer_state& r, const glm::vec3& sun, float* t
   return proj * view;
 }
 
-void set_lighting(const renderer_state& r, const gl_program& p, const render_params& rp, const glm::vec3& sun,
+void set_lighting(const renderer_gpu& r, const gl_program& p, const render_params& rp, const glm::vec3& sun,
                   const glm::mat4& light, float texel_world) {
   set_uniform(p, "u_sun_dir", sun);
   // The sun's colour and the sky light come from the sky model (render/sky.h); the sun dims as it sets.
@@ -824,7 +824,7 @@ bool same_sky_inputs(const render_params& a, const render_params& b) {
          a.ground_color == b.ground_color;
 }
 
-void update_sky(renderer_state& r, const render_params& rp) {
+void update_sky(renderer_gpu& r, const render_params& rp) {
   if (r.sky_valid && same_sky_inputs(r.sky_inputs, rp)) return;
   render_params& k = r.sky_inputs;
   k.sun_azimuth = rp.sun_azimuth, k.sun_elevation = rp.sun_elevation, k.physical_sky = rp.physical_sky;
@@ -834,7 +834,7 @@ void update_sky(renderer_state& r, const render_params& rp) {
   r.sky_valid = true;
 }
 
-void set_sky_uniforms(const renderer_state& r, const gl_program& p) {
+void set_sky_uniforms(const renderer_gpu& r, const gl_program& p) {
   static const char* const perez_names[5] = {"u_perez[0]", "u_perez[1]", "u_perez[2]", "u_perez[3]", "u_perez[4]"};
   set_uniform(p, "u_physical", r.daylight.physical ? 1 : 0);
   for (int k = 0; k < 5; ++k) set_uniform(p, perez_names[k], r.daylight.perez[k]);
@@ -849,7 +849,7 @@ double now_ms() {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-void bind_tree_textures(const renderer_state& r) {
+void bind_tree_textures(const renderer_gpu& r) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
   glActiveTexture(GL_TEXTURE1);
@@ -869,7 +869,7 @@ void bind_tree_textures(const renderer_state& r) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-void draw_bark(renderer_state& r) {
+void draw_bark(renderer_gpu& r) {
   uint32_t n = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)];
   if (!n) return;
   ++r.counts.draw_calls;
@@ -877,7 +877,7 @@ void draw_bark(renderer_state& r) {
   glDrawElements(GL_TRIANGLES, GLsizei(n), GL_UNSIGNED_INT, nullptr);
 }
 
-uint32_t leaf_count(const renderer_state& r) {
+uint32_t leaf_count(const renderer_gpu& r) {
   return r.leaf_end.empty() ? 0 : r.leaf_end[std::clamp(r.step, 0, int(r.leaf_end.size()) - 1)];
 }
 
@@ -892,7 +892,7 @@ void set_season_uniforms(const gl_program& p, const season_look& s) {
   set_uniform(p, "u_season_scale", s.deciduous_scale);
 }
 
-void draw_leaves(renderer_state& r) {
+void draw_leaves(renderer_gpu& r) {
   uint32_t n = leaf_count(r);
   if (!n) return;
   ++r.counts.draw_calls;
@@ -966,7 +966,7 @@ glm::vec3 sun_direction(const render_params& p) {
 
 // ---------------------------------------------------------------- lifetime
 
-bool init_renderer(renderer_state& r) {
+bool init_renderer(renderer_gpu& r) {
   const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
                     ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
                     occ_fs = sky_source(occlusion_fs_body);
@@ -1064,7 +1064,7 @@ bool init_renderer(renderer_state& r) {
   return r.ok;
 }
 
-void destroy_renderer(renderer_state& r) {
+void destroy_renderer(renderer_gpu& r) {
   destroy_overlays(r.overlay);
   for (gl_program* p : {&r.bark, &r.bark_depth, &r.leaf, &r.leaf_depth, &r.sky, &r.ground, &r.occlusion, &r.radial,
                         &r.march, &r.exposure, &r.composite, &r.fallback})
@@ -1094,7 +1094,7 @@ void destroy_renderer(renderer_state& r) {
 
 // ---------------------------------------------------------------- uploads
 
-void upload_tree(renderer_state& r, const tree_mesh& m) {
+void upload_tree(renderer_gpu& r, const tree_mesh& m) {
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, r.bark_position.id);
   glBufferData(GL_ARRAY_BUFFER, m.position.size() * sizeof(glm::vec3), m.position.data(), GL_STATIC_DRAW);
@@ -1157,7 +1157,7 @@ void upload_tree(renderer_state& r, const tree_mesh& m) {
   check_gl("upload tree");
 }
 
-void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step) {
+void set_tree_step(renderer_gpu& r, const tree_skeleton& t, float min_radius, int step) {
   r.step = std::clamp(step, 0, std::max(r.steps, 0));
   if (r.node_count == 0) return;
   std::vector<float> radii = radii_at_step(t, r.step);
@@ -1180,11 +1180,11 @@ void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, 
 }
 
 
-void set_overlays(renderer_state& r, std::shared_ptr<const overlay_geometry> g) { set_overlays(r.overlay, std::move(g)); }
+void set_overlays(renderer_gpu& r, std::shared_ptr<const overlay_geometry> g) { set_overlays(r.overlay, std::move(g)); }
 
 // ---------------------------------------------------------------- the frame
 
-void draw_frame(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+void draw_frame(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                 gl_framebuffer target, const overlay_view* overlays, glm::ivec2 origin) {
   if (width <= 0 || height <= 0) return;
   r.counts = {};
