@@ -438,6 +438,365 @@ void draw_leaves(renderer_gpu& r) {
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
 }
 
+// ---------------------------------------------------------------- passes of the frame
+
+// Pass times for renderer_gpu::timings: each mark closes a pass with glFinish (benchmarks only).
+struct pass_clock {
+  bool on = false;
+  double t0 = 0;
+  void mark(double& slot) {
+    if (!on) return;
+    glFinish();
+    const double t = now_ms();
+    slot = t - t0;
+    t0 = t;
+  }
+};
+
+// What every pass of one frame shares: the camera, the sun and its shadow map, the fog.
+struct frame_setup {
+  glm::vec3 sun{0}, eye{0};
+  float scene = 1, ground_extent = 30, far_plane = 100;
+  glm::mat4 viewproj{1}, inv_viewproj{1}, light{1};
+  float texel_world = 0;
+  bool lit_ok = false;
+  season_look season;
+  float sky_distance = 0, fog_density = 0, haze = 0, fog_height = 1;
+  int width = 0, height = 0, hw = 1, hh = 1;   // the frame, and the shafts' half resolution
+  mutable pass_clock clock;
+};
+
+frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height) {
+  frame_setup f;
+  f.clock.on = r.measure_passes;
+  f.clock.t0 = now_ms();
+  f.width = width, f.height = height;
+  f.sun = sun_direction(rp);
+  f.eye = camera_eye(cam);
+  f.scene = std::max(glm::length(r.bounds_max - r.bounds_min), 1.0f);
+  f.ground_extent = std::max(30.0f, f.scene * 10.0f);
+  const float near_plane = std::max(cam.distance * 0.01f, 0.005f);
+  f.far_plane = cam.distance + f.ground_extent * 3.0f;
+  const glm::mat4 proj = glm::perspective(glm::radians(cam.fov), float(width) / float(height), near_plane, f.far_plane);
+  const glm::mat4 view = glm::lookAt(f.eye, cam.target, glm::vec3(0, 1, 0));
+  f.viewproj = proj * view;
+  f.inv_viewproj = glm::inverse(f.viewproj);
+  f.light = light_viewproj(r, f.sun, &f.texel_world);
+  f.lit_ok = !r.bark.failed && !r.leaf.failed;
+  f.season = season_leaf_look(rp);
+  // Rays that meet no surface cross fog only to a little past the tree: the sky model already holds
+  // the atmosphere beyond.
+  f.sky_distance = cam.distance + f.scene;
+  f.fog_density = std::clamp(rp.fog_density, 0.0f, 1.0f), f.haze = std::clamp(rp.haze, 0.0f, 0.1f);
+  f.fog_height = std::clamp(rp.fog_height, 0.1f, 100.0f);
+  f.hw = std::max(1, width / 2), f.hh = std::max(1, height / 2);
+  return f;
+}
+
+// Which light shafts this frame draws, and where the sun is on screen for the radial ones.
+struct shaft_choice {
+  bool rays = false, volumetric = false;
+  float ray_fade = 0;
+  glm::vec4 sun_clip{0};
+};
+
+shaft_choice choose_shafts(const renderer_gpu& r, const render_params& rp, const orbit_camera& cam, const frame_setup& f) {
+  shaft_choice sh;
+  sh.sun_clip = f.viewproj * glm::vec4(f.eye + f.sun * f.far_plane * 0.5f, 1.0f);
+  const glm::vec3 fwd = glm::normalize(cam.target - f.eye);
+  // Rays fade out as the sun leaves the view or goes behind the camera.
+  sh.ray_fade = std::clamp((glm::dot(fwd, f.sun) - 0.1f) / 0.4f, 0.0f, 1.0f);
+  sh.ray_fade *= std::clamp((f.sun.y + 0.05f) / 0.1f, 0.0f, 1.0f);
+  sh.rays = rp.shafts == light_shafts::radial && sh.ray_fade > 0 && sh.sun_clip.w > 0 && !r.occlusion.failed &&
+            !r.radial.failed;
+  sh.volumetric = rp.shafts == light_shafts::volumetric && !r.march.failed;
+  return sh;
+}
+
+// 1. Shadow pass: depth from the sun, back faces, slope-scaled bias.
+void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setup& f) {
+  const glm::mat4& light = f.light;
+  const bool lit_ok = f.lit_ok;
+  const season_look& season = f.season;
+  glBindFramebuffer(GL_FRAMEBUFFER, r.shadow_fbo.id);
+  glViewport(0, 0, r.shadow_size, r.shadow_size);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  if (rp.shadows && r.has_tree && lit_ok) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(rp.shadow_slope_bias, 1.0f);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    glUseProgram(r.bark_depth.id);
+    set_uniform(r.bark_depth, "u_viewproj", light);
+    set_uniform(r.bark_depth, "u_radius", 2);
+    set_wind_uniforms(r, r.bark_depth, rp);
+    draw_bark(r);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
+    set_uniform(r.leaf_depth, "u_viewproj", light);
+    set_uniform(r.leaf_depth, "u_step", r.step);
+    set_uniform(r.leaf_depth, "u_radius", 2);
+    set_uniform(r.leaf_depth, "u_leaf", 3);
+    set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
+    set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
+    set_wind_uniforms(r, r.leaf_depth, rp);
+    set_season_uniforms(r.leaf_depth, season);
+    draw_leaves(r);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  f.clock.mark(r.timings.shadow);
+}
+
+// 2. Lit pass into the linear HDR target (multisampled, then resolved, when MSAA is on): sky, ground,
+// tree and the growth-debug overlays.
+void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& f, const overlay_view* overlays) {
+  const glm::vec3& sun = f.sun;
+  const glm::vec3& eye = f.eye;
+  const float ground_extent = f.ground_extent;
+  const glm::mat4& viewproj = f.viewproj;
+  const glm::mat4& inv_viewproj = f.inv_viewproj;
+  const glm::mat4& light = f.light;
+  const float texel_world = f.texel_world;
+  const bool lit_ok = f.lit_ok;
+  const season_look& season = f.season;
+  const int width = f.width;
+  const int height = f.height;
+  glBindFramebuffer(GL_FRAMEBUFFER, r.samples > 1 ? r.msaa_fbo.id : r.hdr_fbo.id);
+  glViewport(0, 0, width, height);
+  glClearColor(0, 0, 0, 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (!r.sky.failed) {   // sky first, without depth, so the depth buffer stays 1 where sky shows
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glUseProgram(r.sky.id);
+    set_uniform(r.sky, "u_inv_viewproj", inv_viewproj);
+    set_uniform(r.sky, "u_eye", eye);
+    set_uniform(r.sky, "u_sun_dir", sun);
+    set_sky_uniforms(r, r.sky);
+    set_uniform(r.sky, "u_sun_light", r.daylight.sun_light);
+    glBindVertexArray(r.empty_vao.id);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++r.counts.draw_calls;
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+  }
+  if (rp.ground && !r.ground.failed) {
+    glUseProgram(r.ground.id);
+    set_lighting(r, r.ground, rp, sun, light, texel_world);
+    set_uniform(r.ground, "u_viewproj", viewproj);
+    glm::vec3 center = 0.5f * (r.bounds_min + r.bounds_max);
+    set_uniform(r.ground, "u_center", center);
+    set_uniform(r.ground, "u_extent", ground_extent);
+    set_uniform(r.ground, "u_sky_horizon", r.daylight.horizon);
+    set_uniform(r.ground, "u_ground_color", rp.ground_color);
+    set_uniform(r.ground, "u_root", r.root);
+    set_uniform(r.ground, "u_root_radius", r.has_tree ? r.root_radius : 0.0f);
+    const glm::vec3 half = 0.5f * (r.bounds_max - r.bounds_min);
+    set_uniform(r.ground, "u_crown_radius", r.has_tree ? glm::vec2(half.x, half.z) : glm::vec2(0.0f));
+    glBindVertexArray(r.empty_vao.id);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_BLEND);
+    ++r.counts.draw_calls;
+  }
+  if (r.has_tree) {
+    if (lit_ok) {
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      glUseProgram(r.bark.id);
+      set_lighting(r, r.bark, rp, sun, light, texel_world);
+      set_uniform(r.bark, "u_viewproj", viewproj);
+      set_uniform(r.bark, "u_radius", 2);
+      set_uniform(r.bark, "u_bark", 0);
+      set_uniform(r.bark, "u_bark_normal", 4);
+      set_uniform(r.bark, "u_bark_rough", 7);
+      set_uniform(r.bark, "u_eye", eye);
+      set_uniform(r.bark, "u_bark_color", rp.bark_color);
+      set_wind_uniforms(r, r.bark, rp);
+      draw_bark(r);
+      glDisable(GL_CULL_FACE);
+      glUseProgram(r.leaf.id);
+      set_lighting(r, r.leaf, rp, sun, light, texel_world);
+      set_uniform(r.leaf, "u_viewproj", viewproj);
+      set_uniform(r.leaf, "u_step", r.step);
+      set_uniform(r.leaf, "u_radius", 2);
+      set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
+      set_uniform(r.leaf, "u_leaf", 3);
+      set_uniform(r.leaf, "u_layers", r.leaf_layers);
+      set_uniform(r.leaf, "u_leaf_normal", 5);
+      set_uniform(r.leaf, "u_leaf_thickness", 6);
+      set_season_uniforms(r.leaf, season);
+      set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
+      set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
+      set_wind_uniforms(r, r.leaf, rp);
+      draw_leaves(r);
+    } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
+      glUseProgram(r.fallback.id);
+      set_uniform(r.fallback, "u_viewproj", viewproj);
+      set_uniform(r.fallback, "u_radius", 2);
+      set_uniform(r.fallback, "u_color", rp.bark_color);
+      set_wind_uniforms(r, r.fallback, rp);
+      draw_bark(r);
+    }
+  }
+  if (overlays) {   // the caller's choice of growth-debug layers
+    if (sync_overlays(r.overlay)) ++r.uploads_total;
+    r.counts.draw_calls += draw_overlays(r.overlay, *overlays, viewproj, r.step);
+  }
+  if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.hdr_fbo.id);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+  f.clock.mark(r.timings.lit);
+}
+
+// 3a. Radial shafts: occlusion at half resolution, then the blur toward the sun (only while the sun is
+// in view).
+void draw_radial_shafts(renderer_gpu& r, const render_params& rp, const frame_setup& f, const shaft_choice& sh) {
+  const glm::vec3& sun = f.sun;
+  const glm::vec3& eye = f.eye;
+  const glm::mat4& inv_viewproj = f.inv_viewproj;
+  const int hw = f.hw;
+  const int hh = f.hh;
+  const glm::vec2 light_uv = glm::vec2(sh.sun_clip.x, sh.sun_clip.y) / sh.sun_clip.w * 0.5f + 0.5f;
+  glBindFramebuffer(GL_FRAMEBUFFER, r.occlusion_fbo.id);
+  glViewport(0, 0, hw, hh);
+  glUseProgram(r.occlusion.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
+  set_uniform(r.occlusion, "u_depth", 0);
+  set_uniform(r.occlusion, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.occlusion, "u_eye", eye);
+  set_uniform(r.occlusion, "u_sun_dir", sun);
+  const float sun_max = std::max({r.daylight.sun_light.x, r.daylight.sun_light.y, r.daylight.sun_light.z, 1e-6f});
+  set_uniform(r.occlusion, "u_sun_color", r.daylight.sun_light / sun_max);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++r.counts.draw_calls;
+  f.clock.mark(r.timings.occlusion);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, r.rays_fbo.id);
+  glUseProgram(r.radial.id);
+  glBindTexture(GL_TEXTURE_2D, r.occlusion_tex.id);
+  set_uniform(r.radial, "u_occlusion", 0);
+  set_uniform(r.radial, "u_light_uv", light_uv);
+  set_uniform(r.radial, "u_samples", std::clamp(rp.ray_samples, 1, 256));
+  set_uniform(r.radial, "u_density", rp.ray_density);
+  set_uniform(r.radial, "u_weight", rp.ray_weight);
+  set_uniform(r.radial, "u_decay", rp.ray_decay);
+  set_uniform(r.radial, "u_exposure", rp.ray_exposure);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++r.counts.draw_calls;
+  f.clock.mark(r.timings.blur);
+}
+
+// 3b. Volumetric shafts: the fog's shadowed optical depth per half-resolution pixel.
+void draw_volumetric_shafts(renderer_gpu& r, const render_params& rp, const frame_setup& f) {
+  const glm::vec3& sun = f.sun;
+  const glm::vec3& eye = f.eye;
+  const glm::mat4& inv_viewproj = f.inv_viewproj;
+  const glm::mat4& light = f.light;
+  const float sky_distance = f.sky_distance;
+  const float fog_density = f.fog_density;
+  const float haze = f.haze;
+  const float fog_height = f.fog_height;
+  const int hw = f.hw;
+  const int hh = f.hh;
+  glBindFramebuffer(GL_FRAMEBUFFER, r.march_fbo.id);
+  glViewport(0, 0, hw, hh);
+  glUseProgram(r.march.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, r.shadow_tex.id);
+  set_uniform(r.march, "u_depth", 0);
+  set_uniform(r.march, "u_shadow", 1);
+  set_uniform(r.march, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.march, "u_eye", eye);
+  set_uniform(r.march, "u_sun_dir", sun);
+  set_uniform(r.march, "u_light_viewproj", light);
+  // Without shadows nothing is shadowed: zero samples leave the fog uniformly lit.
+  set_uniform(r.march, "u_samples", rp.shadows && r.has_tree ? std::clamp(rp.shaft_samples, 1, 256) : 0);
+  set_uniform(r.march, "u_fog_density", fog_density);
+  set_uniform(r.march, "u_fog_height", fog_height);
+  set_uniform(r.march, "u_haze", haze);
+  set_uniform(r.march, "u_sky_distance", sky_distance);
+  set_uniform(r.march, "u_bias", rp.shadow_bias);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++r.counts.draw_calls;
+  f.clock.mark(r.timings.march);
+}
+
+// 4. The frame's log-average luminance, 1 x 1, for auto exposure.
+void draw_exposure_pass(renderer_gpu& r, const frame_setup& f) {
+  glBindFramebuffer(GL_FRAMEBUFFER, r.average_fbo.id);
+  glViewport(0, 0, 1, 1);
+  glUseProgram(r.exposure.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
+  set_uniform(r.exposure, "u_hdr", 0);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++r.counts.draw_calls;
+  f.clock.mark(r.timings.exposure);
+}
+
+// 5. Composite: fog and shafts, exposure, tonemap, into the target.
+void draw_composite_pass(renderer_gpu& r, const render_params& rp, const frame_setup& f,
+                         const shaft_choice& sh, gl_framebuffer target, glm::ivec2 origin) {
+  const glm::vec3& sun = f.sun;
+  const glm::vec3& eye = f.eye;
+  const glm::mat4& inv_viewproj = f.inv_viewproj;
+  const float sky_distance = f.sky_distance;
+  const float fog_density = f.fog_density;
+  const float haze = f.haze;
+  const float fog_height = f.fog_height;
+  const int width = f.width;
+  const int height = f.height;
+  glBindFramebuffer(GL_FRAMEBUFFER, target.id);
+  glViewport(origin.x, origin.y, width, height);
+  glUseProgram(r.composite.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, r.rays_tex.id);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, r.march_tex.id);
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
+  glActiveTexture(GL_TEXTURE4);
+  glBindTexture(GL_TEXTURE_2D, r.average_tex.id);
+  set_uniform(r.composite, "u_hdr", 0);
+  set_uniform(r.composite, "u_rays", 1);
+  set_uniform(r.composite, "u_march", 2);
+  set_uniform(r.composite, "u_depth", 3);
+  set_uniform(r.composite, "u_average", 4);
+  set_uniform(r.composite, "u_ray_strength", sh.rays ? sh.ray_fade : 0.0f);
+  set_uniform(r.composite, "u_exposure", rp.exposure);
+  set_uniform(r.composite, "u_auto_exposure", rp.auto_exposure && !r.exposure.failed ? 1 : 0);
+  set_uniform(r.composite, "u_volumetric", sh.volumetric ? 1 : 0);
+  set_uniform(r.composite, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.composite, "u_eye", eye);
+  set_uniform(r.composite, "u_sun_dir", sun);
+  set_uniform(r.composite, "u_fog_density", fog_density);
+  set_uniform(r.composite, "u_fog_height", fog_height);
+  set_uniform(r.composite, "u_haze", haze);
+  set_uniform(r.composite, "u_sky_distance", sky_distance);
+  set_uniform(r.composite, "u_g", std::clamp(rp.scattering_g, -0.95f, 0.95f));
+  set_uniform(r.composite, "u_sun_light", r.daylight.sun_light);
+  set_uniform(r.composite, "u_fog_ambient", r.daylight.fog_ambient);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++r.counts.draw_calls;
+  glActiveTexture(GL_TEXTURE0);
+  glUseProgram(0);
+  glBindVertexArray(0);
+  f.clock.mark(r.timings.composite);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- camera
@@ -730,285 +1089,21 @@ void draw_frame(renderer_gpu& r, const render_params& rp, const orbit_camera& ca
   update_user_textures(r, rp);
   resize_shadow(r, std::clamp(rp.shadow_resolution, 256, 8192));
   update_sky(r, rp);
-  double t0 = now_ms();
-  auto mark = [&](double& slot) {
-    if (!r.measure_passes) return;
-    glFinish();
-    double t = now_ms();
-    slot = t - t0;
-    t0 = t;
-  };
-
-  const glm::vec3 sun = sun_direction(rp);
-  const glm::vec3 eye = camera_eye(cam);
-  const float scene = std::max(glm::length(r.bounds_max - r.bounds_min), 1.0f);
-  const float ground_extent = std::max(30.0f, scene * 10.0f);
-  const float near_plane = std::max(cam.distance * 0.01f, 0.005f);
-  const float far_plane = cam.distance + ground_extent * 3.0f;
-  const glm::mat4 proj = glm::perspective(glm::radians(cam.fov), float(width) / float(height), near_plane, far_plane);
-  const glm::mat4 view = glm::lookAt(eye, cam.target, glm::vec3(0, 1, 0));
-  const glm::mat4 viewproj = proj * view;
-  float texel_world = 0;
-  r.wind_reach = wind_reach(r, rp);
-  const glm::mat4 light = light_viewproj(r, sun, &texel_world);
-  const bool lit_ok = !r.bark.failed && !r.leaf.failed;
+  const frame_setup f = setup_frame(r, rp, cam, width, height);
   r.triangles_drawn = r.index_end.empty() ? 0 : r.index_end[std::clamp(r.step, 0, int(r.index_end.size()) - 1)] / 3;
   r.leaves_drawn = leaf_count(r);
   glBindVertexArray(r.empty_vao.id);
   bind_tree_textures(r);
-
-  // 1. Shadow pass: depth from the sun, back faces, slope-scaled bias.
-  glBindFramebuffer(GL_FRAMEBUFFER, r.shadow_fbo.id);
-  glViewport(0, 0, r.shadow_size, r.shadow_size);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  const season_look season = season_leaf_look(rp);
-  if (rp.shadows && r.has_tree && lit_ok) {
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(rp.shadow_slope_bias, 1.0f);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_FRONT);
-    glUseProgram(r.bark_depth.id);
-    set_uniform(r.bark_depth, "u_viewproj", light);
-    set_uniform(r.bark_depth, "u_radius", 2);
-    set_wind_uniforms(r, r.bark_depth, rp);
-    draw_bark(r);
-    glDisable(GL_CULL_FACE);
-    glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
-    set_uniform(r.leaf_depth, "u_viewproj", light);
-    set_uniform(r.leaf_depth, "u_step", r.step);
-    set_uniform(r.leaf_depth, "u_radius", 2);
-    set_uniform(r.leaf_depth, "u_leaf", 3);
-    set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
-    set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
-    set_wind_uniforms(r, r.leaf_depth, rp);
-    set_season_uniforms(r.leaf_depth, season);
-    draw_leaves(r);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-  }
-  mark(r.timings.shadow);
-
-  // 2. Lit pass into the linear HDR target (multisampled, then resolved, when MSAA is on).
-  glBindFramebuffer(GL_FRAMEBUFFER, r.samples > 1 ? r.msaa_fbo.id : r.hdr_fbo.id);
-  glViewport(0, 0, width, height);
-  glClearColor(0, 0, 0, 1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const glm::mat4 inv_viewproj = glm::inverse(viewproj);
-  if (!r.sky.failed) {   // sky first, without depth, so the depth buffer stays 1 where sky shows
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glUseProgram(r.sky.id);
-    set_uniform(r.sky, "u_inv_viewproj", inv_viewproj);
-    set_uniform(r.sky, "u_eye", eye);
-    set_uniform(r.sky, "u_sun_dir", sun);
-    set_sky_uniforms(r, r.sky);
-    set_uniform(r.sky, "u_sun_light", r.daylight.sun_light);
-    glBindVertexArray(r.empty_vao.id);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-  }
-  if (rp.ground && !r.ground.failed) {
-    glUseProgram(r.ground.id);
-    set_lighting(r, r.ground, rp, sun, light, texel_world);
-    set_uniform(r.ground, "u_viewproj", viewproj);
-    glm::vec3 center = 0.5f * (r.bounds_min + r.bounds_max);
-    set_uniform(r.ground, "u_center", center);
-    set_uniform(r.ground, "u_extent", ground_extent);
-    set_uniform(r.ground, "u_sky_horizon", r.daylight.horizon);
-    set_uniform(r.ground, "u_ground_color", rp.ground_color);
-    set_uniform(r.ground, "u_root", r.root);
-    set_uniform(r.ground, "u_root_radius", r.has_tree ? r.root_radius : 0.0f);
-    const glm::vec3 half = 0.5f * (r.bounds_max - r.bounds_min);
-    set_uniform(r.ground, "u_crown_radius", r.has_tree ? glm::vec2(half.x, half.z) : glm::vec2(0.0f));
-    glBindVertexArray(r.empty_vao.id);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDisable(GL_BLEND);
-    ++r.counts.draw_calls;
-  }
-  if (r.has_tree) {
-    if (lit_ok) {
-      glEnable(GL_CULL_FACE);
-      glCullFace(GL_BACK);
-      glUseProgram(r.bark.id);
-      set_lighting(r, r.bark, rp, sun, light, texel_world);
-      set_uniform(r.bark, "u_viewproj", viewproj);
-      set_uniform(r.bark, "u_radius", 2);
-      set_uniform(r.bark, "u_bark", 0);
-      set_uniform(r.bark, "u_bark_normal", 4);
-      set_uniform(r.bark, "u_bark_rough", 7);
-      set_uniform(r.bark, "u_eye", eye);
-      set_uniform(r.bark, "u_bark_color", rp.bark_color);
-      set_wind_uniforms(r, r.bark, rp);
-      draw_bark(r);
-      glDisable(GL_CULL_FACE);
-      glUseProgram(r.leaf.id);
-      set_lighting(r, r.leaf, rp, sun, light, texel_world);
-      set_uniform(r.leaf, "u_viewproj", viewproj);
-      set_uniform(r.leaf, "u_step", r.step);
-      set_uniform(r.leaf, "u_radius", 2);
-      set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
-      set_uniform(r.leaf, "u_leaf", 3);
-      set_uniform(r.leaf, "u_layers", r.leaf_layers);
-      set_uniform(r.leaf, "u_leaf_normal", 5);
-      set_uniform(r.leaf, "u_leaf_thickness", 6);
-      set_season_uniforms(r.leaf, season);
-      set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
-      set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
-      set_wind_uniforms(r, r.leaf, rp);
-      draw_leaves(r);
-    } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
-      glUseProgram(r.fallback.id);
-      set_uniform(r.fallback, "u_viewproj", viewproj);
-      set_uniform(r.fallback, "u_radius", 2);
-      set_uniform(r.fallback, "u_color", rp.bark_color);
-      set_wind_uniforms(r, r.fallback, rp);
-      draw_bark(r);
-    }
-  }
-  if (overlays) {
-    if (sync_overlays(r.overlay)) ++r.uploads_total;
-    r.counts.draw_calls += draw_overlays(r.overlay, *overlays, viewproj, r.step);
-  }
-  if (r.samples > 1) {   // resolve colour and depth: the occlusion pass reads the depth
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r.msaa_fbo.id);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.hdr_fbo.id);
-    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  }
-  mark(r.timings.lit);
-
-  // 3. Light shafts. Radial: occlusion at half resolution, then the blur toward the sun (only while
-  // the sun is in view). Volumetric: the fog's shadowed optical depth per half-resolution pixel.
-  glDisable(GL_DEPTH_TEST);
+  draw_shadow_pass(r, rp, f);
+  draw_lit_pass(r, rp, f, overlays);
+  glDisable(GL_DEPTH_TEST);   // the passes from here on draw full-screen triangles
   glBindVertexArray(r.empty_vao.id);
-  const glm::vec4 sun_clip = viewproj * glm::vec4(eye + sun * far_plane * 0.5f, 1.0f);
-  const glm::vec3 fwd = glm::normalize(cam.target - eye);
-  // Rays fade out as the sun leaves the view or goes behind the camera.
-  float ray_fade = std::clamp((glm::dot(fwd, sun) - 0.1f) / 0.4f, 0.0f, 1.0f);
-  ray_fade *= std::clamp((sun.y + 0.05f) / 0.1f, 0.0f, 1.0f);
-  const bool rays = rp.shafts == light_shafts::radial && ray_fade > 0 && sun_clip.w > 0 && !r.occlusion.failed &&
-                    !r.radial.failed;
-  const bool volumetric = rp.shafts == light_shafts::volumetric && !r.march.failed;
-  const int hw = std::max(1, width / 2), hh = std::max(1, height / 2);
-  // Rays that meet no surface cross fog only to a little past the tree: the sky model already holds
-  // the atmosphere beyond.
-  const float sky_distance = cam.distance + scene;
-  const float fog_density = std::clamp(rp.fog_density, 0.0f, 1.0f), haze = std::clamp(rp.haze, 0.0f, 0.1f);
-  const float fog_height = std::clamp(rp.fog_height, 0.1f, 100.0f);
+  const shaft_choice sh = choose_shafts(r, rp, cam, f);
   r.timings.occlusion = r.timings.blur = r.timings.march = r.timings.exposure = 0;
-  if (rays) {
-    const glm::vec2 light_uv = glm::vec2(sun_clip.x, sun_clip.y) / sun_clip.w * 0.5f + 0.5f;
-    glBindFramebuffer(GL_FRAMEBUFFER, r.occlusion_fbo.id);
-    glViewport(0, 0, hw, hh);
-    glUseProgram(r.occlusion.id);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
-    set_uniform(r.occlusion, "u_depth", 0);
-    set_uniform(r.occlusion, "u_inv_viewproj", inv_viewproj);
-    set_uniform(r.occlusion, "u_eye", eye);
-    set_uniform(r.occlusion, "u_sun_dir", sun);
-    const float sun_max = std::max({r.daylight.sun_light.x, r.daylight.sun_light.y, r.daylight.sun_light.z, 1e-6f});
-    set_uniform(r.occlusion, "u_sun_color", r.daylight.sun_light / sun_max);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
-    mark(r.timings.occlusion);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, r.rays_fbo.id);
-    glUseProgram(r.radial.id);
-    glBindTexture(GL_TEXTURE_2D, r.occlusion_tex.id);
-    set_uniform(r.radial, "u_occlusion", 0);
-    set_uniform(r.radial, "u_light_uv", light_uv);
-    set_uniform(r.radial, "u_samples", std::clamp(rp.ray_samples, 1, 256));
-    set_uniform(r.radial, "u_density", rp.ray_density);
-    set_uniform(r.radial, "u_weight", rp.ray_weight);
-    set_uniform(r.radial, "u_decay", rp.ray_decay);
-    set_uniform(r.radial, "u_exposure", rp.ray_exposure);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
-    mark(r.timings.blur);
-  }
-  if (volumetric) {
-    glBindFramebuffer(GL_FRAMEBUFFER, r.march_fbo.id);
-    glViewport(0, 0, hw, hh);
-    glUseProgram(r.march.id);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, r.shadow_tex.id);
-    set_uniform(r.march, "u_depth", 0);
-    set_uniform(r.march, "u_shadow", 1);
-    set_uniform(r.march, "u_inv_viewproj", inv_viewproj);
-    set_uniform(r.march, "u_eye", eye);
-    set_uniform(r.march, "u_sun_dir", sun);
-    set_uniform(r.march, "u_light_viewproj", light);
-    // Without shadows nothing is shadowed: zero samples leave the fog uniformly lit.
-    set_uniform(r.march, "u_samples", rp.shadows && r.has_tree ? std::clamp(rp.shaft_samples, 1, 256) : 0);
-    set_uniform(r.march, "u_fog_density", fog_density);
-    set_uniform(r.march, "u_fog_height", fog_height);
-    set_uniform(r.march, "u_haze", haze);
-    set_uniform(r.march, "u_sky_distance", sky_distance);
-    set_uniform(r.march, "u_bias", rp.shadow_bias);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
-    mark(r.timings.march);
-  }
-  if (rp.auto_exposure && !r.exposure.failed) {   // 4. the frame's log-average luminance, 1 x 1
-    glBindFramebuffer(GL_FRAMEBUFFER, r.average_fbo.id);
-    glViewport(0, 0, 1, 1);
-    glUseProgram(r.exposure.id);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
-    set_uniform(r.exposure, "u_hdr", 0);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++r.counts.draw_calls;
-    mark(r.timings.exposure);
-  }
-
-  // 5. Composite: fog and shafts, exposure, tonemap, into the target.
-  glBindFramebuffer(GL_FRAMEBUFFER, target.id);
-  glViewport(origin.x, origin.y, width, height);
-  glUseProgram(r.composite.id);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, r.rays_tex.id);
-  glActiveTexture(GL_TEXTURE2);
-  glBindTexture(GL_TEXTURE_2D, r.march_tex.id);
-  glActiveTexture(GL_TEXTURE3);
-  glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
-  glActiveTexture(GL_TEXTURE4);
-  glBindTexture(GL_TEXTURE_2D, r.average_tex.id);
-  set_uniform(r.composite, "u_hdr", 0);
-  set_uniform(r.composite, "u_rays", 1);
-  set_uniform(r.composite, "u_march", 2);
-  set_uniform(r.composite, "u_depth", 3);
-  set_uniform(r.composite, "u_average", 4);
-  set_uniform(r.composite, "u_ray_strength", rays ? ray_fade : 0.0f);
-  set_uniform(r.composite, "u_exposure", rp.exposure);
-  set_uniform(r.composite, "u_auto_exposure", rp.auto_exposure && !r.exposure.failed ? 1 : 0);
-  set_uniform(r.composite, "u_volumetric", volumetric ? 1 : 0);
-  set_uniform(r.composite, "u_inv_viewproj", inv_viewproj);
-  set_uniform(r.composite, "u_eye", eye);
-  set_uniform(r.composite, "u_sun_dir", sun);
-  set_uniform(r.composite, "u_fog_density", fog_density);
-  set_uniform(r.composite, "u_fog_height", fog_height);
-  set_uniform(r.composite, "u_haze", haze);
-  set_uniform(r.composite, "u_sky_distance", sky_distance);
-  set_uniform(r.composite, "u_g", std::clamp(rp.scattering_g, -0.95f, 0.95f));
-  set_uniform(r.composite, "u_sun_light", r.daylight.sun_light);
-  set_uniform(r.composite, "u_fog_ambient", r.daylight.fog_ambient);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  ++r.counts.draw_calls;
-  glActiveTexture(GL_TEXTURE0);
-  glUseProgram(0);
-  glBindVertexArray(0);
-  mark(r.timings.composite);
+  if (sh.rays) draw_radial_shafts(r, rp, f, sh);
+  if (sh.volumetric) draw_volumetric_shafts(r, rp, f);
+  if (rp.auto_exposure && !r.exposure.failed) draw_exposure_pass(r, f);
+  draw_composite_pass(r, rp, f, sh, target, origin);
   r.counts.uploads = int(r.uploads_total - uploads_before);
   check_gl("draw frame");
 }
