@@ -20,7 +20,7 @@
 #include "app/headless.h"
 #include "generators/timing.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 #include "render/overlay_geometry.h"
 

@@ -23,7 +23,7 @@
 #include "generators/lsystem_engine.h"
 #include "generators/memory_bound.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 

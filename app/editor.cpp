@@ -35,7 +35,7 @@
 #include "app/preset_browser.h"
 #include "app/worker.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

@@ -13,7 +13,7 @@
 #include "app/headless.h"
 #include "generators/timing.h"
 #include "app/worker.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

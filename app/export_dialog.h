@@ -10,7 +10,7 @@
 
 #include "app/worker.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "render/files.h"
+#include "render/preset.h"
 
 struct GLFWwindow;
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/preset_library.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

@@ -29,7 +29,7 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/textures.h"
 
 namespace sylva {

@@ -12,7 +12,7 @@
 
 #include "generators/guiding_vectors.h"
 #include "generators/tree_spec.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "tests/generator_specs.h"
 
 using namespace sylva;

@@ -8,7 +8,7 @@
 
 #include "generators/tree_spec.h"
 #include "gl_test_context.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/impostor.h"
 #include "render/lod.h"
 

@@ -7,7 +7,7 @@
 
 #include "generators/lsystem_engine.h"
 #include "generators/tree_spec.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "tests/generator_specs.h"
 
 using namespace sylva;

@@ -1,5 +1,5 @@
 // Preset JSON (DESIGN §6) driven by visit_params, `--set` assignments, and atomic file writes.
-#include "render/files.h"
+#include "render/preset.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
