@@ -180,7 +180,7 @@ std::string stem_path(const std::string& path) {
   return (p.parent_path() / p.stem()).string();
 }
 
-// Writes every (path, bytes) pair all or nothing: each is staged first (files.h: written and synced
+// Writes every (path, bytes) pair all or nothing: each is staged first (preset.h: written and synced
 // under a temporary name beside its target, through symlinks, keeping permissions). A failure while
 // staging removes only the temporaries. Then each existing target is moved aside and the new file
 // renamed in, the main file (which names the others) last; if a rename fails midway, the files

@@ -70,7 +70,7 @@ const char* json_type_name(const json& j) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Limits on what a value may hold (files.h), shared by the preset loader and --set.
+// Limits on what a value may hold (preset.h), shared by the preset loader and --set.
 
 std::string mb_text(size_t bytes) {
   return bytes >= (1u << 20) ? std::to_string(bytes >> 20) + " MB" : std::to_string(bytes >> 10) + " KB";
