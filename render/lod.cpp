@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/textures.h"
+#include "generators/vec_util.h"
 
 namespace sylva {
 namespace {
@@ -36,11 +37,6 @@ float alpha_coverage(int archetype) {
 constexpr size_t min_reducible_triangles = 200;
 
 bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-glm::vec3 any_perpendicular(const glm::vec3& t) {
-  const glm::vec3 a = std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  return glm::normalize(glm::cross(glm::cross(t, a), t));
-}
 
 // Parallel transport of frame normal n from tangent t0 to t1 (Bishop 1975), as the mesher does.
 glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1) {

@@ -9,7 +9,7 @@
 
 #include "generators/tree_spec.h"
 #include "gl_test_context.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/impostor.h"
 #include "render/lod.h"
 
@@ -21,14 +21,14 @@ namespace {
 constexpr int screen = 720;
 
 struct mask_render {
-  renderer_state& r;
+  renderer_gpu& r;
   render_params rp;
   orbit_camera cam;
   gl_texture color;
   gl_framebuffer fbo;
   std::vector<unsigned char> background;
 
-  mask_render(renderer_state& rs, const tree_mesh& m, float coverage) : r(rs) {
+  mask_render(renderer_gpu& rs, const tree_mesh& m, float coverage) : r(rs) {
     // Plain light: no shadows, shafts, fog or ground, fixed exposure, so only the tree differs.
     rp.shadows = false;
     rp.shafts = light_shafts::off;

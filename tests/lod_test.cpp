@@ -4,7 +4,7 @@
 #include <string>
 
 #include "generators/tree_spec.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/lod.h"
 #include "render/textures.h"
 

@@ -16,7 +16,7 @@
 #include <epoxy/gl.h>
 
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 #include "render/season.h"
 #include "tests/gl_test_context.h"
