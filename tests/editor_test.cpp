@@ -73,6 +73,9 @@ TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
   bush.name = "Runaway";
   const std::string runaway = test_dir("runaway.json").string();
   ASSERT_EQ(sylva::save_preset_file(bush, runaway), "");
+  // Cancelling a running growth from the progress bar is not scripted here any more: the runaway
+  // (λ = 1) now stops at the shadow grid's memory cap in under a second, too soon to cancel, and its
+  // 600k-node tree makes llvmpipe frames take seconds. Worker tests cover cancellation.
   std::string script = R"(wait_tree
 remember
 set lambda=0.42
@@ -108,13 +111,6 @@ expect_no_prompt
 expect_param lambda=0.42
 expect_same_tree
 expect_state cancelled
-budget 100000000
-set lambda=1
-wait_progress
-key escape
-expect_state cancelled
-expect_same_tree
-expect_param lambda=0.42
 budget 100000
 open RUNAWAY
 expect_prompt Unsaved changes
@@ -134,7 +130,7 @@ not reached: Discard quits
   run_result r = run_script("session", script, preset);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("ok answer Discard"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("the editor closed before line 56"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the editor closed before line 49"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(test_dir("session") / "home" / ".recovery.json"));
 }
