@@ -481,6 +481,7 @@ frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_ca
   const glm::mat4 view = glm::lookAt(f.eye, cam.target, glm::vec3(0, 1, 0));
   f.viewproj = proj * view;
   f.inv_viewproj = glm::inverse(f.viewproj);
+  r.wind_reach = wind_reach(r, rp);
   f.light = light_viewproj(r, f.sun, &f.texel_world);
   f.lit_ok = !r.bark.failed && !r.leaf.failed;
   f.season = season_leaf_look(rp);
