@@ -25,7 +25,7 @@ bool have_display() {
 
 // Fraction of pixels in the view's left half that differ (by more than 30 in a channel) from the
 // pixel at the same place in the right half. The view starts right of the 420 px panel, below the
-// slot labels, and ends above the timeline and status bar (window 1200x600, UI scale 1).
+// slot labels, and ends above the timeline and status bar (window 900x400, UI scale 1).
 double halves_differ(const std::string& png, int* width = nullptr) {
   int w = 0, h = 0, ch = 0;
   stbi_uc* px = stbi_load(png.c_str(), &w, &h, &ch, 3);
@@ -58,13 +58,13 @@ TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
   const double lambda = std::get<sylva::self_organizing_params>(bush.spec.params).lambda;
   const std::string same = (dir / "same.png").string(), differ = (dir / "differ.png").string();
-  std::ofstream(dir / "script.txt") << "wait_tree\nab_duplicate\nab_mode side\nframes 4\nshot " << same
-                                    << "\nframes 3\nset lambda=0.42\nwait_tree\nab_wait\nframes 4\nshot " << differ
+  std::ofstream(dir / "script.txt") << "wait_tree\nab_duplicate\nab_mode side\nframes 2\nshot " << same
+                                    << "\nframes 3\nset lambda=0.42\nwait_tree\nab_wait\nframes 2\nshot " << differ
                                     << "\nframes 3\nab_select a\nexpect_param lambda=" << lambda
                                     << "\nab_select b\nexpect_param lambda=0.42\n";
   const std::string log = (dir / "log.txt").string();
   const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
-                          "' SYLVA_WINDOW=1200x600 SYLVA_UI_SCALE=1 '" + std::string(SYLVA_BINARY) + "' '" + preset +
+                          "' SYLVA_WINDOW=900x400 SYLVA_UI_SCALE=1 '" + std::string(SYLVA_BINARY) + "' '" + preset +
                           "' > '" + log + "' 2>&1";
   const int status = std::system(cmd.c_str());
   std::ifstream in(log);
@@ -73,7 +73,7 @@ TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out.str();
   int w = 0;
   const double d_same = halves_differ(same, &w), d_differ = halves_differ(differ);
-  ASSERT_EQ(w, 1200) << out.str();
+  ASSERT_EQ(w, 900) << out.str();
   EXPECT_GE(d_same, 0);
   EXPECT_LT(d_same, 0.002) << "A and B are the same tree: the halves should match";
   EXPECT_GT(d_differ, 0.01) << "B was edited: the halves should differ";

@@ -80,7 +80,7 @@ TEST(EditorAB, SavingSlotBWritesBsSpec) {
   ab_doc cur = start_doc();
   ASSERT_TRUE(ab_duplicate_doc(s, cur));
   ASSERT_TRUE(ab_select_doc(s, 1, cur));
-  ASSERT_EQ(set_preset_param(cur.doc, "seed=4242"), "");
+  cur.doc.spec.seed = 4242;   // as the panel's Seed field does
   ASSERT_TRUE(ab_select_doc(s, 0, cur));   // A is selected; B is saved from its slot
   const std::string path =
       (std::filesystem::temp_directory_path() / ("sylva_ab_b_" + std::to_string(getpid()) + ".json")).string();
@@ -93,8 +93,9 @@ TEST(EditorAB, SavingSlotBWritesBsSpec) {
   EXPECT_EQ(ab_slot_doc(s, 1, cur).path, path);
   EXPECT_EQ(ab_slot_doc(s, 1, cur).baseline, ab_slot_doc(s, 1, cur).doc);   // B is saved now
   EXPECT_EQ(cur.path, "/somewhere/oak.json");                                // A's file unchanged
+  EXPECT_NE(ab_save_slot(s, 1, cur, path + "/under_a_file.json"), "");   // a clear error, no crash
+  EXPECT_EQ(ab_slot_doc(s, 1, cur).path, path);                            // and B's file stays
   std::filesystem::remove(path);
-  EXPECT_NE(ab_save_slot(s, 1, cur, "/nonexistent-dir/x/y.json"), "");      // a clear error, no crash
 }
 
 TEST(EditorAB, DuplicateOnlyFromAAndDropReturnsToA) {
