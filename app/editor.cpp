@@ -1367,6 +1367,9 @@ void swap_views(editor_state& e, ab_view& v) {
   e.growth_state = editor_state::growth(v.growth);
   v.growth = g;
   e.counted_tree = nullptr;
+  e.prune.selected = -1;   // a pick or a marker drag belongs to the other slot's tree
+  e.prune.picked_in = nullptr;
+  e.keys.drag_from = e.keys.drag_to = e.keys.popup_step = -1;
 }
 
 void select_slot(editor_state& e, int slot) {

@@ -165,6 +165,12 @@ bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std:
   const std::string a = "A: " + a_label + (s.selected == 0 ? "  (edited)" : "");
   const std::string b = "B: " + b_label + (s.selected == 1 ? "  (edited)" : "");
   const ImVec4 clip_a(x, y, mid - pad, y + h), clip_b(mid, y, x + w - pad, y + h);   // each label stays in its part
+  // A dark band under each label keeps it readable over a bright sky.
+  const float band = ImGui::GetTextLineHeight() + pad;
+  dl->AddRectFilled(ImVec2(x, y), ImVec2(std::min(mid, x + ImGui::CalcTextSize(a.c_str()).x + 2 * pad), y + band + pad * 0.5f),
+                    IM_COL32(0, 0, 0, 120));
+  dl->AddRectFilled(ImVec2(mid, y), ImVec2(std::min(x + w, mid + ImGui::CalcTextSize(b.c_str()).x + 2 * pad), y + band + pad * 0.5f),
+                    IM_COL32(0, 0, 0, 120));
   dl->AddText(nullptr, 0, ImVec2(x + pad, y + pad), s.selected == 0 ? sel : text, a.c_str(), nullptr, 0, &clip_a);
   dl->AddText(nullptr, 0, ImVec2(mid + pad, y + pad), s.selected == 1 ? sel : text, b.c_str(), nullptr, 0, &clip_b);
   dl->AddLine(ImVec2(mid, y), ImVec2(mid, y + h), line, s.mode == ab_mode::split ? 2.0f : 1.0f);
