@@ -7,31 +7,19 @@
 #include <ctime>
 #include <filesystem>
 
+#include "app/bench.h"
 #include "app/headless.h"
+#include "generators/timing.h"
 #include "generators/tree_spec.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
 
 std::string make_impostor(const tree_mesh& m, const tree_skeleton& t, const preset& p, impostor_atlas& out) {
   if (std::string why = display_missing("the impostor atlas"); !why.empty()) return why;
   hidden_gl_context ctx;
   if (std::string why = open_hidden_gl_context(ctx, "sylva impostor", false); !why.empty()) return why;
-  renderer_state r;
+  renderer_gpu r;
   std::string error;
   if (!init_renderer(r)) {
     error = r.error;
@@ -83,7 +71,7 @@ std::string write_sheet(const std::string& dir, const std::string& name, const t
   if (std::string why = display_missing("--sheet"); !why.empty()) return why;
   hidden_gl_context ctx;
   if (std::string why = open_hidden_gl_context(ctx, "sylva lod sheet", false); !why.empty()) return why;
-  renderer_state r;
+  renderer_gpu r;
   std::string error;
   if (!init_renderer(r)) error = r.error;
   orbit_camera cam;
@@ -98,8 +86,8 @@ std::string write_sheet(const std::string& dir, const std::string& name, const t
     set_tree_step(r, t, p.mesh.min_radius, t.steps);
     const impostor_atlas a = render_impostor(r, p.render, p.render.lod.impostor_views, p.render.lod.impostor_size);
     error = a.error;
-    if (error.empty()) error = save_png_rgba(dir + "/" + name + "_impostor.png", a.width, a.height, a.color.data());
-    if (error.empty()) error = save_png_rgba(dir + "/" + name + "_impostor_normal.png", a.width, a.height, a.normal.data());
+    if (error.empty()) error = save_png(image{a.width, a.height, 4, a.color}, dir + "/" + name + "_impostor.png");
+    if (error.empty()) error = save_png(image{a.width, a.height, 4, a.normal}, dir + "/" + name + "_impostor_normal.png");
   }
   destroy_renderer(r);
   close_hidden_gl_context(ctx);
@@ -163,17 +151,22 @@ int run_bench_lods(std::vector<std::string> paths, int repeat, bool as_json, con
         ++failures;
       }
     if (as_json) {
-      std::printf("{\"preset\":\"%s\",\"nodes\":%zu,\"triangles\":[%zu,%zu,%zu,%zu],\"budget\":[%zu,%zu,%zu,%zu],"
-                  "\"lods_ms\":%.3f,\"lods_cpu_ms\":%.3f,\"impostor_ms\":%.3f,\"impostor_views\":%d,\"impostor_size\":%d,\"message\":\"%s\"}\n",
-                  name.c_str(), t.size(), c.triangles[0], c.triangles[1], c.triangles[2], c.triangles[3], c.target[0],
-                  c.target[1], c.target[2], c.target[3], median_of(build), median_of(build_cpu), median_of(atlas_ms),
-                  p.render.lod.impostor_views > 12 ? 16 : 8, p.render.lod.impostor_size, impostor_error.c_str());
+      print_bench_json({{"preset", name},
+                        {"nodes", t.size()},
+                        {"triangles", {c.triangles[0], c.triangles[1], c.triangles[2], c.triangles[3]}},
+                        {"budget", {c.target[0], c.target[1], c.target[2], c.target[3]}},
+                        {"lods_ms", median(build)},
+                        {"lods_cpu_ms", median(build_cpu)},
+                        {"impostor_ms", median(atlas_ms)},
+                        {"impostor_views", p.render.lod.impostor_views > 12 ? 16 : 8},
+                        {"impostor_size", p.render.lod.impostor_size},
+                        {"message", impostor_error}});
     } else {
       char cell[3][40];
       for (int k = 1; k < lod_levels; ++k)
         std::snprintf(cell[k - 1], sizeof cell[0], "%zu/%zu", c.triangles[size_t(k)], c.target[size_t(k)]);
       std::printf("%-28s %8zu %17s %17s %17s %9zu %9.2f %9.2f %11.1f\n", name.c_str(), c.triangles[0], cell[0], cell[1],
-                  cell[2], t.size(), median_of(build), median_of(build_cpu), median_of(atlas_ms));
+                  cell[2], t.size(), median(build), median(build_cpu), median(atlas_ms));
       if (!impostor_error.empty()) std::printf("  impostor: %s\n", impostor_error.c_str());
       if (!c.message.empty()) std::printf("  %s\n", c.message.c_str());
     }

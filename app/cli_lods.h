@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/impostor.h"
 #include "render/lod.h"
 

@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "generators/timing.h"
 #include "render/textures.h"
 
 namespace sylva {
@@ -179,17 +180,12 @@ int run_textures_cli(int argc, char** argv) {
     std::vector<double> wall, cpu;
     size_t bytes = 0;
     for (int i = 0; i < repeat; ++i) {
-      const auto t0 = std::chrono::steady_clock::now();
+      const auto t0 = clock_type::now();
       const std::clock_t c0 = std::clock();
       bytes = make_all_archetype_textures(size, 1, threads);
       cpu.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
-      wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      wall.push_back(ms_since(t0));
     }
-    auto median = [](std::vector<double> v) {
-      std::sort(v.begin(), v.end());
-      const size_t n = v.size();
-      return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-    };
     double load[3] = {0, 0, 0};
     if (getloadavg(load, 3) != 3) load[0] = load[1] = load[2] = -1;
     std::printf("all 9 leaf + 5 bark sets at %d px on %d threads, %d runs: median %.1f ms wall (min %.1f, max %.1f), "

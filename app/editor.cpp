@@ -36,7 +36,7 @@
 #include "app/preset_browser.h"
 #include "app/worker.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -75,13 +75,14 @@ struct editor_state {
   float speed = 4;                // steps per second
   double play_accum = 0;
   // View.
-  renderer_state renderer;
+  renderer_gpu renderer;
   orbit_camera camera;
   float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
   uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
+  overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
@@ -182,7 +183,6 @@ struct param_drawer {
   const char* section;     // header for parameters before the first group
   const char* source;      // the paper the struct's parameters come from, with a trailing newline, or nullptr
   bool show_advanced;
-  bool changed = false;
   bool hold = false;       // an apply-on-release item is active
   bool open = true;
   bool header_drawn = false;
@@ -223,37 +223,36 @@ struct param_drawer {
     if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
     if constexpr (std::is_same_v<T, std::vector<float>>) {
       if (steps && !steps->empty()) {   // all schedules in one table, where the first one is declared
-        if (!steps_drawn) changed |= draw_step_table(*steps, hold);
+        if (!steps_drawn) draw_step_table(*steps, hold);
         steps_drawn = true;
         return;
       }
     }
     ImGui::PushID(info.key);
     const char* l = label(info);
-    bool edited = false;
     const int slider_flags = (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0;
     if constexpr (std::is_same_v<T, float>) {
       const char* fmt = (info.flags & param_degrees) ? "%.1f°" : (info.flags & param_log) ? "%.4g" : "%.3f";
-      edited = ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
+      ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
     } else if constexpr (std::is_same_v<T, int>) {
-      edited = ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
+      ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
     } else if constexpr (std::is_same_v<T, bool>) {
-      edited = ImGui::Checkbox(l, &value);
+      ImGui::Checkbox(l, &value);
     } else if constexpr (std::is_enum_v<T>) {
       int v = int(value);
       const int n = option_count(info);
-      if (ImGui::Combo(l, &v, info.options, n)) { value = T(v); edited = true; }
+      if (ImGui::Combo(l, &v, info.options, n)) value = T(v);
     } else if constexpr (std::is_same_v<T, glm::vec3>) {
       // A colour is a vec3 on [0,1] that is not a direction; sizes and offsets get plain drags.
       const bool colour = !(info.flags & param_direction) && info.min == 0 && info.max == 1;
-      if (colour) edited = ImGui::ColorEdit3(l, &value.x, ImGuiColorEditFlags_Float);
-      else edited = ImGui::DragFloat3(l, &value.x, std::max((info.max - info.min) * 0.001f, 0.001f), info.min, info.max);
+      if (colour) ImGui::ColorEdit3(l, &value.x, ImGuiColorEditFlags_Float);
+      else ImGui::DragFloat3(l, &value.x, std::max((info.max - info.min) * 0.001f, 0.001f), info.min, info.max);
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (info.flags & param_multiline) {
         ImGui::TextUnformatted(info.label);
-        edited = ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
+        ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
       } else {
-        edited = ImGui::InputText(l, &value);
+        ImGui::InputText(l, &value);
       }
     } else if constexpr (std::is_same_v<T, std::vector<float>>) {
       ImGui::TextUnformatted(l, std::strstr(l, "##"));
@@ -261,32 +260,28 @@ struct param_drawer {
         ImGui::PushID(int(i));
         if (i) ImGui::SameLine();
         ImGui::SetNextItemWidth(52);
-        edited |= ImGui::DragFloat("##v", &value[i], (info.max - info.min) * 0.002f, info.min, info.max, "%.2f");
+        ImGui::DragFloat("##v", &value[i], (info.max - info.min) * 0.002f, info.min, info.max, "%.2f");
         ImGui::PopID();
       }
       ImGui::SameLine();
-      if (ImGui::SmallButton("+")) { value.push_back(value.empty() ? info.min : value.back()); edited = true; }
+      if (ImGui::SmallButton("+")) value.push_back(value.empty() ? info.min : value.back());
       ImGui::SameLine();
-      if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
+      if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
     } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
       ImGui::TextUnformatted(l, std::strstr(l, "##"));
       for (size_t i = 0; i < value.size(); ++i) {
         ImGui::PushID(int(i));
-        edited |= ImGui::DragFloat3("##v", &value[i].x, 0.01f, info.min, info.max);
+        ImGui::DragFloat3("##v", &value[i].x, 0.01f, info.min, info.max);
         ImGui::PopID();
       }
-      if (ImGui::SmallButton("+")) { value.push_back(value.empty() ? glm::vec3(0) : value.back()); edited = true; }
+      if (ImGui::SmallButton("+")) value.push_back(value.empty() ? glm::vec3(0) : value.back());
       ImGui::SameLine();
-      if (ImGui::SmallButton("-") && !value.empty()) { value.pop_back(); edited = true; }
+      if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
     }
     if (ImGui::IsItemHovered() && info.help && *info.help)
       ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
-    if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) {
-      value = def;
-      edited = true;
-    }
+    if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) value = def;
     if ((info.flags & param_on_release) && ImGui::IsItemActive()) hold = true;
-    changed |= edited;
     if (keyed_spec && keyed_at(*keyed_spec, info.key, keyed_step)) {
       ImGui::SameLine(0, 2);
       ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "•");
@@ -331,8 +326,9 @@ const char* param_source() {
     return nullptr;
 }
 
+// Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
 template <class P>
-bool draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr) {
+void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
@@ -345,7 +341,6 @@ bool draw_params(P& p, const char* section, editor_state& e, const tree_spec* ke
     d(value, info);
   });
   e.hold_post |= d.hold;
-  return d.changed;
 }
 
 // ---------------------------------------------------------------- presets
@@ -638,7 +633,7 @@ void draw_menu(editor_state& e) {
   }
   if (ImGui::BeginMenu("View")) {
     ImGui::MenuItem("Growth overlays", nullptr, &e.show_overlays);
-    draw_overlay_menu(e.renderer.overlay.view, e.renderer.overlay);
+    draw_overlay_menu(e.overlays, e.renderer.overlay);
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
@@ -717,7 +712,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("Backlit rays")) {   // the sun straight behind the tree as seen now
-    rp.sun_azimuth = std::remainder(e.camera.yaw + 180.0f, 360.0f), rp.sun_elevation = 12;
+    place_sun_behind(rp, e.camera.yaw);
     rp.sun_color = {1.0f, 0.88f, 0.7f}, rp.sun_intensity = 2.2f;
     if (rp.shafts == light_shafts::off) rp.shafts = light_shafts::volumetric;
     rp.fog_density = std::max(rp.fog_density, 0.025f);   // enough air for the shafts to show
@@ -770,7 +765,8 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
 // The overlays' legend in the viewport's bottom left corner: each visible layer, its colour and units.
 void draw_overlay_legend(editor_state& e, float left, float bottom) {
   const overlay_gpu& g = e.renderer.overlay;
-  const uint32_t shown = g.view.kinds & g.present;
+  const overlay_view& v = e.overlays;
+  const uint32_t shown = v.kinds & g.present;
   if (!e.show_overlays || !shown) return;
   ImGui::SetNextWindowPos(ImVec2(left + 10, bottom - 10), 0, ImVec2(0, 1));
   ImGui::SetNextWindowBgAlpha(0.85f);
@@ -804,8 +800,8 @@ void draw_overlay_legend(editor_state& e, float left, float bottom) {
     if (!((shown >> k) & 1u)) continue;
     switch (k) {
       case overlay_shadow_grid:
-        ImGui::Text("Shadow grid: shade s of each voxel%s", g.view.shadow_slice ? "" : " (whole grid)");
-        if (g.view.shadow_slice) ImGui::Text("  slice at %.2f m of %.2f to %.2f m", g.view.slice_height, g.shadow_min_y, g.shadow_max_y);
+        ImGui::Text("Shadow grid: shade s of each voxel%s", v.shadow_slice ? "" : " (whole grid)");
+        if (v.shadow_slice) ImGui::Text("  slice at %.2f m of %.2f to %.2f m", v.slice_height, g.shadow_min_y, g.shadow_max_y);
         std::snprintf(hi, sizeof hi, "%.3g (densest)", g.max_shade);
         ramp("  0", hi);
         break;
@@ -1044,7 +1040,7 @@ void draw_dialogs(editor_state& e) {
     const std::string stem = fs::path(default_save_path(e)).stem().string();
     open_file_browser(e.files, "Export as", true, current.parent_path().string(),
                       stem + (current.has_extension() ? current.extension().string() : ".glb"),
-                      {".glb", ".gltf", ".obj", ".json", ".png"});
+                      {std::begin(export_formats), std::end(export_formats)});
     e.browse = editor_state::browsing::export_to;
     e.browse_export = false;
   }
@@ -1236,15 +1232,11 @@ void apply_ui_scale(float scale) {
 }
 
 std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
-  std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4), flipped(pixels.size());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-  const size_t row = size_t(width) * 4;
-  for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
-  for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;
-  return save_png_rgba(path, width, height, flipped.data());
+  image shot = read_back_rgba(x, y, width, height);
+  for (size_t i = 3; i < shot.pixels.size(); i += 4) shot.pixels[i] = 255;
+  return save_png(shot, path);
 }
 
 std::string save_window_png(int width, int height, const std::string& path) { return save_region_png(0, 0, width, height, path); }
@@ -1300,10 +1292,11 @@ void take_new_tree(editor_state& e) {
   upload_tree(e.renderer, r->mesh);
   editor_lod_new_tree(e.lod);
   upload_wind(e.renderer, *r->skeleton);
-  upload_overlays(e.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
+  set_overlays(e.renderer, r->overlays);
+  fit_shadow_slice(e.overlays, e.renderer.overlay);
   if (int(r->spec.params.index()) != e.overlay_generator) {   // a new generator: its own first layer
     e.overlay_generator = int(r->spec.params.index());
-    overlay_view& v = e.renderer.overlay.view;
+    overlay_view& v = e.overlays;
     if (!v.combine) v.kinds = 1u << overlay_default_kind(e.overlay_generator, e.renderer.overlay.present);
   }
   const int steps = r->skeleton->steps;
@@ -1672,21 +1665,10 @@ int run_editor(const editor_options& o) {
     std::fprintf(stderr, "sylva: the editor needs a display (DISPLAY is not set); try `sylva export` instead\n");
     return 1;
   }
-  bool up = glfwInit();
-  if (!up) {   // a display shared with other clients now and then refuses one connection: retry once
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    up = glfwInit();
-  }
-  if (!up) {
-    const char* why = nullptr;
-    glfwGetError(&why);
-    std::fprintf(stderr, "sylva: cannot initialise GLFW: %s\n", why ? why : "unknown reason");
+  if (const std::string why = init_glfw(); !why.empty()) {
+    std::fprintf(stderr, "sylva: %s\n", why.c_str());
     return 1;
   }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   // The window fits the monitor's work area on the first start and keeps its place afterwards.
   editor_settings settings = load_settings(e->home);
   if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker->node_budget = settings.node_budget;
@@ -1707,17 +1689,15 @@ int run_editor(const editor_options& o) {
       }
     }
   }
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  if (remember_window && settings.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(width, height, "Sylva", nullptr, nullptr);
+  std::string why;   // shown once placed, so that it does not jump
+  GLFWwindow* window = create_gl33_window({width, height, "Sylva", false, false, remember_window && settings.maximized}, why);
   if (window && pos_x >= 0) glfwSetWindowPos(window, pos_x, pos_y);
   if (window) glfwShowWindow(window);
   if (!window) {
-    std::fprintf(stderr, "sylva: cannot create an OpenGL 3.3 core window\n");
+    std::fprintf(stderr, "sylva: %s\n", why.c_str());
     glfwTerminate();
     return 1;
   }
-  glfwMakeContextCurrent(window);
   e->window = window;
   // Closing the window asks first when there are unsaved changes (issue 14).
   glfwSetWindowUserPointer(window, e.get());
@@ -1875,9 +1855,9 @@ int run_editor(const editor_options& o) {
       if (o.renderer.ok && o.shown && o.shown->skeleton)
         editor_lod_update(o.lod, o.renderer, *o.shown->skeleton, o.shown->mesh, o.shown->mesh_settings, e->ab.other_doc.doc.render,
                           e->camera, std::min(e->step, o.shown->skeleton->steps));
-      ab_draw(e->ab, e->renderer, e->doc.render, e->ab.other_doc.doc.render, e->camera, vx, vy, vw, vh, e->show_overlays);
+      ab_draw(e->ab, e->renderer, e->doc.render, e->ab.other_doc.doc.render, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
     } else if (e->renderer.ok) {
-      draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays, {vx, vy});
+      draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
     }
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;

@@ -18,7 +18,7 @@ void show_result(ab_view& v, const std::shared_ptr<const grow_result>& r, int st
   upload_tree(v.renderer, r->mesh);
   editor_lod_new_tree(v.lod);
   upload_wind(v.renderer, *r->skeleton);
-  upload_overlays(v.renderer, r->debug ? *r->debug : growth_debug{}, r->skeleton.get(), int(r->spec.params.index()));
+  set_overlays(v.renderer, r->overlays);
   set_tree_step(v.renderer, *r->skeleton, r->mesh_settings.min_radius, std::min(step, r->skeleton->steps));
 }
 
@@ -44,7 +44,7 @@ void ab_stop_view(ab_view& v) {
   if (v.worker) stop_worker(*v.worker);
   v.worker.reset();
   if (v.renderer.ok) destroy_renderer(v.renderer);
-  v.renderer = renderer_state{};
+  v.renderer = renderer_gpu{};
   v.shown.reset();
   v.lod = editor_lod{};
 }
@@ -70,16 +70,16 @@ void ab_poll_other(ab_state& s, int step) {
   }
 }
 
-void ab_draw(ab_state& s, renderer_state& selected, const render_params& selected_render, const render_params& other_render,
-             const orbit_camera& cam, int vx, int vy, int vw, int vh, bool overlays) {
-  renderer_state& other = s.other.renderer;
+void ab_draw(ab_state& s, renderer_gpu& selected, const render_params& selected_render, const render_params& other_render,
+             const orbit_camera& cam, int vx, int vy, int vw, int vh, const overlay_view* overlays) {
+  renderer_gpu& other = s.other.renderer;
   // The same sun for both: the selected slot's.
   render_params other_p = other_render;
   other_p.sun_azimuth = selected_render.sun_azimuth;
   other_p.sun_elevation = selected_render.sun_elevation;
   other.wind_time = selected.wind_time;
-  renderer_state& a = s.selected == 0 ? selected : other;
-  renderer_state& b = s.selected == 0 ? other : selected;
+  renderer_gpu& a = s.selected == 0 ? selected : other;
+  renderer_gpu& b = s.selected == 0 ? other : selected;
   const render_params& pa = s.selected == 0 ? selected_render : other_p;
   const render_params& pb = s.selected == 0 ? other_p : selected_render;
   const bool draw_b = other.ok;

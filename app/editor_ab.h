@@ -15,7 +15,7 @@
 
 #include "app/editor_lod.h"
 #include "app/worker.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -32,7 +32,7 @@ struct ab_doc {
 // The growth and drawing part of a slot (needs a GL context and a worker thread).
 struct ab_view {
   std::unique_ptr<worker_state> worker;
-  renderer_state renderer;
+  renderer_gpu renderer;
   editor_lod lod;
   std::shared_ptr<const grow_result> shown;
   tree_spec posted_spec;
@@ -97,8 +97,8 @@ void ab_poll_other(ab_state& s, int step);
 // Draws the two slots into the view rectangle (framebuffer pixels, origin bottom-left).
 // `selected` is the editor's renderer and render settings (the selected slot); the sun of the
 // selected slot lights both.
-void ab_draw(ab_state& s, renderer_state& selected, const render_params& selected_render, const render_params& other_render,
-             const orbit_camera& cam, int vx, int vy, int vw, int vh, bool overlays);
+void ab_draw(ab_state& s, renderer_gpu& selected, const render_params& selected_render, const render_params& other_render,
+             const orbit_camera& cam, int vx, int vy, int vw, int vh, const overlay_view* overlays);
 void ab_free_gl(ab_state& s);
 
 // ImGui: the A/B controls for the top of the parameter panel. Returns what the user asked for.

@@ -9,9 +9,11 @@
 
 #include <epoxy/gl.h>
 
+#include "app/bench.h"
 #include "app/headless.h"
+#include "generators/timing.h"
 #include "app/worker.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -19,17 +21,6 @@ namespace sylva {
 namespace {
 
 namespace fs = std::filesystem;
-using clock_type = std::chrono::steady_clock;
-
-double ms_between(clock_type::time_point a, clock_type::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 // The generator's first float parameter, as a pointer into `spec` (nullptr if it has none).
 float* first_float(tree_spec& spec) {
@@ -56,7 +47,7 @@ edit_result measure(const preset& p, int repeat, int width, int height) {
     out.error = why;
     return out;
   }
-  renderer_state r;
+  renderer_gpu r;
   worker_state w;
   if (!init_renderer(r)) out.error = r.error.empty() ? "renderer initialisation failed" : r.error;
   start_worker(w);
@@ -133,8 +124,8 @@ int run_bench_edit(std::vector<std::string> paths, int repeat, bool as_json, int
     }
     const std::string name = fs::path(path).stem().string();
     if (as_json)
-      std::printf("{\"preset\":\"%s\",\"nodes\":%zu,\"edit_ms\":%.2f,\"worker_ms\":%.2f,\"upload_ms\":%.2f,\"frame_ms\":%.2f}\n",
-                  name.c_str(), r.nodes, r.total, r.worker, r.upload, r.frame);
+      print_bench_json({{"preset", name}, {"nodes", r.nodes}, {"edit_ms", r.total}, {"worker_ms", r.worker},
+                        {"upload_ms", r.upload}, {"frame_ms", r.frame}});
     else
       std::printf("%-34s %9zu %10.1f %10.1f %10.1f %10.1f\n", name.c_str(), r.nodes, r.total, r.worker, r.upload, r.frame);
     std::fflush(stdout);

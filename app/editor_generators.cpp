@@ -49,14 +49,13 @@ void refresh_inspection(lsystem_panel_state& s, const lsystem_params& p, uint64_
 }
 
 // The source box, with the offending line tinted red when the error is on a visible line.
-bool draw_source_box(lsystem_panel_state& s, std::string& source) {
+void draw_source_box(lsystem_panel_state& s, std::string& source) {
   const float line_h = ImGui::GetTextLineHeight();
   const int lines = int(std::count(source.begin(), source.end(), '\n')) + 1;
   const float pad = ImGui::GetStyle().FramePadding.y;
   const float fit = float(lines + 1) * line_h + 2 * pad;
   const float height = std::clamp(fit, 6 * line_h, 22 * line_h);
-  const bool edited = ImGui::InputTextMultiline("##lsystem_source", &source, ImVec2(-1, height),
-                                                ImGuiInputTextFlags_AllowTabInput);
+  ImGui::InputTextMultiline("##lsystem_source", &source, ImVec2(-1, height), ImGuiInputTextFlags_AllowTabInput);
   if (!s.error.ok() && s.error.line > 0 && fit <= height) {   // no scrolling: line rows are exact
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
     const float y = a.y + pad + float(s.error.line - 1) * line_h;
@@ -66,7 +65,6 @@ bool draw_source_box(lsystem_panel_state& s, std::string& source) {
       dl->AddRectFilled(ImVec2(a.x, y), ImVec2(a.x + 3, y + line_h), IM_COL32(255, 80, 60, 255));
     }
   }
-  return edited;
 }
 
 // "line L:C message", then the line itself with a caret under the column.
@@ -90,23 +88,21 @@ void draw_error(const lsystem_error& err, const std::string& source) {
   ImGui::TextColored(error_colour, "^");
 }
 
-bool draw_constants(lsystem_panel_state& s, std::string& source) {
+void draw_constants(lsystem_panel_state& s, std::string& source) {
   if (s.constants.empty()) {
     ImGui::TextDisabled("No #define constants (\"#define NAME value // [min,max] help\" makes a slider).");
-    return false;
+    return;
   }
-  bool changed = false;
   for (const lsystem_constant& c : s.constants) {
     ImGui::PushID(c.name.c_str());
     float v = c.value;
     // A value outside its comment's range widens the slider rather than being clamped on touch.
     const float lo = std::min(c.min, v), hi = std::max(c.max, v);
-    if (ImGui::SliderFloat(c.name.c_str(), &v, lo, hi, "%.4g") && set_lsystem_constant(source, c.name, v)) changed = true;
+    if (ImGui::SliderFloat(c.name.c_str(), &v, lo, hi, "%.4g")) set_lsystem_constant(source, c.name, v);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("%s\n#define on line %d; dragging rewrites the text", c.help.empty() ? c.name.c_str() : c.help.c_str(), c.line);
     ImGui::PopID();
   }
-  return changed;
 }
 
 void draw_inspector(lsystem_panel_state& s) {
@@ -138,18 +134,17 @@ void draw_inspector(lsystem_panel_state& s) {
   ImGui::PopTextWrapPos();
 }
 
-bool draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed, const grow_result* shown) {
-  bool changed = false;
+void draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed, const grow_result* shown) {
   refresh_check(s, p.source);
   if (ImGui::CollapsingHeader("L-system source", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::PushItemWidth(-1);
-    changed |= draw_source_box(s, p.source);
+    draw_source_box(s, p.source);
     ImGui::PopItemWidth();
     refresh_check(s, p.source);
     if (!s.error.ok()) {
       draw_error(s.error, p.source);
       ImGui::TextDisabled("The last good tree stays on screen until the text parses.");
-    } else if (shown && shown->report.stop_reason == "evaluation error") {
+    } else if (shown && shown->report.stop == grow_stop::evaluation_error) {
       ImGui::TextColored(error_colour, "%s", shown->report.message.c_str());
     } else if (!s.warnings.empty()) {
       const ImVec4 warn(1, 0.78f, 0.35f, 1);
@@ -163,31 +158,28 @@ bool draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed,
       ImGui::TextColored(ImVec4(0.6f, 0.85f, 0.6f, 1), "ok");
     }
   }
-  if (ImGui::CollapsingHeader("Constants (#define)", ImGuiTreeNodeFlags_DefaultOpen)) changed |= draw_constants(s, p.source);
+  if (ImGui::CollapsingHeader("Constants (#define)", ImGuiTreeNodeFlags_DefaultOpen)) draw_constants(s, p.source);
   refresh_inspection(s, p, seed);
   if (ImGui::CollapsingHeader("Derivation inspector", ImGuiTreeNodeFlags_DefaultOpen)) draw_inspector(s);
-  return changed;
 }
 
 }  // namespace
 
-bool draw_generator_panel(generator_panel_state& s, tree_spec& spec, const grow_result* shown) {
+void draw_generator_panel(generator_panel_state& s, tree_spec& spec, const grow_result* shown) {
   if (auto* p = std::get_if<lsystem_params>(&spec.params); p && p->mode == lsystem_mode::text)
-    return draw_lsystem_text(s.lsystem, *p, spec.seed, shown);
-  return false;
+    draw_lsystem_text(s.lsystem, *p, spec.seed, shown);
 }
 
-bool draw_step_table(std::vector<step_column>& cols, bool& hold) {
-  if (cols.empty()) return false;
-  bool changed = false;
+void draw_step_table(std::vector<step_column>& cols, bool& hold) {
+  if (cols.empty()) return;
   const size_t rows = step_rows(cols);
   ImGui::TextUnformatted("Steps");
   ImGui::SameLine();
-  if (ImGui::SmallButton("+ step")) add_step(cols), changed = true;
+  if (ImGui::SmallButton("+ step")) add_step(cols);
   ImGui::SameLine();
-  if (ImGui::SmallButton("- step") && rows > 1) remove_step(cols), changed = true;
+  if (ImGui::SmallButton("- step") && rows > 1) remove_step(cols);
   const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchSame;
-  if (!ImGui::BeginTable("steps", int(cols.size()) + 1, flags)) return changed;
+  if (!ImGui::BeginTable("steps", int(cols.size()) + 1, flags)) return;
   ImGui::TableSetupColumn("#", ImGuiTableColumnFlags_WidthFixed, 22);
   for (const step_column& c : cols) ImGui::TableSetupColumn(c.info.symbol && *c.info.symbol ? c.info.symbol : c.info.label);
   ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
@@ -211,10 +203,8 @@ bool draw_step_table(std::vector<step_column>& cols, bool& hold) {
       if (repeated) ImGui::PushStyleVar(ImGuiStyleVar_Alpha, 0.5f);
       ImGui::SetNextItemWidth(-1);
       const char* fmt = (c.info.flags & param_degrees) ? "%.1f°" : "%.4g";
-      if (ImGui::DragFloat("##cell", &v, std::max((c.info.max - c.info.min) * 0.002f, 0.01f), c.info.min, c.info.max, fmt)) {
+      if (ImGui::DragFloat("##cell", &v, std::max((c.info.max - c.info.min) * 0.002f, 0.01f), c.info.min, c.info.max, fmt))
         set_step_cell(c, r, std::clamp(v, c.info.min, c.info.max));
-        changed = true;
-      }
       if ((c.info.flags & param_on_release) && ImGui::IsItemActive()) hold = true;
       if (repeated) {
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("repeats the last entry; edit to set it for this step");
@@ -224,7 +214,6 @@ bool draw_step_table(std::vector<step_column>& cols, bool& hold) {
     }
   }
   ImGui::EndTable();
-  return changed;
 }
 
 void draw_overlay_menu(overlay_view& view, const overlay_gpu& gpu) {

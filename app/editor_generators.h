@@ -98,16 +98,16 @@ struct generator_panel_state {
 
 // Draws the panels that the generic parameter drawer cannot: for L-systems in text mode, the
 // source editor with its error, the #define sliders and the inspector. `shown` is the tree on
-// screen (for evaluation errors). Returns true when the spec changed.
-bool draw_generator_panel(generator_panel_state& s, tree_spec& spec, const grow_result* shown);
+// screen (for evaluation errors). Edits are noticed by comparing documents, not returned.
+void draw_generator_panel(generator_panel_state& s, tree_spec& spec, const grow_result* shown);
 
 // The per-step table of `cols`; `hold` is set while an apply-on-release cell is dragged.
-bool draw_step_table(std::vector<step_column>& cols, bool& hold);
+void draw_step_table(std::vector<step_column>& cols, bool& hold);
 
 // View-menu items: one toggle per overlay kind, and the shadow-grid slice.
 void draw_overlay_menu(overlay_view& view, const overlay_gpu& gpu);
 
 // A growth that failed to parse is not shown: the last good tree stays on screen (issue 6).
-inline bool keeps_last_tree(const grow_result& r) { return r.report.stop_reason == "parse error"; }
+inline bool keeps_last_tree(const grow_result& r) { return r.report.stop == grow_stop::parse_error; }
 
 }  // namespace sylva

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "generators/timing.h"
+
 namespace sylva {
 
 void editor_lod_new_tree(editor_lod& s) {
@@ -16,16 +18,16 @@ void editor_lod_new_tree(editor_lod& s) {
   s.tree_time = std::chrono::steady_clock::now();
 }
 
-void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t, const tree_mesh& m,
+void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, const tree_mesh& m,
                        const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step) {
   const lod_params& p = rp.lod;
   const bool budgets_changed = p.lod1_budget != s.built_params.lod1_budget || p.lod2_budget != s.built_params.lod2_budget ||
                                p.lod3_budget != s.built_params.lod3_budget;
   const auto t0 = std::chrono::steady_clock::now();
-  if (!s.chain && std::chrono::duration<double, std::milli>(t0 - s.tree_time).count() < editor_lod_settle_ms) return;
+  if (!s.chain && ms_between(s.tree_time, t0) < editor_lod_settle_ms) return;
   if (!s.chain || s.built_for != &m || budgets_changed) {
     s.chain = std::make_unique<lod_chain>(build_lods(t, m, mp, p));
-    s.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    s.build_ms = ms_since(t0);
     s.built_for = &m;
     s.built_params = p;
     if (s.uploaded != 0) s.uploaded = -1;   // the uploaded level is stale: upload again

@@ -27,7 +27,7 @@ inline constexpr double editor_lod_settle_ms = 300;
 // Call after upload_tree of a new tree: the renderer now holds LOD0 and the chain is stale.
 void editor_lod_new_tree(editor_lod& s);
 // Once a frame before drawing. Levels apply at the final step only (scrubbing shows LOD0).
-void editor_lod_update(editor_lod& s, renderer_state& r, const tree_skeleton& t, const tree_mesh& m,
+void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, const tree_mesh& m,
                        const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step);
 // "LOD1 of 0-3: 120k 48k 18k 6k triangles" for the status bar ("" before the first build).
 std::string editor_lod_status(const editor_lod& s);

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
+#include "generators/timing.h"
 #include "render/pick.h"
 
 namespace sylva {
@@ -66,7 +67,7 @@ void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const 
   // Three pixels of slack, so that a twig thinner than a pixel can be clicked.
   const float pixel = 2 * std::tan(glm::radians(cam.fov) * 0.5f) / std::max(v.h, 1.0f);
   const pick_hit h = pick_branch(t, radii_at_step(t, step), step, o, d, 3 * pixel);
-  s.pick_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  s.pick_ms = ms_since(t0);
   s.selected = h.node;
   s.picked_in = &t;
   s.picked_step = step;

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const formats[] = {".glb", ".gltf", ".obj", ".json", ".png"};
-constexpr int format_count = 5;
+const char* const* const formats = export_formats;
+constexpr int format_count = export_format_count;
 
 int format_of(const std::string& path) {
   const std::string ext = fs::path(path).extension().string();

@@ -10,11 +10,11 @@
 
 #include "app/worker.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 
-struct renderer_state;
+struct renderer_gpu;
 struct orbit_camera;
 
 struct export_dialog_state {
@@ -41,7 +41,7 @@ struct export_context {
   std::shared_ptr<const grow_result> tree;   // the shown tree (kept alive by the export thread)
   int step = 0;                              // the timeline's step
   const preset& doc;
-  renderer_state& renderer;                  // .png renders the current view (main thread)
+  renderer_gpu& renderer;                  // .png renders the current view (main thread)
   const orbit_camera& camera;
 };
 

@@ -11,6 +11,7 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
+#include "generators/timing.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -21,13 +22,9 @@ std::string glfw_error(const std::string& what) {
   glfwGetError(&desc);
   return desc ? what + ": " + desc : what;
 }
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 }  // namespace
 
-std::string save_view_png(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+std::string save_view_png(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                           const std::string& path, double* frame_ms) {
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
     return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 16..8192";
@@ -37,17 +34,11 @@ std::string save_view_png(renderer_state& r, const render_params& rp, const orbi
   if (error.empty()) {
     auto t0 = std::chrono::steady_clock::now();
     draw_frame(r, rp, cam, width, height, fbo);
-    std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    const image shot = read_back_rgba(0, 0, width, height);
     if (frame_ms) *frame_ms = ms_since(t0);
     check_gl("read pixels");
-    // GL rows run bottom to top; PNG rows top to bottom.
-    std::vector<unsigned char> flipped(pixels.size());
-    const size_t row = size_t(width) * 4;
-    for (int y = 0; y < height; ++y) std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &flipped[size_t(y) * row]);
-    error = save_png_rgba(path, width, height, flipped.data());
+    error = save_png(shot, path);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   delete_gl(fbo);
@@ -63,30 +54,42 @@ std::string display_missing(const char* what) {
   return "";
 }
 
+std::string init_glfw() {
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (glfwInit()) return "";
+  }
+  return glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
+}
+
+GLFWwindow* create_gl33_window(const gl_window_options& o, std::string& why) {
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_VISIBLE, o.visible ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  if (o.debug) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+  if (o.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, o.title, nullptr, nullptr);
+  if (!window) {
+    why = glfw_error("cannot create an OpenGL 3.3 core context");
+    return nullptr;
+  }
+  glfwMakeContextCurrent(window);
+  return window;
+}
+
 std::string open_hidden_gl_context(hidden_gl_context& c, const char* title, bool debug) {
   std::string why;
   GLFWwindow* window = nullptr;
   for (int attempt = 0; attempt < 2 && !window; ++attempt) {
     if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    if (!glfwInit()) {
-      why = glfw_error("cannot initialise GLFW (is the X server at DISPLAY reachable?)");
-      continue;
-    }
-    glfwDefaultWindowHints();
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    if (debug) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, title, nullptr, nullptr);
-    if (!window) {
-      why = glfw_error("cannot create an OpenGL 3.3 core context");
-      glfwTerminate();
-    }
+    if (why = init_glfw(); !why.empty()) continue;
+    window = create_gl33_window({64, 64, title, false, debug, false}, why);
+    if (!window) glfwTerminate();
   }
   if (!window) return why;
-  glfwMakeContextCurrent(window);
   c.window = window;
   return "";
 }
@@ -124,7 +127,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
   const int errors_before = gl_error_count();
 
   std::string error;
-  renderer_state r;
+  renderer_gpu r;
   if (!init_renderer(r)) error = r.error.empty() ? "renderer initialisation failed" : r.error;
   if (error.empty()) {
     upload_tree(r, mesh);

@@ -3,12 +3,29 @@
 
 #include <string>
 
-#include "render/files.h"
+#include "render/preset.h"
+
+struct GLFWwindow;
 
 namespace sylva {
 
-struct renderer_state;
+struct renderer_gpu;
 struct orbit_camera;
+
+// glfwInit, retried once (a display shared with other clients now and then refuses a connection).
+// Returns "" or the reason.
+std::string init_glfw();
+// The one way Sylva opens OpenGL: a window with a 3.3 core, forward-compatible context (as on
+// llvmpipe), made current. Used by the editor, the hidden contexts below and the GL test fixtures.
+// Needs init_glfw; returns nullptr with the reason in `why` when no such context can be had.
+struct gl_window_options {
+  int width = 64, height = 64;
+  const char* title = "sylva";
+  bool visible = false;     // hidden windows render off-screen (create_color_target)
+  bool debug = false;       // a debug context (install_gl_debug_output)
+  bool maximized = false;
+};
+GLFWwindow* create_gl33_window(const gl_window_options& o, std::string& why);
 
 // A hidden window whose OpenGL 3.3 core context is current, for rendering without the editor.
 struct hidden_gl_context {
@@ -39,7 +56,7 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
 
 // Renders the current view of an initialised renderer off-screen and writes a PNG ("" or error).
 // Needs a current GL context; the editor uses it for File > Export as .png.
-std::string save_view_png(renderer_state& r, const render_params& rp, const orbit_camera& cam, int width, int height,
+std::string save_view_png(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                           const std::string& path, double* frame_ms = nullptr);
 
 }  // namespace sylva

@@ -46,14 +46,14 @@ void run_thumbnail_thread(preset_browser_state& b) {
 }
 
 unsigned upload_thumbnail(const std::string& png) {
-  int w = 0, h = 0;
-  std::string rgba;
-  if (!load_png_rgba(png, w, h, rgba).empty()) return 0;
+  image thumb;
+  if (!load_png(png, thumb).empty()) return 0;
+  const int w = thumb.width, h = thumb.height;
   GLuint id = 0;
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, thumb.pixels.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glBindTexture(GL_TEXTURE_2D, 0);
@@ -158,14 +158,14 @@ void update_thumbnails(preset_browser_state& b) {
     return;
   }
   if (!b.renderer) {
-    b.renderer = std::make_unique<renderer_state>();
+    b.renderer = std::make_unique<renderer_gpu>();
     if (!init_renderer(*b.renderer)) {
       b.renderer_failed = true;
       b.failed.insert(finished.key);
       return;
     }
   }
-  renderer_state& r = *b.renderer;
+  renderer_gpu& r = *b.renderer;
   upload_tree(r, *finished.mesh);
   set_tree_step(r, *finished.skeleton, finished.doc.mesh.min_radius, finished.skeleton->steps);
   // Framed as the editor and PNG export frame it (frame_camera), for a square picture.

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/preset_library.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -39,7 +39,7 @@ struct preset_browser_state {
   // Thumbnails: GL textures by key (main thread only); keys queued or given up on.
   std::unordered_map<std::string, unsigned> textures;
   std::set<std::string> pending, failed;
-  std::unique_ptr<renderer_state> renderer;  // a second renderer so the edited tree stays uploaded
+  std::unique_ptr<renderer_gpu> renderer;  // a second renderer so the edited tree stays uploaded
   bool renderer_failed = false;
   // The growth thread for thumbnails missing from the cache (CPU only; GL stays on the main thread).
   std::thread thread;

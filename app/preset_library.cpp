@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <map>
 
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 

@@ -4,13 +4,11 @@
 #include <chrono>
 #include <new>
 
+#include "generators/timing.h"
+
 namespace sylva {
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 
 // A growth too large for memory: the tree on screen stays (the previous result, re-published under
 // the new generation) and the status bar says why. The worker's own `last` stays the good result.
@@ -23,6 +21,7 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
     if (last) {
       r->skeleton = last->skeleton;
       r->debug = last->debug;
+      r->overlays = last->overlays;
       r->mesh = last->mesh;
       r->spec = last->spec;
       r->mesh_settings = last->mesh_settings;
@@ -69,6 +68,7 @@ void run_worker(worker_state& w) {
       // Only mesh settings changed: the tree is the same, so skip growth.
       result->skeleton = last->skeleton;
       result->debug = last->debug;
+      result->overlays = last->overlays;
       result->report = last->report;
       result->grow_ms = last->grow_ms;
       result->regrown = false;
@@ -106,6 +106,12 @@ void run_worker(worker_state& w) {
       result->grow_ms = ms_since(t0);
       if (o.cancelled()) {   // a newer edit or a cancel arrived: drop this one unseen
         w.busy = false;
+        continue;
+      }
+      try {
+        result->overlays = std::make_shared<overlay_geometry>(build_overlays(*debug, skeleton.get()));
+      } catch (const std::bad_alloc&) {
+        publish_failure(w, last, req, "out of memory while building the growth overlays");
         continue;
       }
       result->skeleton = std::move(skeleton);

@@ -12,6 +12,7 @@
 #include "generators/estimate.h"
 #include "generators/tree_spec.h"
 #include "render/mesh.h"
+#include "render/overlay_geometry.h"
 
 namespace sylva {
 
@@ -21,6 +22,7 @@ struct grow_result {
   mesh_params mesh_settings;
   std::shared_ptr<const tree_skeleton> skeleton;
   std::shared_ptr<const growth_debug> debug;
+  std::shared_ptr<const overlay_geometry> overlays;   // built from debug here, not on the UI thread
   tree_mesh mesh;
   grow_report report;
   double grow_ms = 0, mesh_ms = 0;

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "generators/timing.h"
+
 namespace sylva {
 
 double extrapolate_nodes(const std::vector<double>& born, int complete_steps, int total_steps, double cap,
@@ -59,9 +61,7 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
       trial.params);
   std::atomic<uint32_t> stop{0};
   const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed_ms = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  };
+  auto elapsed_ms = [&] { return ms_since(t0); };
   grow_options to;
   to.steps = o.steps;
   to.cancel = &stop;
@@ -76,7 +76,7 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
   e.cancelled = o.cancelled();
   const bool timed_out = stop.load() != 0 && !e.cancelled;
   const bool node_capped = e.report.hit_node_cap && trial_node_cap < real_node_cap;
-  const bool module_capped = e.report.stop_reason == "module cap" && trial_module_cap < real_module_cap;
+  const bool module_capped = e.report.stop == grow_stop::module_cap && trial_module_cap < real_module_cap;
   e.exact = !e.cancelled && !timed_out && !node_capped && !module_capped;
   e.uncertain = !e.exact && !e.cancelled && !node_capped && !module_capped;
   const double n = double(e.trial.size());

@@ -188,9 +188,7 @@ void add_arrow(growth_debug& d, const glm::vec3& from, const glm::vec3& dir, flo
   const glm::vec3 colour(1.0f, 0.55f, 0.1f);
   for (const glm::vec3& end : {from, tip - dir * (0.3f * len) + side * (0.15f * len),
                                tip - dir * (0.3f * len) - side * (0.15f * len)}) {
-    d.lines.push_back(end);
-    d.lines.push_back(tip);
-    d.line_color.push_back(colour);
+    d.add_line(end, tip, colour, debug_kind::guide_arrow);
   }
 }
 
@@ -441,8 +439,10 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
   tree_skeleton t;
   auto finish = [&](tree_skeleton& tree) -> tree_skeleton& {
     apply_pipe_radii(tree, std::max(p.pipe_exponent, 0.1f), std::max(p.tip_radius, 0.0f));
-    if (rep.stop_reason.empty())
+    if (rep.stop_reason.empty()) {
+      rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
       rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";
+    }
     return tree;
   };
 
@@ -458,6 +458,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
     } else {
       rep.error = true;
       rep.message = "guiding vectors: " + why;
+      rep.stop = grow_stop::bad_input;
       rep.stop_reason = "no graph";
     }
     return finish(t);
@@ -534,6 +535,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
       if (candidates.empty()) {
         rep.error = true;
         rep.message = "guiding vectors: the endpoint volume contains no graph vertex; move it inside the domain or enlarge it";
+        rep.stop = grow_stop::bad_input;
         rep.stop_reason = "empty endpoint volume";
         break;
       }
@@ -566,10 +568,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
     rule.radial_T = p.radial_T;
     rule.axis_origin = g.point[root];
     if (debug)
-      for (int32_t v : sources) {
-        debug->points.push_back(g.point[v]);
-        debug->point_value.push_back(0);
-      }
+      for (int32_t v : sources) debug->add_point(g.point[v], 0, debug_kind::source);
     if (!search_gv_paths(g, sources, source_guide, rule, endpoints, search, o, corridor)) {
       rep.cancelled = true;
       break;
@@ -579,10 +578,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
     // already holds, so shared prefixes are merged.
     fresh.clear();
     for (int32_t e : endpoints) {
-      if (debug) {
-        debug->points.push_back(g.point[e]);
-        debug->point_value.push_back(float(k));
-      }
+      if (debug) debug->add_point(g.point[e], float(k), debug_kind::endpoint);
       if (!search.settled[e] || tree_node[e] >= 0) continue;
       path.clear();
       int32_t v = e;
@@ -636,11 +632,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
       int32_t out[8];
       std::copy_n(yao8_edges(g, v), 8, out);
       for (int32_t w : out)
-        if (w >= 0) {
-          debug->lines.push_back(g.point[v]);
-          debug->lines.push_back(g.point[w]);
-          debug->line_color.push_back(glm::vec3(0.45f));
-        }
+        if (w >= 0) debug->add_line(g.point[v], g.point[w], glm::vec3(0.45f), debug_kind::graph_edge);
       add_arrow(*debug, g.point[v], node_guide[i], arrow);
     }
   }

@@ -78,6 +78,7 @@ tree_skeleton grow_honda(const lsystem_params& p_in, const grow_options& o, grow
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) at derivation " +
                   std::to_string(step) + "; raise node_cap or lower the derivation count";
+  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
   rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "derivations done";
   return t;
 }

@@ -190,6 +190,7 @@ tree_skeleton grow_lsystem_text(const lsystem_params& p, const grow_options& o, 
     t.add_node(glm::vec3(0), -1, 0.5f * p.scale * p.width_scale, 0, 0);
     rep.error = true;
     rep.message = "line " + std::to_string(err.line) + ", column " + std::to_string(err.column) + ": " + err.message;
+    rep.stop = grow_stop::parse_error;
     rep.stop_reason = "parse error";
     return t;
   }
@@ -203,6 +204,8 @@ tree_skeleton grow_lsystem_text(const lsystem_params& p, const grow_options& o, 
     rep.error = dr.error;
     rep.message = dr.message + (rep.message.empty() ? "" : "; " + rep.message);
   }
+  rep.stop = dr.error ? grow_stop::evaluation_error : dr.hit_module_cap ? grow_stop::module_cap
+             : rep.hit_node_cap ? grow_stop::node_cap : dr.cancelled ? grow_stop::cancelled : grow_stop::finished;
   rep.stop_reason = dr.error ? "evaluation error" : dr.hit_module_cap ? "module cap" : rep.hit_node_cap ? "node cap"
                     : dr.cancelled ? "cancelled" : "derivations done";
   if (o.progress) o.progress(1.0f);

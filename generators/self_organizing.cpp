@@ -12,6 +12,7 @@
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/self_organizing_grid.h"
+#include "generators/vec_util.h"
 
 namespace sylva {
 
@@ -72,11 +73,6 @@ namespace {
 
 constexpr int32_t bud_here = -1;  // main/lat: a live bud sits there
 constexpr int32_t no_bud = -2;    // main/lat: nothing (shed, or never had one)
-
-glm::vec3 any_perpendicular(const glm::vec3& h) {
-  const glm::vec3 a = std::abs(h.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  return glm::normalize(glm::cross(h, a));
-}
 
 glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float l2 = glm::dot(v, v);
@@ -630,16 +626,18 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     rep.message = "shadow grid memory cap reached (" + std::to_string(st.grid.chunk_cap) + " chunks, " +
                   std::to_string((st.grid.chunk_cap * shadow_grid::chunk_cells * sizeof(float)) >> 20) +
                   " MiB) in step " + std::to_string(step) + "; raise voxel_size, lower q_max or the step count";
+  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled
+             : st.grid.full ? grow_stop::memory_cap : grow_stop::finished;
   rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : st.grid.full ? "memory cap" : "steps done";
 
   if (debug) {
-    if (shadow) sample_shadow_grid(st.grid, 1000000, debug->points, debug->point_value);
-    else
+    if (shadow) {
+      sample_shadow_grid(st.grid, 1000000, debug->points, debug->point_value);
+      debug->point_kind.assign(debug->points.size(), debug_kind::shadow_sample);
+    } else {
       for (size_t m = 0; m < st.markers.pos.size(); ++m)
-        if (st.markers.alive[m]) {
-          debug->points.push_back(st.markers.pos[m]);
-          debug->point_value.push_back(-1);
-        }
+        if (st.markers.alive[m]) debug->add_point(st.markers.pos[m], -1, debug_kind::marker);
+    }
     // Fates as of the last step: shed, grew in it (or used up its buds), or dormant.
     debug->node_fate.assign(t.size(), 1);
     for (size_t i = 0; i < t.size(); ++i) {

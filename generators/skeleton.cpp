@@ -1,6 +1,7 @@
 // Skeleton invariants, pipe-model radii and the per-step view.
 #include "generators/skeleton.h"
 
+#include <cassert>
 #include <cmath>
 #include <string>
 
@@ -69,6 +70,7 @@ void compute_pipe_radii(const std::vector<int32_t>& parent, const std::vector<ui
     // Shinozaki's pipe model as used by Palubicki 2009 §5: r^n = Σ r_i^n; a tip has r_tip.
     const float s = sum[k] > 0 ? sum[k] : rt;
     radius[k] = std::pow(s, 1.0f / exponent);
+    assert(parent[k] < int32_t(k) && "compute_pipe_radii: one reverse sweep needs parent[i] < i");
     if (parent[k] >= 0) sum[parent[k]] += s;
   }
 }

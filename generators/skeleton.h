@@ -70,14 +70,37 @@ void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip);
 // Radii of the tree as it stood at `step` (same node indices; nodes not alive at step get 0).
 std::vector<float> radii_at_step(const tree_skeleton& s, int step);
 
-// A generator's debug output, drawn as overlays in the editor.
+// What a growth_debug point or line is, so that a viewer needs neither its colour nor the generator.
+enum class debug_kind : uint8_t {
+  marker,           // point; value: the step in which it was killed, -1 alive at the end (markers,
+                    // attraction points)
+  shadow_sample,    // point; value: shadow s of its grid cell (> 0)
+  source,           // point; a source of the step after the previous endpoints (value 0)
+  endpoint,         // point; value: the step k it ends
+  influence_link,   // line; point → node, recorded for the last iteration only
+  envelope_edge,    // line; the crown envelope's outline
+  graph_edge,       // line; an edge of the search graph
+  guide_arrow,      // line; a guiding vector
+};
+
+// A generator's debug output, drawn as overlays in the editor. Each point and each line pair has a
+// kind (point_kind.size() == points.size(), line_kind.size() == line_color.size()).
 struct growth_debug {
   std::vector<glm::vec3> points;         // attraction points / markers / shadow samples
-  std::vector<float> point_value;        // per point: shade, or the step it was killed (-1 alive)
+  std::vector<float> point_value;        // per point: its kind's value (see debug_kind)
+  std::vector<debug_kind> point_kind;
   std::vector<glm::vec3> lines;          // pairs of endpoints: graph edges, influence links, arrows
   std::vector<glm::vec3> line_color;     // one colour per pair
+  std::vector<debug_kind> line_kind;     // one kind per pair
   std::vector<uint8_t> node_fate;        // per node: 0 grew, 1 dormant, 2 shed
   std::vector<float> node_flow;          // per node: resource flow (for line width)
+
+  void add_point(const glm::vec3& p, float value, debug_kind k) {
+    points.push_back(p), point_value.push_back(value), point_kind.push_back(k);
+  }
+  void add_line(const glm::vec3& a, const glm::vec3& b, const glm::vec3& colour, debug_kind k) {
+    lines.push_back(a), lines.push_back(b), line_color.push_back(colour), line_kind.push_back(k);
+  }
 };
 
 using progress_fn = std::function<void(float)>;
@@ -100,10 +123,23 @@ struct grow_options {
   }
 };
 
+// Why growth stopped, for code to act on; stop_reason says it in words.
+enum class grow_stop : uint8_t {
+  finished,           // ran its steps or derivations, or ran out of room to grow (stop_reason says which)
+  node_cap,
+  module_cap,         // L-systems: the derived string hit its module cap
+  memory_cap,         // self-organizing: the shadow grid hit its memory cap
+  cancelled,
+  parse_error,        // L-systems: the source does not parse (the editor keeps the last good tree)
+  evaluation_error,   // L-systems: an expression failed while deriving
+  bad_input,          // nothing to grow in: an unreadable envelope, no graph, an empty endpoint volume
+};
+
 // Why growth stopped and what the user should know.
 struct grow_report {
   bool hit_node_cap = false;
   bool cancelled = false;
+  grow_stop stop = grow_stop::finished;
   std::string stop_reason;    // e.g. "no attraction points left"
   std::string message;        // warning or error for the status bar ("" when all is well)
   bool error = false;         // true when the result is not a tree the user asked for

@@ -350,17 +350,15 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     if (o.cancelled()) { rep.cancelled = true; stop = "cancelled"; break; }
     ++step;
     key_step(step);
-    if (debug) debug->lines.clear(), debug->line_color.clear();
+    if (debug) debug->lines.clear(), debug->line_color.clear(), debug->line_kind.clear();
     touched.clear();
     for (int32_t i : s.active) {
       const int32_t v = s.nearest[size_t(i)];
       if (acc_count[size_t(v)]++ == 0) touched.push_back(v);
       // Runions 2007 §3: n = Σ (s − v)/|s − v| over the points S(v) that v is nearest to.
       acc[size_t(v)] += (pts[size_t(i)] - t.position[size_t(v)]) / std::sqrt(s.nearest_d2[size_t(i)]);
-      if (debug) {
-        debug->lines.push_back(pts[size_t(i)]), debug->lines.push_back(t.position[size_t(v)]);
-        debug->line_color.push_back(glm::vec3(1.0f, 0.75f, 0.2f));
-      }
+      if (debug)
+        debug->add_line(pts[size_t(i)], t.position[size_t(v)], glm::vec3(1.0f, 0.75f, 0.2f), debug_kind::influence_link);
     }
     std::sort(touched.begin(), touched.end());  // new nodes in parent order: deterministic
     const size_t first_new = t.size();
@@ -393,6 +391,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   }
   t.steps = step;
   rep.stop_reason = stop;
+  rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) at step " + std::to_string(step) +
                   "; raise node_cap or lower the point count";
@@ -419,6 +418,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     debug->points = pts;
     debug->point_value.resize(pts.size());
     for (size_t i = 0; i < pts.size(); ++i) debug->point_value[i] = float(s.killed[i]);
+    debug->point_kind.assign(pts.size(), debug_kind::marker);
   }
   return t;
 }
@@ -435,6 +435,7 @@ tree_skeleton grow_space_colonization(const space_colonization_params& p_in, con
     t.add_node(glm::vec3(0), -1, p.min_width, 0, 0);
     rep.error = true;
     rep.message = e.error;
+    rep.stop = grow_stop::bad_input;
     rep.stop_reason = "envelope error";
     return t;
   }
@@ -443,6 +444,7 @@ tree_skeleton grow_space_colonization(const space_colonization_params& p_in, con
   if (debug) {
     debug->lines.insert(debug->lines.end(), e.outline.begin(), e.outline.end());
     debug->line_color.insert(debug->line_color.end(), e.outline.size() / 2, glm::vec3(0.35f, 0.6f, 1.0f));
+    debug->line_kind.insert(debug->line_kind.end(), e.outline.size() / 2, debug_kind::envelope_edge);
   }
   return t;
 }

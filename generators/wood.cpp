@@ -17,8 +17,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <string>
+#include <type_traits>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -84,10 +91,40 @@ float fast_atan2(float y, float x) {
   return x < 0 ? 3.14159265f - a : a;
 }
 
-// The square root of a unit quaternion with w >= 0: half the rotation about the same axis.
-glm::quat half_rotation(const glm::quat& q) {
-  return glm::normalize(glm::quat(1 + q.w, q.x, q.y, q.z));
-}
+// One block for all of the pass's scratch arrays (about 90 bytes a node), left uninitialised. On a
+// large tree, faulting in 4 KiB pages one at a time was about a fifth of the pass: on Linux the
+// block asks for transparent huge pages (2 MiB), which the kernel grants in "madvise" mode too.
+class scratch_block {
+ public:
+  explicit scratch_block(size_t bytes) {
+    constexpr size_t huge = size_t(2) << 20;
+    // Small trees (tests, scrubbing a sapling) keep ordinary pages: a huge one is zeroed whole.
+    const size_t align = bytes >= 2 * huge ? huge : 64;
+    size_ = std::max<size_t>((bytes + align - 1) / align * align, align);
+    data_ = static_cast<unsigned char*>(std::aligned_alloc(align, size_));
+    if (!data_) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (align == huge) madvise(data_, size_, MADV_HUGEPAGE);   // a hint: without it the pages are small
+#endif
+  }
+  ~scratch_block() { std::free(data_); }
+  scratch_block(const scratch_block&) = delete;
+  scratch_block& operator=(const scratch_block&) = delete;
+  // The next `count` objects of T, 64-byte aligned; trivially copyable types only, uninitialised.
+  template <class T>
+  T* take(size_t count) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    used_ = (used_ + 63) / 64 * 64;
+    T* p = reinterpret_cast<T*>(data_ + used_);
+    used_ += count * sizeof(T);
+    return p;
+  }
+  static size_t room(size_t count, size_t size) { return (count * size + 63) / 64 * 64; }
+
+ private:
+  unsigned char* data_ = nullptr;
+  size_t size_ = 0, used_ = 0;
+};
 
 struct engine {
   const tree_skeleton& t;
@@ -100,38 +137,47 @@ struct engine {
 
   // Parents are read at random (a node's parent was often born many steps earlier), so what a
   // sweep reads of a parent sits in one record; the rest is read in index order.
+  // No member initialisers: `at` and `acc` are allocated uninitialised (a forward sweep writes
+  // every pose before a reverse sweep reads it, and reverse clears the loads it sums), which
+  // saves a pass over tens of megabytes on a large tree.
   struct pose {
-    glm::quat frame{1, 0, 0, 0};   // the rotation of everything beyond the node
-    glm::vec3 x{0};                // bent position
+    glm::quat frame;               // the rotation of everything beyond the node
+    glm::vec3 x;                   // bent position
   };
   struct load {
-    glm::vec3 s{0};                // first moment of the mass beyond the node
-    float m = 0;                   // mass beyond the node
-    float pipe = 0;                // Σ r_tip^n of the pipes through it
+    glm::vec3 s;                   // first moment of the mass beyond the node
+    float m;                       // mass beyond the node
+    float pipe;                    // Σ r_tip^n of the pipes through it
   };
-  std::vector<pose> at;
-  std::vector<load> acc;
-  std::vector<glm::vec4> rest_d;   // per internode: unbent vector from its parent (xyz) and length (w)
-  std::vector<glm::quat> bend;     // per internode: its turn relative to its parent's end frame
-  std::vector<glm::vec3> moment_prev;  // moment at the middle of each internode at the last bend
-  std::vector<uint8_t> clamped;
+  scratch_block block;
+  pose* at;
+  load* acc;
+  glm::vec4* rest_d;               // per internode: unbent vector from its parent (xyz) and length (w)
+  glm::quat* bend;                 // per internode: its turn relative to its parent's end frame
+  glm::vec3* moment_prev;          // moment at the middle of each internode at the last bend
+  uint8_t* clamped;
   float recovery_share[65] = {};   // 1 - (1 - recovery)^k for k young steps
   float max_turn = 0, cos_half_max = 1;
 
   engine(const tree_skeleton& tree, const std::vector<glm::vec3>& rest_pos, const wood_params& params)
-      : t(tree), rest(rest_pos), p(params), n(tree.size()) {
-    at.resize(n);
-    for (size_t k = 0; k < n; ++k) at[k].x = rest[k];
-    acc.resize(n);
-    rest_d.assign(n, glm::vec4(0));
-    for (size_t k = 0; k < n; ++k)
-      if (t.parent[k] >= 0) {
-        const glm::vec3 d = rest[k] - rest[size_t(t.parent[k])];
-        rest_d[k] = glm::vec4(d, glm::length(d));
-      }
-    bend.assign(n, glm::quat(1, 0, 0, 0));
-    moment_prev.assign(n, glm::vec3(0));
-    clamped.assign(n, 0);
+      : t(tree), rest(rest_pos), p(params), n(tree.size()),
+        block(scratch_block::room(n, sizeof(pose)) + scratch_block::room(n, sizeof(load)) +
+              scratch_block::room(n, sizeof(glm::vec4)) + scratch_block::room(n, sizeof(glm::quat)) +
+              scratch_block::room(n, sizeof(glm::vec3)) + scratch_block::room(n, 1)) {
+    at = block.take<pose>(n);
+    acc = block.take<load>(n);
+    rest_d = block.take<glm::vec4>(n);
+    bend = block.take<glm::quat>(n);
+    moment_prev = block.take<glm::vec3>(n);
+    clamped = block.take<uint8_t>(n);
+    for (size_t k = 0; k < n; ++k) {
+      glm::vec3 d(0);
+      if (t.parent[k] >= 0) d = rest[k] - rest[size_t(t.parent[k])];
+      rest_d[k] = glm::vec4(d, t.parent[k] >= 0 ? glm::length(d) : 0.0f);
+    }
+    std::fill(bend, bend + n, glm::quat(1, 0, 0, 0));
+    std::fill(moment_prev, moment_prev + n, glm::vec3(0));
+    std::fill(clamped, clamped + n, uint8_t(0));
     for (int k = 0; k <= 64; ++k) recovery_share[k] = 1.0f - std::pow(1.0f - p.recovery, float(k));
     max_turn = p.max_bend * pi / 180.0f;
     cos_half_max = std::cos(0.5f * max_turn);
@@ -142,6 +188,7 @@ struct engine {
     for (size_t k = 0; k < n; ++k) out[k] = at[k].x;
     return out;
   }
+  const glm::vec3& position(size_t k) const { return at[k].x; }
 
   bool alive(size_t k, int s) const { return t.born[k] <= s && s < t.died[k]; }
 
@@ -151,14 +198,20 @@ struct engine {
     const glm::vec3 rd(rest_d[k]);
     const float len = rest_d[k].w;
     if (!(len > 1e-9f)) return;
+    const float ei = p.modulus * 1e9f * pi * rr2 * rr2 * 0.25f;   // E·I, I = π r⁴ / 4
+    const float flex = len / ei;
+    const int young = recover && p.recovery > 0
+                          ? std::min(s, int(t.born[k]) + p.recovery_age) - std::max(prev + 1, int(t.born[k])) + 1
+                          : 0;
+    // Without reaction wood the turn is at most |m|·L/(EI) (the projection below only shortens
+    // it): when that is already under the skip threshold, nothing below would change the bend.
+    if (young <= 0 && glm::dot(m, m) * flex * flex <= 1e-12f) return;
     const glm::vec3 dir = at[k].frame * (rd / len);   // the direction of its tip now
     m -= glm::dot(m, dir) * dir;             // the axial part twists; only the rest bends
-    const float ei = p.modulus * 1e9f * pi * rr2 * rr2 * 0.25f;   // E·I, I = π r⁴ / 4
-    glm::vec3 turn = m * (len / ei);
+    glm::vec3 turn = m * flex;
     // Reaction wood (gravitropic recovery): a young shoot turns its tip back toward its set
     // direction by `recovery` of the angle between them per step it was young in (prev, s].
-    if (recover && p.recovery > 0) {
-      const int young = std::min(s, int(t.born[k]) + p.recovery_age) - std::max(prev + 1, int(t.born[k])) + 1;
+    {
       if (young > 0) {
         glm::vec3 target = rd / len;
         if (p.recovery_up > 0) {
@@ -196,8 +249,10 @@ struct engine {
   }
 
   // One sweep parents-first over [0, end): positions and frames from the bends.
-  void forward(size_t end) {
+  // clear_loads: also zero the loads of [0, end) for the reverse sweep that follows (one pass less).
+  void forward(size_t end, bool clear_loads) {
     for (size_t k = 0; k < end; ++k) {
+      if (clear_loads) acc[k] = load{glm::vec3(0), 0, 0};
       const int32_t par = t.parent[k];
       if (par < 0) {
         at[k].x = rest[k];
@@ -211,7 +266,11 @@ struct engine {
         at[k].x = pp.x + pp.frame * rd;
         at[k].frame = pp.frame;
       } else {
-        at[k].x = pp.x + pp.frame * (half_rotation(b) * rd);
+        // The hinge at the middle turns rd by half of b = (w, u). That half is (1 + w, u) / |·|, so
+        // it turns rd to rd + u × rd + u × (u × rd) / (1 + w): no square root (w > 0, see turn_internode).
+        const glm::vec3 u(b.x, b.y, b.z);
+        const glm::vec3 c = glm::cross(u, rd);
+        at[k].x = pp.x + pp.frame * (rd + c + glm::cross(u, c) * (1.0f / (1.0f + b.w)));
         at[k].frame = pp.frame * b;
       }
     }
@@ -222,9 +281,11 @@ struct engine {
   // its middle, M = Σ m_i (x_i - c) × g, and its turn from the increase since the last bend. The
   // turns change the bends only: positions follow in the next forward sweep.
   void reverse(int s, int prev, size_t end) {
-    std::fill(acc.begin(), acc.begin() + long(end), load{});
+    // forward(end, true) has just cleared acc[0, end).
     const bool pipe = t.pipe_exponent > 0;
     float rt = 0, two_over_e = 0;
+    // The usual exponent 2 (da Vinci's rule): r² is the pipe sum itself, no power needed.
+    const bool square_pipe = t.pipe_exponent == 2;
     if (pipe) {
       rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
       two_over_e = 2.0f / t.pipe_exponent;
@@ -239,7 +300,7 @@ struct engine {
       float sum = 0, r2;
       if (pipe) {
         sum = a.pipe > 0 ? a.pipe : rt;
-        r2 = fast_pow(sum, two_over_e);
+        r2 = square_pipe ? sum : fast_pow(sum, two_over_e);
       } else {
         r2 = t.radius[k] * t.radius[k];
       }
@@ -275,11 +336,11 @@ struct engine {
     for (uint16_t s : steps) {
       if (int(s) > step) break;
       const size_t reach = prefix_end(s);
-      forward(reach);
+      forward(reach, true);
       reverse(s, prev, reach);
       prev = s;
     }
-    forward(n);
+    forward(n, false);
   }
 
   // One past the last node born at or before s (all nodes when they are not born in index order).
@@ -356,15 +417,14 @@ void apply_wood(tree_skeleton& t, const wood_params& params, grow_report* report
   e.monotone = monotone;
   e.run(h->bend_steps, t.steps);
   size_t folds = 0;
-  for (uint8_t c : e.clamped) folds += c;
+  for (size_t k = 0; k < e.n; ++k) folds += e.clamped[k];
   if (folds)
     add_message(report, "wood: " + std::to_string(folds) + " internode" + (folds == 1 ? "" : "s") +
                             " reached the maximum bend; the load is more than the wood can carry (check gravity, "
                             "wood density, Young's modulus and leaf mass)");
-  std::vector<glm::vec3> x = e.positions();
   for (leaf& l : t.leaves)
-    if (l.node >= 0 && size_t(l.node) < t.size()) l.position += x[size_t(l.node)] - h->rest[size_t(l.node)];
-  t.position = std::move(x);
+    if (l.node >= 0 && size_t(l.node) < t.size()) l.position += e.position(size_t(l.node)) - h->rest[size_t(l.node)];
+  for (size_t k = 0; k < t.size(); ++k) t.position[k] = e.position(k);
   t.wood = std::move(h);
 }
 

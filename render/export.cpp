@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -28,7 +29,7 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/textures.h"
 
 namespace sylva {
@@ -108,7 +109,10 @@ bool has_shed(const tree_skeleton& t, int s) {
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material) {
   std::vector<int32_t> tree_of(t.size(), 0);
   int trees = 0;
-  for (size_t i = 0; i < t.size(); ++i) tree_of[i] = t.parent[i] < 0 ? trees++ : tree_of[t.parent[i]];
+  for (size_t i = 0; i < t.size(); ++i) {
+    assert(t.parent[i] < int32_t(i) && "split_parts: parent[i] < i");
+    tree_of[i] = t.parent[i] < 0 ? trees++ : tree_of[t.parent[i]];
+  }
   std::vector<tree_part> parts(size_t(std::max(trees, 1)));
   const size_t nv = m.position.size();
   if (parts.size() == 1) {  // the common case: reserve exactly, so big trees are not copied while growing
@@ -127,6 +131,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
   const int seg = std::max(m.radial_segments, 1), stride = seg + 1;
   for (size_t k = 0; k < m.index.size(); ++k) {
     const uint32_t v = m.index[k];
+    assert(v < nv && m.node.size() == nv && "export: a bark index past the mesh's vertices");
     const uint32_t node = m.node[v];
     geometry& g = parts[node < tree_of.size() ? tree_of[node] : 0].bark;
     if (local[v] == UINT32_MAX) {
@@ -175,7 +180,7 @@ std::string stem_path(const std::string& path) {
   return (p.parent_path() / p.stem()).string();
 }
 
-// Writes every (path, bytes) pair all or nothing: each is staged first (files.h: written and synced
+// Writes every (path, bytes) pair all or nothing: each is staged first (preset.h: written and synced
 // under a temporary name beside its target, through symlinks, keeping permissions). A failure while
 // staging removes only the temporaries. Then each existing target is moved aside and the new file
 // renamed in, the main file (which names the others) last; if a rename fails midway, the files
@@ -257,6 +262,8 @@ struct gltf_doc {
     return add_accessor(view, gl_float, v.size(), type, extra);
   }
   int add_indices(const std::vector<uint32_t>& idx, size_t vertices) {
+    assert(std::all_of(idx.begin(), idx.end(), [&](uint32_t i) { return i < vertices; }) &&
+           "glTF export: an index past its primitive's vertices");
     if (vertices < 65536) {  // 16-bit when every index fits
       std::vector<uint16_t> small(idx.begin(), idx.end());
       return add_accessor(add_view(small.data(), small.size() * 2, element_array_buffer), gl_ushort, idx.size(), "SCALAR");
@@ -885,6 +892,8 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   if (cancelled(o)) { r.error = "export cancelled"; return r; }
   auto faces = [&](const geometry& g, size_t base) {
     char buf[24];
+    assert(std::all_of(g.index.begin(), g.index.end(), [&](uint32_t i) { return i < g.position.size(); }) &&
+           "OBJ export: an index past its group's vertices");
     for (size_t k = 0; k < g.index.size(); k += 3) {
       text += 'f';
       for (int c = 0; c < 3; ++c) {

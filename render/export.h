@@ -86,6 +86,11 @@ struct export_result {
   int animation_steps = 0;  // steps in the growth animation after the caps
 };
 
+// The extensions `sylva export` and the editor's export dialog accept, in the dialog's order:
+// export_tree's four, and .png, a render of the tree (app/headless.h).
+inline constexpr const char* export_formats[] = {".glb", ".gltf", ".obj", ".json", ".png"};
+inline constexpr int export_format_count = 5;
+
 // Picks the format from the extension of `path`: .glb .gltf .obj .json. Writes atomically.
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info,
                           const std::string& path, const export_options& o = {});

@@ -3,25 +3,40 @@
 #include "render/lod.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 
 #include <glm/geometric.hpp>
 
+#include "render/textures.h"
+#include "generators/vec_util.h"
+
 namespace sylva {
 namespace {
 
 constexpr float pi = 3.14159265f;
+// Fraction of an archetype's colour texture that is opaque (alpha >= 128, the renderer's cut-out),
+// measured once per archetype on the renderer's 512 px texture (thread-safe: a race only measures twice).
+float alpha_coverage(int archetype) {
+  static std::array<std::atomic<float>, leaf_archetype_count> cache{};
+  const int a = std::clamp(archetype, 0, leaf_archetype_count - 1);
+  if (const float c = cache[size_t(a)].load(std::memory_order_relaxed); c > 0) return c;
+  const image& im = leaf_archetype_textures(leaf_archetype(a), 512).color;
+  const size_t all = size_t(im.width) * size_t(im.height);
+  size_t n = 0;
+  if (im.channels == 4)
+    for (size_t i = 0; i < all; ++i) n += im.pixels[i * 4 + 3] >= 128;
+  const float c = im.channels == 4 && all > 0 ? std::max(float(n) / float(all), 0.01f) : 1.0f;
+  cache[size_t(a)].store(c, std::memory_order_relaxed);
+  return c;
+}
 // Below this many triangles LOD0 is already cheap: the levels keep it (issue 17, bad input).
 constexpr size_t min_reducible_triangles = 200;
 
 bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-glm::vec3 any_perpendicular(const glm::vec3& t) {
-  const glm::vec3 a = std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  return glm::normalize(glm::cross(glm::cross(t, a), t));
-}
 
 // Parallel transport of frame normal n from tangent t0 to t1 (Bishop 1975), as the mesher does.
 glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1) {
@@ -365,8 +380,8 @@ std::vector<std::pair<size_t, size_t>> group_leaves(const leaf_input& in, size_t
 }
 
 // One card per group: centred on the group's leaves, oriented as the member nearest that centre,
-// covering the leaves' area (side sqrt(sum of sides^2), an area-preserving merge) but no wider than
-// the group's spread, so the crown's outline stays where it was.
+// covering the leaves' opaque area (sum of sides^2 times each texture's alpha coverage, over the
+// card texture's) but no wider than 3x the group's spread, so the crown's outline stays.
 void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t>>& groups, uint8_t card_texture,
                 float area_gain, tree_mesh& m) {
   m.leaves.clear();
@@ -374,12 +389,12 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
   for (const auto& [a, b] : groups) {
     if (b - a == 1) { m.leaves.push_back(in.leaves[a]); continue; }
     glm::vec3 c(0);
-    float area = 0, occl = 0;
+    float opaque = 0, occl = 0;
     uint16_t born = 0xffff, died = 0;
     for (size_t k = a; k < b; ++k) {
       const leaf_instance& l = in.leaves[k];
       c += leaf_centre(l);
-      area += l.size * l.size;
+      opaque += l.size * l.size * alpha_coverage(l.texture);
       occl += float(l.occlusion);
       born = std::min(born, l.born);
       died = std::max(died, l.died);
@@ -393,7 +408,11 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
       spread = std::max(spread, d + 0.5f * in.leaves[k].size);
       if (d < best) { best = d; nearest = k; }
     }
-    const float side = std::min(std::sqrt(area * area_gain), 2.0f * spread);
+    // The card's opaque area matches its leaves' opaque area (each texture's alpha coverage), so a
+    // sparse cluster texture standing for solid leaves grows to cover as many pixels. The cap, 3x
+    // the group's spread, lets a tight whorl's card reach the disc its leaves sweep; 2x held oak
+    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/lod_render_test.cpp, docs/LOD.md).
+    const float side = std::min(std::sqrt(opaque / alpha_coverage(card_texture) * area_gain), 3.0f * spread);
     leaf_instance card = in.leaves[nearest];
     card.size = side;
     card.position = c - rotate(card.orientation, glm::vec3(0, 0.5f * side, 0));
@@ -473,11 +492,12 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     const float b = c.budget[size_t(k)] / 100.0f;
     const size_t target = size_t(double(t0) * b);
     c.target[size_t(k)] = target;
-    // The bark gets half its share of LOD0 (most of it hides inside the crown) and the leaves what it
-    // leaves: measured on the oak, LOD1's silhouette IoU goes from 0.83 to 0.99 (docs/LOD.md).
+    // The bark gets 0.3 of its share of LOD0 (most of it hides inside the crown) and the leaves what
+    // it leaves: measured on the oak, LOD1's silhouette IoU goes from 0.83 (full share) to 0.97; pine
+    // LOD1 from 0.96 (half share) to 0.97 (docs/LOD.md).
     // When every leaf fits anyway, the bark takes the rest.
     const size_t all_leaves = 2 * leaves.leaves.size();
-    const size_t bark_target = std::max(size_t(0.5 * double(bark0) * b), target > all_leaves ? target - all_leaves : 0);
+    const size_t bark_target = std::max(size_t(0.3 * double(bark0) * b), target > all_leaves ? target - all_leaves : 0);
     // Largest mesh within budget: bisect the tolerance (log scale) between 1e-6 and 1x the tree.
     float lo = std::log(1e-6f * size), hi = std::log(size);
     size_t tris = 0;

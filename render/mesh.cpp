@@ -4,20 +4,17 @@
 #include "generators/wood.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <functional>
+
+#include "generators/vec_util.h"
 
 namespace sylva {
 namespace {
 
 constexpr glm::vec3 up_axis{0, 1, 0};
-
-// Any unit vector perpendicular to the unit vector t (the start of a branch's frame).
-glm::vec3 any_perpendicular(const glm::vec3& t) {
-  const glm::vec3 a = std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  return glm::normalize(glm::cross(glm::cross(t, a), t));
-}
 
 // Parallel transport (Bishop 1975; Wang et al. 2008): carry normal n from unit tangent t0 to t1 by
 // the smallest rotation between them, so rings along an axis do not twist.
@@ -180,6 +177,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   std::vector<glm::vec3> dir(n);
   for (size_t i = 0; i < n; ++i) {
     const int32_t par = t.parent[i];
+    assert(par < int32_t(i) && "mesh_tree: parent[i] < i (structurally_sound lets no other skeleton in)");
     if (par < 0) { dir[i] = up_axis; continue; }
     const glm::vec3 d = q[i] - q[par];
     const float len = glm::length(d);

@@ -1,6 +1,7 @@
 // Lighting and post-process settings; plain data saved in presets under "render" (DESIGN §8).
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -138,6 +139,14 @@ void visit_params(P& p, V&& v) {
   v(p.ray_exposure, param_info{"ray_exposure", "Radial exposure", "", 0, 0.5f, "Radial: overall strength of the rays"});
   visit_params(p.lod, v);
   visit_params(p.wind, v);
+}
+
+// The sun low and straight behind the tree as seen from a camera at `camera_yaw` degrees, so that
+// shadows come toward the viewer and shafts fan out under the crown: the editor's "Backlit rays"
+// and `sylva bench --render`'s default light.
+inline void place_sun_behind(render_params& p, float camera_yaw) {
+  p.sun_azimuth = std::remainder(camera_yaw + 180.0f, 360.0f);
+  p.sun_elevation = 12;
 }
 
 // Sliders that do not apply to the chosen sky or shaft mode are hidden (presets still save them).

@@ -10,7 +10,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 

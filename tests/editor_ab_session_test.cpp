@@ -12,7 +12,7 @@
 #include <stb/stb_image.h>
 #include <unistd.h>
 
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "app/editor_ab.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "app/editor_generators.h"
 #include "generators/tree_spec.h"
-#include "render/gl/overlays.h"
+#include "render/overlay_geometry.h"
 
 namespace sylva {
 namespace {
@@ -112,10 +112,12 @@ TEST(EditorLogic, ColonizationPointsFollowTheTimeline) {
   d.point_value = {-1, 2};   // alive at the end; killed in step 2
   d.lines = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}};
   d.line_color = {{1.0f, 0.75f, 0.2f}, {0.35f, 0.6f, 1.0f}};   // influence link, envelope outline
+  d.point_kind = {debug_kind::marker, debug_kind::marker};
+  d.line_kind = {debug_kind::influence_link, debug_kind::envelope_edge};
   tree_skeleton t;
   t.add_node({0, 0, 0}, -1, 0.1f, 0, 0);
   t.steps = 4;
-  const overlay_geometry g = build_overlays(d, &t, 1);
+  const overlay_geometry g = build_overlays(d, &t);
   ASSERT_EQ(g.points.size(), 3u);
   EXPECT_EQ(g.points[0].kind, float(overlay_markers));
   EXPECT_EQ(g.points[0].died, overlay_forever);
@@ -139,7 +141,9 @@ TEST(EditorLogic, GuidingVectorSourcesBelongToTheirStep) {
   d.point_value = {0, 1, 0, 2};
   d.lines = {{0, 0, 0}, {1, 0, 0}, {0, 0, 0}, {0, 1, 0}};
   d.line_color = {glm::vec3(0.45f), {1.0f, 0.55f, 0.1f}};
-  const overlay_geometry g = build_overlays(d, nullptr, 2);
+  d.point_kind = {debug_kind::source, debug_kind::endpoint, debug_kind::source, debug_kind::endpoint};
+  d.line_kind = {debug_kind::graph_edge, debug_kind::guide_arrow};
+  const overlay_geometry g = build_overlays(d, nullptr);
   ASSERT_EQ(g.points.size(), 4u);
   const float born[] = {1, 1, 2, 2};
   for (size_t i = 0; i < 4; ++i) {
@@ -155,6 +159,7 @@ TEST(EditorLogic, ShadowGridLayersFatesAndFlow) {
   growth_debug d;
   d.points = {{0, 0.5f, 0}, {0, 1.0f, 0}, {1, 1.0f, 0}, {0, 2.0f, 0}};
   d.point_value = {0.2f, 0.4f, 0.1f, 0.1f};
+  d.point_kind.assign(4, debug_kind::shadow_sample);
   tree_skeleton t;
   t.add_node({0, 0, 0}, -1, 0.1f, 0, 0);
   t.add_node({0, 1, 0}, 0, 0.1f, 1, 0);
@@ -163,7 +168,7 @@ TEST(EditorLogic, ShadowGridLayersFatesAndFlow) {
   t.steps = 5;
   d.node_fate = {0, 1, 2};
   d.node_flow = {0, 4, 1};   // the root carries no internode
-  const overlay_geometry g = build_overlays(d, &t, 0);
+  const overlay_geometry g = build_overlays(d, &t);
   EXPECT_FLOAT_EQ(g.shadow_layer, 0.5f);   // layers at y = 0.5, 1, 2: the closest pair is 0.5 apart
   EXPECT_FLOAT_EQ(g.shadow_min_y, 0.5f);
   EXPECT_FLOAT_EQ(g.shadow_max_y, 2.0f);
@@ -192,7 +197,8 @@ TEST(EditorLogic, OverlaysShowOneLayerOfTheGeneratorFirstAndKnowWhatIsPresent) {
   growth_debug d;
   d.points = {{0, 0, 0}, {0, 1, 0}};
   d.point_value = {-1, 0.5f};   // space colonization: one alive, one killed at step 0
-  const overlay_geometry g = build_overlays(d, nullptr, 1);
+  d.point_kind.assign(2, debug_kind::marker);
+  const overlay_geometry g = build_overlays(d, nullptr);
   EXPECT_EQ(g.present, (1u << overlay_markers) | (1u << overlay_killed));
   EXPECT_EQ(overlay_default_kind(1, g.present), int(overlay_markers));
   EXPECT_EQ(overlay_default_kind(0, 1u << overlay_fates), int(overlay_fates));   // the first present one

@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "app/editor_files.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "generators/estimate.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 using namespace sylva;
 

@@ -16,7 +16,7 @@
 #include "generators/lsystem.h"
 #include "render/export.h"
 #include "render/textures.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include "generators/lsystem_engine.h"
 #include "generators/self_organizing.h"
 #include "generators/tree_spec.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 using namespace sylva;
 

@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
+#include "app/headless.h"
 #include "render/gl/renderer.h"
 
 namespace sylva_test {
@@ -22,19 +23,9 @@ inline bool have_display() {
 struct gl_context {
   GLFWwindow* window = nullptr;
   gl_context() {
-    bool up = glfwInit();
-    if (!up) {   // a display shared with other clients now and then refuses one connection
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      up = glfwInit();
-    }
-    if (!up) return;
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    window = glfwCreateWindow(64, 64, "sylva test", nullptr, nullptr);
-    if (window) glfwMakeContextCurrent(window);
+    if (!sylva::init_glfw().empty()) return;
+    std::string why;
+    window = sylva::create_gl33_window({64, 64, "sylva test"}, why);
   }
   ~gl_context() {
     if (window) glfwDestroyWindow(window);
@@ -58,7 +49,7 @@ class renderer_test : public ::testing::Test {
     if (ready) sylva::destroy_renderer(r);   // before the context goes
   }
   std::unique_ptr<gl_context> ctx;
-  sylva::renderer_state r;
+  sylva::renderer_gpu r;
   bool ready = false;
 };
 

@@ -39,8 +39,11 @@ struct picture {
 
 picture load(const std::string& path) {
   picture im;
-  std::string err = load_png_rgba(path, im.width, im.height, im.rgba);
+  image img;
+  std::string err = load_png(path, img);
   EXPECT_EQ(err, "");
+  im.width = img.width, im.height = img.height;
+  im.rgba.assign(img.pixels.begin(), img.pixels.end());
   return im;
 }
 
@@ -167,22 +170,11 @@ TEST(HeadlessRender, GodRaysBrightenARingAroundTheSun) {
 
 TEST(HeadlessRender, BrokenShaderIsReportedAndFallsBack) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  bool up = glfwInit();
-  if (!up) {   // a display shared with other clients now and then refuses one connection
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    up = glfwInit();
-  }
-  const char* why = nullptr;
-  if (!up) glfwGetError(&why);
-  ASSERT_TRUE(up) << (why ? why : "");
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* win = glfwCreateWindow(64, 64, "test", nullptr, nullptr);
-  ASSERT_TRUE(win);
-  glfwMakeContextCurrent(win);
+  const std::string up = init_glfw();
+  ASSERT_TRUE(up.empty()) << up;
+  std::string why;
+  GLFWwindow* win = create_gl33_window({64, 64, "test"}, why);
+  ASSERT_TRUE(win) << why;
   const int errors = gl_error_count();
   gl_program bad = compile_program("broken test shader", "#version 330 core\nvoid main() { gl_Position = oops; }",
                                    "#version 330 core\nout vec4 c; void main() { c = vec4(1); }");
@@ -191,7 +183,7 @@ TEST(HeadlessRender, BrokenShaderIsReportedAndFallsBack) {
   EXPECT_NE(gl_last_message().find("broken test shader"), std::string::npos) << gl_last_message();
 
   // A renderer whose lit bark program failed still draws a frame (flat fallback), without GL errors.
-  renderer_state r;
+  renderer_gpu r;
   ASSERT_TRUE(init_renderer(r));
   delete_gl(r.bark);
   r.bark = bad;
@@ -272,9 +264,9 @@ TEST(HeadlessRender, ScrubbingShowsTheYoungerTree) {
 TEST(HeadlessRender, UserBarkTextureIsUsedAndABadPathIsHarmless) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const std::string red = temp_path("red_bark.png");
-  std::string pixels;
-  for (int i = 0; i < 8 * 8; ++i) pixels += std::string("\xff\x10\x10\xff", 4);
-  ASSERT_EQ(save_png_rgba(red, 8, 8, reinterpret_cast<const unsigned char*>(pixels.data())), "");
+  image pixels{8, 8, 4, {}};
+  for (int i = 0; i < 8 * 8; ++i) pixels.pixels.insert(pixels.pixels.end(), {0xff, 0x10, 0x10, 0xff});
+  ASSERT_EQ(save_png(pixels, red), "");
   preset p = honda_a();
   p.mesh.leaves_enabled = false;
   p.render.shadows = false;

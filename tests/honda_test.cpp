@@ -67,22 +67,3 @@ TEST(Honda, StepViewIsPrefixOfFullGrowth) {
   }
 }
 
-TEST(Honda, NodeCapStopsAndSays) {
-  lsystem_params p;
-  p.derivations = 24;
-  p.node_cap = 5000;
-  grow_report rep;
-  tree_skeleton t = grow_honda(p, {}, &rep);
-  EXPECT_TRUE(rep.hit_node_cap);
-  EXPECT_LE(t.size(), 5000u);
-  EXPECT_NE(rep.message.find("node cap"), std::string::npos);
-  EXPECT_EQ(validate_skeleton(t), "");
-}
-
-TEST(Honda, Deterministic) {
-  lsystem_params p;
-  p.phi1 = 137;
-  tree_skeleton a = grow_honda(p, {}), b = grow_honda(p, {});
-  EXPECT_EQ(a.position, b.position);
-  EXPECT_EQ(a.radius, b.radius);
-}

@@ -10,7 +10,7 @@
 
 #include "tests/run_sylva.h"
 
-#include "render/files.h"
+#include "render/preset.h"
 
 using namespace sylva;
 using nlohmann::json;

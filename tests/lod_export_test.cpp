@@ -11,7 +11,7 @@
 
 #include "generators/tree_spec.h"
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/lod.h"
 #include "render/textures.h"
 #include "run_sylva.h"

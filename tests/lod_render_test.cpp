@@ -3,12 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "generators/tree_spec.h"
 #include "gl_test_context.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/impostor.h"
 #include "render/lod.h"
 
@@ -20,14 +21,14 @@ namespace {
 constexpr int screen = 720;
 
 struct mask_render {
-  renderer_state& r;
+  renderer_gpu& r;
   render_params rp;
   orbit_camera cam;
   gl_texture color;
   gl_framebuffer fbo;
   std::vector<unsigned char> background;
 
-  mask_render(renderer_state& rs, const tree_mesh& m, float coverage) : r(rs) {
+  mask_render(renderer_gpu& rs, const tree_mesh& m, float coverage) : r(rs) {
     // Plain light: no shadows, shafts, fog or ground, fixed exposure, so only the tree differs.
     rp.shadows = false;
     rp.shafts = light_shafts::off;
@@ -73,6 +74,23 @@ struct mask_render {
   }
 };
 
+// With SYLVA_LOD_DUMP=DIR set, writes DIR/NAME.ppm: white both, red LOD0 only, green the level only.
+void dump(const std::vector<bool>& full, const std::vector<bool>& level, const std::string& name) {
+  const char* dir = std::getenv("SYLVA_LOD_DUMP");
+  if (!dir) return;
+  FILE* f = std::fopen((std::string(dir) + "/" + name + ".ppm").c_str(), "wb");
+  if (!f) return;
+  std::fprintf(f, "P6 %d %d 255\n", screen, screen);
+  for (int y = screen - 1; y >= 0; --y)
+    for (int x = 0; x < screen; ++x) {
+      const size_t i = size_t(y) * screen + size_t(x);
+      const unsigned char px[3] = {(unsigned char)(full[i] ? 255 : 0), (unsigned char)(level[i] ? 255 : 0),
+                                   (unsigned char)(full[i] && level[i] ? 255 : 0)};
+      std::fwrite(px, 1, 3, f);
+    }
+  std::fclose(f);
+}
+
 double iou(const std::vector<bool>& a, const std::vector<bool>& b) {
   size_t both = 0, any = 0;
   for (size_t i = 0; i < a.size(); ++i) both += a[i] && b[i], any += a[i] || b[i];
@@ -84,7 +102,7 @@ class LodRender : public sylva_test::renderer_test {};
 }  // namespace
 
 TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
-  for (const char* name : {"species_oak.json", "species_pine.json"}) {
+  for (const char* name : {"species_oak.json", "species_pine.json", "species_maple_cards.json"}) {
     SCOPED_TRACE(name);
     preset p;
     ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name, p).ok);
@@ -100,14 +118,20 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       for (bool b : full) covered += b;
       EXPECT_GT(covered, size_t(1000)) << "LOD0 hardly shows at coverage " << c.coverage[size_t(k) - 1];
       const double score = iou(full, level);
+      dump(full, level, std::string(name) + "_lod" + std::to_string(k));
       size_t lv = 0, both = 0;
       for (size_t i = 0; i < full.size(); ++i) lv += level[i], both += level[i] && full[i];
       std::printf("  LOD0 px %zu, LOD%d px %zu, both %zu\n", covered, k, lv, both);
       std::printf("%s LOD%d at coverage %.3f: IoU %.3f (%zu / %zu triangles)\n", name, k, double(c.coverage[size_t(k) - 1]),
                   score, c.triangles[size_t(k)], c.triangles[0]);
-      // Issue 17 asks for 0.9. Merged cards reach it only where the leaves are barely merged (oak
-      // LOD1: 0.99); LOD2 and LOD3 measure 0.69-0.80 (docs/LOD.md). This floor guards what exists.
-      EXPECT_GE(score, k == 1 && std::string(name) == "species_oak.json" ? 0.95 : 0.65) << "LOD" << k;
+      // Issue 17 asks for 0.9. Measured (docs/LOD.md): oak 0.97 / 0.81 / 0.83, pine 0.97 / 0.90 /
+      // 0.87, maple_cards 0.95 / 0.94 / 0.95; each floor is that less about 0.02, so that it guards
+      // what exists (0.9 or more where 0.9 is reached with room).
+      const std::string n(name);
+      const double floors[3] = {n == "species_oak.json" ? 0.95 : n == "species_pine.json" ? 0.95 : 0.92,
+                                n == "species_oak.json" ? 0.79 : n == "species_pine.json" ? 0.88 : 0.92,
+                                n == "species_oak.json" ? 0.81 : n == "species_pine.json" ? 0.85 : 0.92};
+      EXPECT_GE(score, floors[k - 1]) << "LOD" << k;
     }
   }
 }

@@ -7,7 +7,8 @@
 
 #include "generators/lsystem_engine.h"
 #include "generators/tree_spec.h"
-#include "render/files.h"
+#include "render/preset.h"
+#include "tests/generator_specs.h"
 
 using namespace sylva;
 
@@ -28,14 +29,7 @@ std::string derive_str(const std::string& src, int n, uint64_t seed = 1) {
   return format_lsystem_string(derive_text(src, n, seed));
 }
 
-lsystem_params text_params(const std::string& src, int n) {
-  lsystem_params p;
-  p.mode = lsystem_mode::text;
-  p.source = src;
-  p.derivations = n;
-  p.scale = 1;
-  return p;
-}
+using sylva_test::text_params;
 
 size_t count_symbol(const lsystem_string& s, char c) {
   return size_t(std::count_if(s.modules.begin(), s.modules.end(), [&](const lsystem_module& m) { return m.symbol == c; }));
@@ -195,15 +189,7 @@ TEST(LSystem, HostileInputIsAnErrorNotACrash) {
   EXPECT_EQ(validate_skeleton(t), "");
 }
 
-TEST(LSystem, NodeCapAndCancel) {
-  lsystem_params p = text_params("#axiom F\nF -> F[+F]F[-F]F\n", 6);  // 5^6 = 15625 F
-  p.node_cap = 1000;
-  grow_report rep;
-  tree_skeleton t = grow_lsystem(p, {}, &rep);
-  EXPECT_TRUE(rep.hit_node_cap);
-  EXPECT_EQ(t.size(), 1000u);
-  EXPECT_NE(rep.message.find("node cap"), std::string::npos);
-  EXPECT_EQ(validate_skeleton(t), "");
+TEST(LSystem, CancelReturnsTheAxiomsTree) {   // the node cap: generator_suite_test.cpp
   std::atomic<uint32_t> cancel{1};
   grow_options o;
   o.cancel = &cancel;  // already moved on: returns the axiom's tree
@@ -327,15 +313,6 @@ TEST(LSystem, ConstantsForTheEditor) {
   EXPECT_FALSE(set_lsystem_constant(src, "nope", 1));
   // Constants may be used above their #define.
   EXPECT_TRUE(lsystem_check("#axiom F(len)\n#define len 2\n").ok());
-}
-
-TEST(LSystem, StochasticGrowthIsDeterministic) {
-  const std::string src = "#angle 25\n#axiom F\nF -> (1) F[+F]F[-F]F\nF -> (1) F[+F]F\nF -> (1) F[-F]F\n";
-  grow_options o;
-  o.seed = 42;
-  tree_skeleton a = grow_lsystem(text_params(src, 4), o), b = grow_lsystem(text_params(src, 4), o);
-  EXPECT_EQ(a.position, b.position);
-  EXPECT_EQ(validate_skeleton(a), "");
 }
 
 TEST(LSystem, TextPresetsGrowValidTrees) {

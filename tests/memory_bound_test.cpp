@@ -13,7 +13,7 @@
 #include "generators/guiding_vectors.h"
 #include "generators/memory_bound.h"
 #include "generators/self_organizing.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "run_sylva.h"
 
 using namespace sylva;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "app/preset_library.h"
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 namespace {

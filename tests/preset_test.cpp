@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/files.h"
+#include "render/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/files.h"
+#include "render/preset.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;

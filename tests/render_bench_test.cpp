@@ -20,7 +20,7 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
-#include "render/files.h"
+#include "render/preset.h"
 #include "tests/run_sylva.h"
 #include "render/gl/renderer.h"
 #include "tests/gl_test_context.h"
@@ -76,7 +76,7 @@ TEST(RenderBench, UnchangedSecondFrameUploadsAndAllocatesNothing) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   gl_context ctx;
   ASSERT_TRUE(ctx.window);
-  renderer_state r;
+  renderer_gpu r;
   ASSERT_TRUE(init_renderer(r)) << r.error;
   preset p;
   p.spec.params = lsystem_params{};   // Honda's tree a: bark and leaves
@@ -120,7 +120,7 @@ TEST(RenderBench, LeafDrawCallsDoNotGrowWithTheLeafCount) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   gl_context ctx;
   ASSERT_TRUE(ctx.window);
-  renderer_state r;
+  renderer_gpu r;
   ASSERT_TRUE(init_renderer(r)) << r.error;
   orbit_camera cam;
   render_params rp;

@@ -3,16 +3,20 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <epoxy/gl.h>
 
 #include "render/export.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 #include "render/season.h"
 #include "tests/gl_test_context.h"
@@ -240,4 +244,27 @@ TEST_F(RenderSeason, AutumnRecoloursAndWinterRemovesDeciduousLeaves) {
   glDeleteFramebuffers(1, &fbo);
   glDeleteTextures(1, &tex);
   EXPECT_EQ(check_gl("season test"), 0);
+}
+
+// The real editor: a season change redraws the same tree (the worker is not asked to regrow).
+TEST(EditorSeason, ChangingTheSeasonKeepsTheSameTree) {
+  if (!sylva_test::have_display()) GTEST_SKIP() << "no DISPLAY";
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_season_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "home");
+  std::ofstream(dir / "script.txt") << "wait_tree\nremember\nset season=winter\nframes 3\nexpect_same_tree\n"
+                                       "set season=autumn\nframes 3\nexpect_same_tree\nexpect_modified 1\n";
+  const std::string log = (dir / "log.txt").string();
+  const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
+                          "' SYLVA_WINDOW=640x400 '" SYLVA_BINARY "' '" SYLVA_SOURCE_DIR "/presets/species_sapling.json' > '" +
+                          log + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ss.str();
+  EXPECT_EQ(ss.str().find("FAIL"), std::string::npos) << ss.str();
+  EXPECT_NE(ss.str().find("ok expect_same_tree"), std::string::npos) << ss.str();
+  fs::remove_all(dir);
 }

@@ -225,22 +225,6 @@ TEST(SpaceColonization, OppositePointsKeepPreviousDirection) {
   EXPECT_EQ(validate_skeleton(t), "");
 }
 
-TEST(SpaceColonization, DeterministicPerSeed) {
-  space_colonization_params p;
-  p.points = 1500;
-  grow_options o;
-  o.seed = 7;
-  tree_skeleton a = grow_space_colonization(p, o), b = grow_space_colonization(p, o);
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(a.position, b.position);
-  EXPECT_EQ(a.radius, b.radius);
-  ASSERT_EQ(a.leaves.size(), b.leaves.size());
-  for (size_t i = 0; i < a.leaves.size(); ++i) EXPECT_EQ(a.leaves[i].position, b.leaves[i].position);
-  o.seed = 8;
-  tree_skeleton c = grow_space_colonization(p, o);
-  EXPECT_TRUE(c.size() != a.size() || c.position != a.position);
-}
-
 TEST(SpaceColonization, TrunkLengthNeedNotBeMultipleOfD) {
   // 1.0 / 0.3 = 3.33 internodes: rounded up to 4, each exactly 0.3 long, straight up.
   auto p = small_params();
@@ -273,7 +257,7 @@ TEST(SpaceColonization, UnreachableCloudIsAnErrorNamingDi) {
   EXPECT_LT(t.position.back().y, 3.0f + 1.0f + 2 * p.segment_length);
 }
 
-TEST(SpaceColonization, MaxBranchesAndNodeCapStopCleanly) {
+TEST(SpaceColonization, MaxBranchesStopsCleanly) {   // the node cap: generator_suite_test.cpp
   space_colonization_params p;  // the default tree has over 2,000 nodes
   p.max_branches = 100;
   grow_report rep;
@@ -281,14 +265,6 @@ TEST(SpaceColonization, MaxBranchesAndNodeCapStopCleanly) {
   EXPECT_EQ(t.size(), 101u);
   EXPECT_EQ(rep.stop_reason, "max branches");
   EXPECT_FALSE(rep.hit_node_cap);
-  p.max_branches = 100000;
-  p.node_cap = 1000;
-  rep = {};
-  t = grow_space_colonization(p, {}, &rep);
-  EXPECT_EQ(t.size(), 1000u);
-  EXPECT_TRUE(rep.hit_node_cap);
-  EXPECT_NE(rep.message.find("node cap"), std::string::npos);
-  EXPECT_EQ(validate_skeleton(t), "");
 }
 
 TEST(SpaceColonization, DefaultTreeIsValidWithLeaves) {

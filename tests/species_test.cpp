@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <string>
 
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/season.h"
 
 using namespace sylva;

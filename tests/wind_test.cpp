@@ -16,7 +16,7 @@
 #include "gl_test_context.h"
 #include "render/export.h"
 #include "render/export_wind.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/wind.h"
 
 using namespace sylva;

@@ -9,7 +9,7 @@
 
 #include "generators/tree_spec.h"
 #include "generators/wood.h"
-#include "render/files.h"
+#include "render/preset.h"
 #include "render/mesh.h"
 
 using namespace sylva;

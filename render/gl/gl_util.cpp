@@ -1,24 +1,13 @@
-// GL handles, shader compilation, error counting and PNG I/O.
+// GL handles, shader compilation, error counting and read-back.
 #include "render/gl/gl_util.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
-
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#include <stb_image.h>
-#include <stb_image_write.h>
-#pragma GCC diagnostic pop
 
 namespace sylva {
 
@@ -152,20 +141,17 @@ std::string create_color_target(int width, int height, gl_texture& color, gl_fra
   return complete ? "" : "cannot create the image target";
 }
 
-std::string save_png_rgba(const std::string& path, int width, int height, const unsigned char* rgba) {
-  if (width <= 0 || height <= 0 || !rgba) return "empty image";
-  if (!stbi_write_png(path.c_str(), width, height, 4, rgba, width * 4))
-    return "cannot write PNG '" + path + "'";
-  return "";
-}
-
-std::string load_png_rgba(const std::string& path, int& width, int& height, std::string& rgba_out) {
-  int n = 0;
-  unsigned char* data = stbi_load(path.c_str(), &width, &height, &n, 4);
-  if (!data) return "cannot read image '" + path + "': " + (stbi_failure_reason() ? stbi_failure_reason() : "?");
-  rgba_out.assign(reinterpret_cast<const char*>(data), size_t(width) * size_t(height) * 4);
-  stbi_image_free(data);
-  return "";
+image read_back_rgba(int x, int y, int width, int height) {
+  image img;
+  img.width = std::max(width, 0), img.height = std::max(height, 0), img.channels = 4;
+  std::vector<uint8_t> rows(size_t(img.width) * size_t(img.height) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (!rows.empty()) glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  img.pixels.resize(rows.size());
+  const size_t row = size_t(img.width) * 4;
+  for (int r = 0; r < img.height; ++r)
+    std::copy_n(&rows[size_t(img.height - 1 - r) * row], row, &img.pixels[size_t(r) * row]);
+  return img;
 }
 
 }  // namespace sylva

@@ -9,6 +9,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "render/textures.h"
+
 namespace sylva {
 
 // Distinct types so that a buffer can never be bound as a texture (DESIGN §9).
@@ -52,9 +54,8 @@ void set_uniform(const gl_program& p, const char* name, const glm::mat4& v);
 // to read). Returns "" or the error; the framebuffer is left unbound.
 std::string create_color_target(int width, int height, gl_texture& color, gl_framebuffer& fbo);
 
-// PNG files through stb (compiled privately here so no other target's stb clashes with ours).
-// Rows are top to bottom, RGBA8. Returns "" or the error.
-std::string save_png_rgba(const std::string& path, int width, int height, const unsigned char* rgba);
-std::string load_png_rgba(const std::string& path, int& width, int& height, std::string& rgba_out);
+// Reads a rectangle of the bound read framebuffer as RGBA8 with rows top to bottom, as images and
+// PNG files (render/textures.h, the one PNG path) have them; GL's rows run bottom to top.
+image read_back_rgba(int x, int y, int width, int height);
 
 }  // namespace sylva

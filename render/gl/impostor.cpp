@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "generators/timing.h"
 #include "render/textures.h"
 
 namespace sylva {
@@ -65,7 +66,7 @@ void main() {
 
 }  // namespace
 
-impostor_atlas render_impostor(renderer_state& r, const render_params& rp, int views, int cell) {
+impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int views, int cell) {
   impostor_atlas a;
   const auto start = std::chrono::steady_clock::now();
   a.views = views > 12 ? 16 : 8;
@@ -165,19 +166,14 @@ impostor_atlas render_impostor(renderer_state& r, const render_params& rp, int v
   glActiveTexture(GL_TEXTURE0);
   // Read back, flipping GL's bottom-up rows.
   auto read = [&](GLenum attachment, std::vector<unsigned char>& out) {
-    std::vector<unsigned char> raw(size_t(a.width) * a.height * 4);
     glReadBuffer(attachment);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, a.width, a.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-    out.resize(raw.size());
-    const size_t row = size_t(a.width) * 4;
-    for (int y = 0; y < a.height; ++y) std::copy_n(&raw[size_t(a.height - 1 - y) * row], row, &out[size_t(y) * row]);
+    out = read_back_rgba(0, 0, a.width, a.height).pixels;
   };
   read(GL_COLOR_ATTACHMENT0, a.color);
   read(GL_COLOR_ATTACHMENT1, a.normal);
   if (check_gl("impostor atlas")) a.error = "GL error while rendering the impostor atlas: " + gl_last_message();
   cleanup();
-  a.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  a.ms = ms_since(start);
   return a;
 }
 

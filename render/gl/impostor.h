@@ -27,7 +27,7 @@ struct impostor_atlas {
 // tree from azimuth 360 k / views degrees (from +Z toward +X), orthographic, level, cell k at
 // column k % columns, row k / columns from the top (4 columns). `views` is 8 or 16 (others round
 // to the nearer one); `cell` is clamped to 16..2048. Needs a current GL context.
-impostor_atlas render_impostor(renderer_state& r, const render_params& rp, int views, int cell);
+impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int views, int cell);
 
 // Writes the two atlases as PNG bytes ("" or the error).
 std::string impostor_pngs(const impostor_atlas& a, std::string& color_png, std::string& normal_png);

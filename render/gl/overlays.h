@@ -1,92 +1,36 @@
-// Growth-debug overlays: growth_debug split into kinds, each with a View toggle, filtered by the timeline step on the GPU.
+// Growth-debug overlays on the GPU: the geometry built on the worker (render/overlay_geometry.h),
+// uploaded when first shown, each kind with a View toggle, filtered by the timeline step on the GPU.
 #pragma once
 
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include <glm/mat4x4.hpp>
-#include <glm/vec3.hpp>
 
-#include "generators/skeleton.h"
 #include "render/gl/gl_util.h"
+#include "render/overlay_geometry.h"
 
 namespace sylva {
 
-// One toggle each in the editor's View menu. The index is the bit in overlay_view::kinds.
-enum overlay_kind : int {
-  overlay_shadow_grid,    // self-organizing: shadow values s of the sparse grid (Palubicki 2009 §4)
-  overlay_markers,        // attraction points / markers alive at the step
-  overlay_killed,         // attraction points killed in exactly this step (Runions 2007 §3)
-  overlay_influence,      // point → node influence links of the last iteration
-  overlay_envelope,       // the crown envelope's outline
-  overlay_graph,          // guiding vectors: Yao-8 graph edges near the tree (Xu & Mould 2015)
-  overlay_guides,         // guiding vectors g_u as short arrows
-  overlay_endpoints,      // guiding vectors: the step's sources and endpoints
-  overlay_fates,          // bud fate per node: grew / dormant / shed
-  overlay_flow,           // resource flow per internode, as point size and colour
-  overlay_kind_count
-};
-inline constexpr const char* overlay_kind_labels[] = {
-    "Shadow grid",   "Attraction points", "Killed this step", "Influence links", "Envelope outline",
-    "Graph edges",   "Guiding vectors",   "Sources / endpoints", "Bud fates",     "Resource flow", nullptr};
-
-// What the user chose to see; render state only (never part of a preset). One layer at a time
-// by default (overlay_default_kind for the generator); `combine` lets several show together.
-struct overlay_view {
-  uint32_t kinds = 1u << overlay_shadow_grid;
-  bool combine = false;
-  bool shadow_slice = true;    // one horizontal layer of the shadow grid, not the whole cloud
-  float slice_height = -1;     // metres; < 0: the middle of the grid once it is known
-};
-
-// High-contrast colours that read against both the sky and the ground (issue 14).
-glm::vec3 overlay_ramp(float x);   // low to high: deep violet, magenta, orange, yellow (plasma-like)
-inline const glm::vec3 overlay_marker_colour(1.0f, 0.25f, 0.95f), overlay_killed_colour(1.0f, 0.1f, 0.05f),
-    overlay_source_colour(0.0f, 0.85f, 1.0f), overlay_endpoint_colour(1.0f, 0.55f, 0.0f);
-inline const glm::vec3 overlay_fate_colour[3] = {{0.0f, 0.9f, 1.0f}, {0.25f, 0.1f, 0.6f}, {1.0f, 0.1f, 0.05f}};  // grew, dormant, shed
-
-// The layer shown first for a generator's tree: the one its paper is about.
-int overlay_default_kind(int generator, uint32_t present);
-
-// Visible while born <= step < died (died = overlay_forever for "to the end").
-inline constexpr float overlay_forever = 1e9f;
-struct overlay_vertex {
-  glm::vec3 position{0};
-  glm::vec3 color{1};
-  float kind = 0, born = 0, died = overlay_forever, size = 4;   // size: point diameter in pixels
-};
-
-struct overlay_geometry {
-  std::vector<overlay_vertex> lines;    // pairs
-  std::vector<overlay_vertex> points;
-  float shadow_layer = 0;               // vertical spacing of the shadow grid's layers (0: none)
-  float shadow_min_y = 0, shadow_max_y = 0;
-  float max_shade = 0, max_flow = 0;    // the ramps' top values, for the legend
-  uint32_t present = 0;                 // bit k: some vertex of kind k exists
-};
-
-// Splits a generator's debug output into kinds. `generator` is the tree_spec index (0 self-organizing,
-// 1 space colonization, 2 guiding vectors, 3 L-system; -1 unknown: colours as given, every step).
-// `t` (may be null) supplies node positions for fates and flow and the last step for the
-// last-iteration layers. CPU only, so tests can check it without a display.
-overlay_geometry build_overlays(const growth_debug& d, const tree_skeleton* t, int generator);
-
 // GL side: one program, one buffer, two draws. Main thread only.
-struct overlay_gpu {
+struct overlay_gpu : overlay_ranges {   // the ranges of the geometry set last
   gl_program program;
   gl_vertex_array vao;
   gl_buffer vertices;
   int line_vertices = 0, point_vertices = 0;
-  float shadow_layer = 0, shadow_min_y = 0, shadow_max_y = 0;
-  float max_shade = 0, max_flow = 0;
-  uint32_t present = 0;
-  overlay_view view;
+  std::shared_ptr<const overlay_geometry> geometry;   // the shown tree's; uploaded when `stale` and drawn
+  bool stale = false;
 };
 
 bool init_overlays(overlay_gpu& g);
 void destroy_overlays(overlay_gpu& g);
-void upload_overlays(overlay_gpu& g, const overlay_geometry& geo);
-// Draws into the bound framebuffer with the current depth buffer; returns the draw calls issued.
-int draw_overlays(const overlay_gpu& g, const glm::mat4& viewproj, int step);
+// Takes a tree's overlays without touching GL (null: none); the upload waits for sync_overlays,
+// so that hidden overlays cost nothing per tree.
+void set_overlays(overlay_gpu& g, std::shared_ptr<const overlay_geometry> geo);
+// Uploads the geometry set last if it is not on the GPU yet; returns whether it uploaded.
+bool sync_overlays(overlay_gpu& g);
+// Draws the kinds `v` shows into the bound framebuffer with the current depth buffer; returns the
+// draw calls issued.
+int draw_overlays(const overlay_gpu& g, const overlay_view& v, const glm::mat4& viewproj, int step);
 
 }  // namespace sylva

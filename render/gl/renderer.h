@@ -49,7 +49,7 @@ struct frame_counts {
   int uploads = 0;           // GL data uploads or storage (re)allocations made inside the frame
 };
 
-struct renderer_state {
+struct renderer_gpu {
   bool ok = false;
   std::string error;
   gl_program bark, bark_depth, leaf, leaf_depth, sky, ground, occlusion, radial, march, exposure, composite, fallback;
@@ -77,7 +77,7 @@ struct renderer_state {
   sky_model daylight;
   render_params sky_inputs;
   bool sky_valid = false;
-  overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); .view is the user's choice
+  overlay_gpu overlay;                // growth-debug overlays (render/gl/overlays.h); what shows is the caller's overlay_view
   // Measurements.
   bool measure_passes = false;        // glFinish after each pass to time it (benchmarks only)
   pass_timings timings;
@@ -94,21 +94,22 @@ struct renderer_state {
 };
 
 // Compiles every program and creates the procedural textures. Needs a current GL 3.3 core context.
-bool init_renderer(renderer_state& r);
-void destroy_renderer(renderer_state& r);
+bool init_renderer(renderer_gpu& r);
+void destroy_renderer(renderer_gpu& r);
 
 // Uploads a meshed tree; the scrub position is then set with set_tree_step.
-void upload_tree(renderer_state& r, const tree_mesh& m);
+void upload_tree(renderer_gpu& r, const tree_mesh& m);
 // Shows the tree as it stood at `step`: draw counts plus one small per-node upload (radius and, for
 // a bent tree, the bend of that step replayed by positions_at_step).
-void set_tree_step(renderer_state& r, const tree_skeleton& t, float min_radius, int step);
-// Growth-debug overlays, split into kinds for the View toggles: `generator` is the tree_spec index,
-// `t` the grown tree (empty debug clears them).
-void upload_overlays(renderer_state& r, const growth_debug& d, const tree_skeleton* t, int generator);
+void set_tree_step(renderer_gpu& r, const tree_skeleton& t, float min_radius, int step);
+// The tree's growth-debug overlays, built with it on the worker (null clears them). No GL work
+// here: they are uploaded by the first draw_frame that shows them.
+void set_overlays(renderer_gpu& r, std::shared_ptr<const overlay_geometry> g);
 
-// Draws one frame into `target` (id 0: the window). `overlays` draws the growth-debug layer.
+// Draws one frame into `target` (id 0: the window). `overlays`, when given, draws the growth-debug
+// layers it chooses (UI state, kept by the editor).
 // `origin` places the image inside the target (the editor's viewport beside its panels).
-void draw_frame(renderer_state& r, const render_params& p, const orbit_camera& cam, int width, int height,
-                gl_framebuffer target = {}, bool overlays = false, glm::ivec2 origin = {0, 0});
+void draw_frame(renderer_gpu& r, const render_params& p, const orbit_camera& cam, int width, int height,
+                gl_framebuffer target = {}, const overlay_view* overlays = nullptr, glm::ivec2 origin = {0, 0});
 
 }  // namespace sylva

@@ -11,7 +11,7 @@ namespace sylva {
 
 constexpr int wind_texture_unit = 8;   // units 0-7 hold the tree's textures and the shadow map
 
-void upload_wind(renderer_state& r, const tree_skeleton& t) {
+void upload_wind(renderer_gpu& r, const tree_skeleton& t) {
   const wind_rig rig = build_wind_rig(t);
   if (!r.wind_nodes.id) glGenBuffers(1, &r.wind_nodes.id);
   if (!r.wind_tex.id) glGenTextures(1, &r.wind_tex.id);
@@ -35,7 +35,7 @@ std::string with_wind_glsl(const char* vertex_src) {
   return eol == std::string::npos ? s : s.substr(0, eol + 1) + wind_glsl() + s.substr(eol + 1);
 }
 
-float wind_reach(const renderer_state& r, const render_params& rp) {
+float wind_reach(const renderer_gpu& r, const render_params& rp) {
   const wind_motion m = make_wind_motion(rp.wind);
   if (m.strength <= 0 || r.wind_node_count == 0) return 0.0f;
   // Trunk: tip offset theta H / 2 at the strongest gust; branches: a share of the height that
@@ -44,7 +44,7 @@ float wind_reach(const renderer_state& r, const render_params& rp) {
   return r.wind_height * std::min(0.5f, 0.05f * m.strength * gust * 0.5f + 0.08f * m.strength * gust);
 }
 
-void set_wind_uniforms(const renderer_state& r, const gl_program& p, const render_params& rp) {
+void set_wind_uniforms(const renderer_gpu& r, const gl_program& p, const render_params& rp) {
   const wind_motion m = make_wind_motion(rp.wind);
   const bool on = m.strength > 0 && r.wind_node_count >= r.node_count && r.wind_node_count > 0 && r.wind_tex.id;
   set_uniform(p, "u_wind_on", on ? 1 : 0);

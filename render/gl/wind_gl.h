@@ -9,20 +9,20 @@
 
 namespace sylva {
 
-struct renderer_state;
+struct renderer_gpu;
 
 // Builds the tree's wind_rig and uploads it (3 RGBA32F texels per node). Call after upload_tree
 // with the skeleton the mesh was built from; until then (or for an empty tree) nothing sways.
-void upload_wind(renderer_state& r, const tree_skeleton& t);
+void upload_wind(renderer_gpu& r, const tree_skeleton& t);
 
 // The vertex shader source with render/wind.h's GLSL inserted after its #version line.
 std::string with_wind_glsl(const char* vertex_src);
 
 // How far (metres) the sway can carry any point past the tree's rest bounds, for the sun's shadow
 // frustum; 0 while the wind is off. Bounded by the motion's caps (render/wind.h).
-float wind_reach(const renderer_state& r, const render_params& rp);
+float wind_reach(const renderer_gpu& r, const render_params& rp);
 
 // Sets the wind uniforms of program `p` for this frame (time r.wind_time); binds the table to unit 8.
-void set_wind_uniforms(const renderer_state& r, const gl_program& p, const render_params& rp);
+void set_wind_uniforms(const renderer_gpu& r, const gl_program& p, const render_params& rp);
 
 }  // namespace sylva

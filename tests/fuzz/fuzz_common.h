@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "render/files.h"
+#include "render/preset.h"
 
 namespace sylva {
 

@@ -1,4 +1,5 @@
-// Presets (DESIGN §6) and safe file writing. Core I/O returns errors as values, never throws.
+// The preset format (DESIGN §6): the preset struct, its JSON and `--set`, and safe file writing.
+// Core I/O returns errors as values, never throws.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // Preset JSON (DESIGN §6) driven by visit_params, `--set` assignments, and atomic file writes.
-#include "render/files.h"
+#include "render/preset.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -70,7 +70,7 @@ const char* json_type_name(const json& j) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Limits on what a value may hold (files.h), shared by the preset loader and --set.
+// Limits on what a value may hold (preset.h), shared by the preset loader and --set.
 
 std::string mb_text(size_t bytes) {
   return bytes >= (1u << 20) ? std::to_string(bytes >> 20) + " MB" : std::to_string(bytes >> 10) + " KB";

@@ -1,0 +1,18 @@
+// Small vector helpers shared by the generators and the mesher.
+#pragma once
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace sylva {
+
+// A unit vector perpendicular to the unit vector t: t's own plane with the x axis (the z axis when
+// t is near x), so the same t always gives the same vector (a branch frame's start, a fallback side).
+inline glm::vec3 any_perpendicular(const glm::vec3& t) {
+  const glm::vec3 a = std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+  return glm::normalize(glm::cross(glm::cross(t, a), t));
+}
+
+}  // namespace sylva
