@@ -24,6 +24,7 @@
 #include <imgui_impl_opengl3.h>
 #include <imgui_stdlib.h>
 
+#include "app/editor_ab.h"
 #include "app/editor_files.h"
 #include "app/editor_generators.h"
 #include "app/editor_lod.h"
@@ -62,7 +63,7 @@ struct editor_state {
   struct document { preset doc; std::string path; preset baseline; std::string baseline_path; };
   std::unique_ptr<document> before_open;
   // Growth.
-  worker_state worker;
+  std::unique_ptr<worker_state> worker = std::make_unique<worker_state>();   // the selected slot's (A/B)
   tree_spec posted_spec;
   mesh_params posted_mesh;
   bool posted_once = false;
@@ -136,6 +137,7 @@ struct editor_state {
   std::string recovered_path;
   std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
+  ab_state ab;                    // app/editor_ab.h: slot B and the A/B view
 };
 
 // The status bar's message; errors also go to a dismissable toast, and every message to the log.
@@ -162,6 +164,8 @@ void clear_error(editor_state& e) {
   e.message_is_error = false;
   e.toast.clear();
 }
+
+void handle_ab(editor_state& e, ab_action a);   // A/B comparison (defined below take_new_tree)
 
 // ---------------------------------------------------------------- parameter panel
 
@@ -619,11 +623,11 @@ void draw_menu(editor_state& e) {
     if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !e.undo.empty())) apply_undo(e, e.undo, e.redo);
     if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, !e.redo.empty())) apply_undo(e, e.redo, e.undo);
     ImGui::Separator();
-    int64_t budget = e.worker.node_budget.load();
+    int64_t budget = e.worker->node_budget.load();
     const int64_t lo = 1000, hi = 50000000;
     ImGui::SetNextItemWidth(160);
     if (ImGui::SliderScalar("Node budget", ImGuiDataType_S64, &budget, &lo, &hi, "%lld", ImGuiSliderFlags_Logarithmic))
-      e.worker.node_budget = std::clamp(budget, lo, hi);
+      e.worker->node_budget = std::clamp(budget, lo, hi);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("A request estimated to grow more nodes than this asks before growing");
     ImGui::EndMenu();
   }
@@ -652,6 +656,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar);
   ImGui::PushItemWidth(-205 * ui_scale);
+  if (const ab_action a = draw_ab_controls(e.ab); a != ab_action::none) handle_ab(e, a);
   tree_spec& spec = e.doc.spec;
   int g = int(spec.params.index());
   if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
@@ -918,7 +923,7 @@ bool long_growth(const editor_state& e) {
 }
 
 void cancel_request(editor_state& e) {
-  e.stale_before = cancel_growth(e.worker);
+  e.stale_before = cancel_growth(*e.worker);
   keep_shown_tree(e, "the previous tree stays");
 }
 
@@ -937,7 +942,7 @@ void draw_status(editor_state& e, float y, float w) {
       if (long_growth(e)) {
         ImGui::TextUnformatted("growing");
         ImGui::SameLine();
-        ImGui::ProgressBar(e.worker.progress.load(), ImVec2(160, 0));
+        ImGui::ProgressBar(e.worker->progress.load(), ImVec2(160, 0));
         ImGui::SameLine();
         if (ImGui::SmallButton("Cancel (Esc)")) cancel_request(e);
       } else {
@@ -951,8 +956,14 @@ void draw_status(editor_state& e, float y, float w) {
     case g::idle: ImGui::TextDisabled("no tree yet"); break;
   }
   ImGui::SameLine();
-  ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
-              e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+  if (ab_showing(e.ab)) {   // A/B: both slots' counts and timings in place of the one tree's
+    const ab_counts mine = ab_counts_of(e.shown.get()), other = ab_counts_of(e.ab.other.shown.get());
+    ImGui::Text("   %s   frame %.1f ms", (e.ab.selected == 0 ? ab_compare_text(mine, other) : ab_compare_text(other, mine)).c_str(),
+                e.frame_ms);
+  } else {
+    ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
+                e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+  }
   if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) {
     ImGui::SameLine();
     ImGui::Text("   %s", lod.c_str());
@@ -1098,7 +1109,7 @@ void draw_dialogs(editor_state& e) {
     if (b) {
       ImGui::Text("This will grow about %s nodes, ~%s, ~%.1f GB.", count_text(b->estimated_nodes).c_str(),
                   seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
-      ImGui::Text("The node budget is %s (Edit > Preferences).", count_text(double(e.worker.node_budget.load())).c_str());
+      ImGui::Text("The node budget is %s (Edit > Preferences).", count_text(double(e.worker->node_budget.load())).c_str());
       ImGui::TextDisabled("The tree on screen stays until you choose.");
     }
     if (scripted_button(e, "Grow anyway") && b) {
@@ -1239,7 +1250,7 @@ void post_if_changed(editor_state& e) {
   e.posted_spec = e.doc.spec;
   e.posted_mesh = e.doc.mesh;
   e.posted_once = true;
-  e.posted_generation = post_request(e.worker, e.posted_spec, e.posted_mesh, e.approve_next);
+  e.posted_generation = post_request(*e.worker, e.posted_spec, e.posted_mesh, e.approve_next);
   e.approve_next = false;
   e.posted_at = std::chrono::steady_clock::now();
   e.growth_state = editor_state::growth::growing;
@@ -1255,7 +1266,7 @@ void frame_view(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi, float
 
 // Shows a newer worker result: upload in the same frame it is seen (DESIGN §5).
 void take_new_tree(editor_state& e) {
-  std::shared_ptr<const grow_result> r = take_result(e.worker, e.seen_generation);
+  std::shared_ptr<const grow_result> r = take_result(*e.worker, e.seen_generation);
   if (!r) return;
   e.seen_generation = r->generation;
   if (int32_t(r->generation - e.stale_before) < 0) return;   // cancelled before it arrived
@@ -1299,6 +1310,111 @@ void take_new_tree(editor_state& e) {
   else if (newest && r->report.error) set_status(e, r->report.message, true);
 }
 
+// ---------------------------------------------------------------- A/B comparison (app/editor_ab.h)
+
+ab_doc take_doc(editor_state& e) {
+  ab_doc d;
+  d.doc = std::move(e.doc);
+  d.undo_base = std::move(e.undo_base);
+  d.undo = std::move(e.undo);
+  d.redo = std::move(e.redo);
+  d.path = std::move(e.path);
+  d.baseline = e.browser.baseline;
+  d.baseline_path = e.browser.baseline_path;
+  return d;
+}
+
+void put_doc(editor_state& e, ab_doc&& d) {
+  e.doc = std::move(d.doc);
+  e.undo_base = std::move(d.undo_base);
+  e.undo = std::move(d.undo);
+  e.redo = std::move(d.redo);
+  e.path = std::move(d.path);
+  e.browser.baseline = std::move(d.baseline);
+  e.browser.baseline_path = std::move(d.baseline_path);
+}
+
+// Swaps the selected slot's growth and drawing state with the stored slot's.
+void swap_views(editor_state& e, ab_view& v) {
+  // A slot waiting on the over-budget question asks again when it is selected again.
+  if (e.growth_state == editor_state::growth::asking) e.posted_once = false;
+  e.budget_answer.reset();
+  e.open_budget_prompt = false;
+  e.before_open.reset();
+  std::swap(e.worker, v.worker);
+  std::swap(e.renderer, v.renderer);
+  std::swap(e.lod, v.lod);
+  std::swap(e.shown, v.shown);
+  std::swap(e.posted_spec, v.posted_spec);
+  std::swap(e.posted_mesh, v.posted_mesh);
+  std::swap(e.posted_once, v.posted_once);
+  std::swap(e.seen_generation, v.seen_generation);
+  std::swap(e.posted_generation, v.posted_generation);
+  std::swap(e.stale_before, v.stale_before);
+  std::swap(e.error_after, v.error_after);
+  std::swap(e.frame_generation, v.frame_generation);
+  std::swap(e.growth_text, v.growth_text);
+  std::swap(e.posted_at, v.posted_at);
+  std::swap(e.overlay_generator, v.overlay_generator);
+  const int g = int(e.growth_state);
+  e.growth_state = editor_state::growth(v.growth);
+  v.growth = g;
+  e.counted_tree = nullptr;
+  e.prune.selected = -1;   // a pick or a marker drag belongs to the other slot's tree
+  e.prune.picked_in = nullptr;
+  e.keys.drag_from = e.keys.drag_to = e.keys.popup_step = -1;
+}
+
+void select_slot(editor_state& e, int slot) {
+  ab_doc cur = take_doc(e);
+  const bool changed = ab_select_doc(e.ab, slot, cur);
+  put_doc(e, std::move(cur));
+  if (!changed) return;
+  swap_views(e, e.ab.other);
+  set_status(e, std::string("Editing slot ") + (slot == 0 ? "A" : "B") + ": the panel, undo, Save and Export act on it");
+}
+
+void handle_ab(editor_state& e, ab_action a) {
+  switch (a) {
+    case ab_action::none: return;
+    case ab_action::duplicate: {
+      if (!e.shown || !e.shown->skeleton) return set_status(e, "Duplicate to B: wait for the tree to grow first", true);
+      if (e.ab.has_b && e.ab.selected != 0) return set_status(e, "Duplicate to B: select slot A first", true);
+      ab_doc cur = take_doc(e);
+      ab_duplicate_doc(e.ab, cur);
+      put_doc(e, std::move(cur));
+      if (std::string err = ab_start_view(e.ab.other, e.shown, e.step); !err.empty()) {
+        ab_doc back = take_doc(e);
+        ab_drop_doc(e.ab, back);
+        put_doc(e, std::move(back));
+        ab_stop_view(e.ab.other);
+        return set_status(e, "Duplicate to B failed: " + err, true);
+      }
+      e.ab.other.worker->node_budget = e.worker->node_budget.load();
+      e.ab.other.growth = int(editor_state::growth::done);
+      e.ab.other.growth_text = e.growth_text;
+      if (e.ab.mode == ab_mode::off) e.ab.mode = ab_mode::side_by_side;
+      select_slot(e, 1);
+      return set_status(e, "Duplicated to slot B, now edited; the generator combo, Save and Export act on B");
+    }
+    case ab_action::select_a: return select_slot(e, 0);
+    case ab_action::select_b: return select_slot(e, 1);
+    case ab_action::drop: {
+      select_slot(e, 0);
+      ab_doc cur = take_doc(e);
+      ab_drop_doc(e.ab, cur);
+      put_doc(e, std::move(cur));
+      ab_stop_view(e.ab.other);
+      return set_status(e, "Slot B dropped");
+    }
+  }
+}
+
+std::string slot_label(const preset& p) {
+  const size_t g = p.spec.params.index();
+  return p.name + " - " + (g < size_t(generator_count) ? generator_labels[g] : "?");
+}
+
 // ---------------------------------------------------------------- scripted driving (tests)
 
 // SYLVA_SCRIPT=FILE drives the real window from a script, one command per line, for the editor's
@@ -1314,6 +1430,8 @@ void take_new_tree(editor_state& e) {
 //   wait_progress              until the progress bar with Cancel shows
 //   remember / expect_same_tree / expect_new_tree
 //   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
+//   ab_duplicate / ab_select a|b / ab_mode off|side|split / ab_divider F / ab_wait (the other slot's tree)
+//   frame_median N             prints the median time of the next N frames
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
@@ -1323,6 +1441,7 @@ struct script_state {
   const tree_skeleton* remembered = nullptr;
   std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
   bool failed = false, finished = false;
+  std::vector<std::chrono::steady_clock::time_point> frame_times;   // frame_median: one per frame
 };
 
 int glfw_key(const std::string& name) {
@@ -1407,7 +1526,7 @@ bool run_script(editor_state& e, script_state& sc) {
       if (std::string err = set_preset_param(copy, arg); !err.empty()) return fail(err);
       if (!(copy == e.doc)) return fail("the parameter differs");
     } else if (cmd == "wait_progress") {
-      done = long_growth(e) && e.worker.busy;
+      done = long_growth(e) && e.worker->busy;
       if (!done && waited > 30) return fail("no progress bar");
     } else if (cmd == "remember") {
       sc.remembered_hold = e.shown;
@@ -1415,8 +1534,37 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "expect_same_tree" || cmd == "expect_new_tree") {
       const bool same = e.shown && e.shown->skeleton.get() == sc.remembered;
       if (same != (cmd == "expect_same_tree")) return fail(same ? "the tree did not change" : "the tree changed");
+    } else if (cmd == "ab_duplicate") {
+      handle_ab(e, ab_action::duplicate);
+      if (!e.ab.has_b) return fail("no slot B: " + e.message);
+      sc.frames_left = 2;
+    } else if (cmd == "ab_select") {
+      handle_ab(e, arg == "b" ? ab_action::select_b : ab_action::select_a);
+      sc.frames_left = 2;
+    } else if (cmd == "ab_mode") {
+      e.ab.mode = arg == "split" ? ab_mode::split : arg == "side" ? ab_mode::side_by_side : ab_mode::off;
+    } else if (cmd == "ab_divider") {
+      e.ab.divider = std::clamp(float(std::atof(arg.c_str())), 0.0f, 1.0f);
+    } else if (cmd == "ab_wait") {   // until slot B's tree (in whichever slot is not selected) matches its document
+      const preset& other = e.ab.other_doc.doc;
+      done = e.ab.has_b && e.ab.other.shown && e.ab.other.shown->spec == other.spec && !growing && e.shown;
+      if (!done && waited > 120) return fail("the other slot's tree did not arrive");
+    } else if (cmd == "frame_median") {   // prints the median of N frame times (the A/B figure)
+      sc.frame_times.push_back(clock::now());
+      const size_t n = size_t(std::max(1, std::atoi(arg.c_str())));
+      done = sc.frame_times.size() > n;
+      if (done) {
+        std::vector<double> ms;
+        for (size_t i = 1; i < sc.frame_times.size(); ++i)
+          ms.push_back(std::chrono::duration<double, std::milli>(sc.frame_times[i] - sc.frame_times[i - 1]).count());
+        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+        std::printf("sylva script: frame median %.2f ms over %zu frames (A/B %s)\n", ms[ms.size() / 2], ms.size(),
+                    ab_showing(e.ab) ? ab_mode_label(e.ab.mode) : "off");
+        std::fflush(stdout);
+        sc.frame_times.clear();
+      }
     } else if (cmd == "budget") {
-      e.worker.node_budget = std::atoll(arg.c_str());
+      e.worker->node_budget = std::atoll(arg.c_str());
     } else if (cmd == "shot") {
       e.script_shot = arg;
       sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame
@@ -1497,7 +1645,7 @@ int run_editor(const editor_options& o) {
   }
   const bool scripted = !script.lines.empty();
   const bool automated = !o.screenshot_path.empty();
-  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) e->worker.node_budget = std::max<int64_t>(1000, std::atoll(s));
+  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) e->worker->node_budget = std::max<int64_t>(1000, std::atoll(s));
   // Work left unsaved by a crash or a killed session: offered back (not in automatic screenshots).
   if (std::error_code ec; !automated && fs::exists(recovery_path(*e), ec)) {
     if (load_preset_file(recovery_path(*e), e->recovered).ok) {
@@ -1523,7 +1671,7 @@ int run_editor(const editor_options& o) {
   }
   // The window fits the monitor's work area on the first start and keeps its place afterwards.
   editor_settings settings = load_settings(e->home);
-  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker.node_budget = settings.node_budget;
+  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker->node_budget = settings.node_budget;
   if (!scripted) e->recent = settings.recent;
   const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;
   int width = o.width, height = o.height, pos_x = -1, pos_y = -1;
@@ -1580,7 +1728,7 @@ int run_editor(const editor_options& o) {
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   if (!init_renderer(e->renderer)) set_status(*e, e->renderer.error, true);
-  start_worker(e->worker);
+  start_worker(*e->worker);
   {
     std::vector<std::string> folders;
     for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
@@ -1637,14 +1785,24 @@ int run_editor(const editor_options& o) {
     draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
     handle_keys(*e);
     const view_rect view{left, top, float(win_w) - left, bottom - top};
-    handle_mouse(*e, view);
+    const bool ab_drag = draw_ab_overlay(e->ab, view.x, view.y, view.w, view.h, slot_label(e->ab.selected == 0 ? e->doc : e->ab.other_doc.doc),
+                                         slot_label(e->ab.selected == 0 ? e->ab.other_doc.doc : e->doc));
+    // Side by side: picking and the picked branch use the selected slot's half.
+    view_rect pick_view = view;
+    if (ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side) {
+      pick_view.w = float(std::max(1, int(view.w) / 2));
+      if (e->ab.selected == 1) pick_view.x += pick_view.w, pick_view.w = view.w - pick_view.w;
+    }
+    if (!ab_drag) handle_mouse(*e, pick_view);
     draw_prune_overlay(e->prune, e->shown && e->shown->skeleton ? e->shown->skeleton.get() : nullptr, e->step,
-                       e->camera, view);
+                       e->camera, pick_view);
     record_undo(*e);
     autosave(*e, dt);
 
     post_if_changed(*e);
     take_new_tree(*e);
+    ab_poll_other(e->ab, e->step);
+    if (e->ab.other.worker) e->ab.other.worker->node_budget = e->worker->node_budget.load();
     if (scripted && !script.failed && !script.finished) {
       if (script.frames_left > 0) --script.frames_left;
       else {
@@ -1674,7 +1832,7 @@ int run_editor(const editor_options& o) {
     e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
-    const std::string title = "Sylva - " + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
+    const std::string title = std::string("Sylva - ") + (e->ab.has_b ? (e->ab.selected == 0 ? "[A] " : "[B] ") : "") + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
     if (title != window_title) glfwSetWindowTitle(window, (window_title = title).c_str());
     ImGui::Render();
     // The 3D view fills the area between the panels (framebuffer pixels, origin bottom-left).
@@ -1682,6 +1840,7 @@ int run_editor(const editor_options& o) {
     const int vx = int(left * sx), vy = int((float(win_h) - bottom) * sy);
     const int vw = std::max(1, fb_w - vx), vh = std::max(1, int((bottom - top) * sy));
     e->view_aspect = float(vw) / float(vh);   // framing fits the tree to the 3D view's own shape
+    if (ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side) e->view_aspect = float(std::max(1, vw / 2)) / float(vh);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);
@@ -1691,7 +1850,15 @@ int run_editor(const editor_options& o) {
                         e->camera, e->step);
     // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
     if (e->doc.render.wind.enabled) e->renderer.wind_time = float(std::fmod(double(e->renderer.wind_time) + dt, 3600.0));
-    if (e->renderer.ok) draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
+    if (e->renderer.ok && ab_showing(e->ab)) {   // A/B: both slots, same camera, sun and step
+      ab_view& o = e->ab.other;
+      if (o.renderer.ok && o.shown && o.shown->skeleton)
+        editor_lod_update(o.lod, o.renderer, *o.shown->skeleton, o.shown->mesh, o.shown->mesh_settings, e->ab.other_doc.doc.render,
+                          e->camera, std::min(e->step, o.shown->skeleton->steps));
+      ab_draw(e->ab, e->renderer, e->doc.render, e->ab.other_doc.doc.render, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
+    } else if (e->renderer.ok) {
+      draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
+    }
     if (e->renderer.texture_message != e->texture_message) {
       e->texture_message = e->renderer.texture_message;
       if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);
@@ -1743,12 +1910,13 @@ int run_editor(const editor_options& o) {
     }
   }
   if (o.screenshot_path.empty() && !scripted) {
-    settings.node_budget = e->worker.node_budget.load();
+    settings.node_budget = e->worker->node_budget.load();
     settings.recent = e->recent;
     save_settings(e->home, settings);
   }
   shutdown_export_dialog(e->exporter);
-  stop_worker(e->worker);
+  stop_worker(*e->worker);
+  ab_free_gl(e->ab);
   shutdown_preset_browser(e->browser);
   destroy_renderer(e->renderer);
   ImGui_ImplOpenGL3_Shutdown();
