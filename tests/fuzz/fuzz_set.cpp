@@ -25,7 +25,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       continue;
     }
     fuzz_check(!values.empty() && values.size() <= 100000, "a sweep has 1..100000 values");
-    for (const std::string& v : values) fuzz_check(set_preset_param(p, v).empty(), "validated values apply");
+    for (const std::string& v : values) {
+      // A keyframe (key@step=value) is checked when it is set, after the --set before it, so the
+      // sweep passes it through unchecked; refused, it must leave the preset as it was.
+      const preset prior = p;
+      const std::string e = set_preset_param(p, v);
+      if (e.empty()) continue;
+      const size_t eq = v.find('=');
+      fuzz_check(v.substr(0, eq).find('@') != std::string::npos, "validated values apply");
+      fuzz_check(p == prior, "a refused keyframe changes nothing");
+    }
     (void)before;
   }
   const std::string saved = save_preset_json(p);
