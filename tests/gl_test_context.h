@@ -5,6 +5,8 @@
 #include <memory>
 #include <cstdlib>
 #include <thread>
+#include <type_traits>
+#include <vector>
 
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
@@ -51,6 +53,38 @@ class renderer_test : public ::testing::Test {
   std::unique_ptr<gl_context> ctx;
   sylva::renderer_gpu r;
   bool ready = false;
+};
+
+
+// An offscreen RGBA colour target the tests draw into and read back: T = unsigned char (RGBA8) or
+// float (RGBA32F, so that NaN survives to the readback).
+template <class T>
+struct color_target {
+  sylva::gl_texture color;
+  sylva::gl_framebuffer fbo;
+  int w = 0, h = 0;
+  static constexpr bool is_float = std::is_same_v<T, float>;
+  color_target(int width, int height) : w(width), h(height) {
+    glGenTextures(1, &color.id);
+    glBindTexture(GL_TEXTURE_2D, color.id);
+    glTexImage2D(GL_TEXTURE_2D, 0, is_float ? GL_RGBA32F : GL_RGBA8, w, h, 0, GL_RGBA,
+                 is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, nullptr);
+    glGenFramebuffers(1, &fbo.id);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+  ~color_target() {
+    sylva::delete_gl(fbo);
+    sylva::delete_gl(color);
+  }
+  std::vector<T> read() const {
+    std::vector<T> px(size_t(w) * h * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
+    glReadPixels(0, 0, w, h, GL_RGBA, is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, px.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return px;
+  }
 };
 
 }  // namespace sylva_test

@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 
+#include "tests/generator_cases.h"
 #include "generators/keyframes.h"
 #include "generators/tree_spec.h"
 #include "tests/tree_compare.h"
@@ -40,16 +41,8 @@ void for_each_keyable(const tree_spec& s, F&& f) {
       s.params);
 }
 
-struct case_t {
-  int generator;
-  bool markers;
-  const char* name;
-};
-const case_t cases[] = {{0, false, "self_organizing (shadow)"},
-                        {0, true, "self_organizing (markers)"},
-                        {1, false, "space_colonization"},
-                        {2, false, "guiding_vectors"},
-                        {3, false, "lsystem (Honda)"}};
+using sylva_test::case_t;
+using sylva_test::cases;
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tests/generator_cases.h"
 #include "generators/pruning.h"
 #include "generators/tree_spec.h"
 #include "tests/tree_compare.h"
@@ -15,16 +16,8 @@ using namespace sylva;
 
 namespace {
 
-struct case_t {
-  int generator;
-  bool markers;
-  const char* name;
-};
-const case_t cases[] = {{0, false, "self_organizing (shadow)"},
-                        {0, true, "self_organizing (markers)"},
-                        {1, false, "space_colonization"},
-                        {2, false, "guiding_vectors"},
-                        {3, false, "lsystem (Honda)"}};
+using sylva_test::case_t;
+using sylva_test::cases;
 
 // The lateral branch with the most nodes alive at `step`: a cut worth making.
 int32_t biggest_lateral(const tree_skeleton& t, int step) {

@@ -28,32 +28,7 @@ namespace {
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 
-// A float target, so that NaN survives to the readback.
-struct float_target {
-  gl_texture color;
-  gl_framebuffer fbo;
-  int w = 0, h = 0;
-  float_target(int width, int height) : w(width), h(height) {
-    glGenTextures(1, &color.id);
-    glBindTexture(GL_TEXTURE_2D, color.id);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
-    glGenFramebuffers(1, &fbo.id);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  }
-  ~float_target() {
-    delete_gl(fbo);
-    delete_gl(color);
-  }
-  std::vector<float> read() const {
-    std::vector<float> px(size_t(w) * h * 4);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px.data());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return px;
-  }
-};
+using float_target = sylva_test::color_target<float>;
 
 // A vertical wall in the plane z = 0 (x in [-20, 20], y in [0, 20]) with a square hole of side 1.5 m
 // centred at (0, 3): bark triangles of node 0, radius 0 (no inflation).

@@ -18,31 +18,7 @@ using WoodRender = sylva_test::renderer_test;
 
 namespace {
 
-struct byte_target {
-  gl_texture color;
-  gl_framebuffer fbo;
-  int w = 0, h = 0;
-  byte_target(int width, int height) : w(width), h(height) {
-    glGenTextures(1, &color.id);
-    glBindTexture(GL_TEXTURE_2D, color.id);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glGenFramebuffers(1, &fbo.id);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  }
-  ~byte_target() {
-    delete_gl(fbo);
-    delete_gl(color);
-  }
-  std::vector<unsigned char> read() const {
-    std::vector<unsigned char> px(size_t(w) * h * 4);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return px;
-  }
-};
+using byte_target = sylva_test::color_target<unsigned char>;
 
 // Pixels whose colour differs by more than a small threshold.
 int differing(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
