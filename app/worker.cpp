@@ -34,6 +34,7 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
       r->estimated_nodes = over_budget->nodes;
       r->estimated_seconds = over_budget->seconds;
       r->estimated_bytes = over_budget->bytes;
+      r->estimate_note = over_budget->note;
       r->report = last ? last->report : grow_report{};
     } else {
       r->report.error = true;

@@ -31,6 +31,7 @@ struct grow_result {
   // and the editor asks before growing it (post_request with approved = true).
   bool over_budget = false;
   double estimated_nodes = 0, estimated_seconds = 0, estimated_bytes = 0;
+  std::string estimate_note;   // how later keyframes and cuts were counted (growth_estimate::note)
 };
 
 struct worker_request {

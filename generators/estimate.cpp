@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "generators/keyframes.h"
+#include "generators/pruning.h"
 #include "generators/timing.h"
 
 namespace sylva {
@@ -43,8 +45,34 @@ double extrapolate_nodes(const std::vector<double>& born, int complete_steps, in
   return std::min(n, cap);
 }
 
-growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, const estimate_limits& limits) {
+namespace {
+
+// What a trial saw, to read its node count at any step.
+struct trial_curve {
+  int reached = 0;             // the last step the trial grew into (partial)
+  std::vector<double> born;    // nodes born per step in the trial
+  double cap = 0, whole = 0;   // the real node cap; the trial's node count
+  bool extrapolated = false;
+  // Nodes standing by the end of step `s`: counted where the trial has complete steps, extrapolated after.
+  double at(int s) const {
+    if (!extrapolated) {
+      double n = 0;
+      for (int i = 0; i <= s && i < int(born.size()); ++i) n += born[size_t(i)];
+      return n;
+    }
+    if (s <= reached - 1) {
+      double n = 0;
+      for (int i = 0; i <= s; ++i) n += born[size_t(i)];
+      return n;
+    }
+    return std::max(extrapolate_nodes(born, reached - 1, s, cap), s >= reached ? whole : 0.0);
+  }
+};
+
+// One trial of `spec` and its extrapolation.
+growth_estimate estimate_one(const tree_spec& spec, const grow_options& o, const estimate_limits& limits, trial_curve& curve) {
   growth_estimate e;
+  curve = trial_curve{};
   tree_spec trial = spec;
   int64_t real_node_cap = 0, real_module_cap = 0, trial_node_cap = 0, trial_module_cap = 0;
   std::visit(
@@ -81,6 +109,14 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
   e.uncertain = !e.exact && !e.cancelled && !node_capped && !module_capped;
   const double n = double(e.trial.size());
   double ms_per_node = e.trial_ms / std::max(n, 1.0);
+  curve.whole = n;
+  curve.cap = double(real_node_cap);
+  for (size_t i = 0; i < e.trial.size(); ++i) {
+    const int b = e.trial.born[i];
+    if (b >= int(curve.born.size())) curve.born.resize(size_t(b) + 1, 0);
+    curve.born[size_t(b)] += 1;
+  }
+  curve.reached = int(curve.born.size()) - 1;
   if (e.exact) {
     e.nodes = n;
   } else {
@@ -100,6 +136,7 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
       double trial_node_steps = 0, node_steps = 0;
       extrapolate_nodes(born, last, last, double(real_node_cap), &trial_node_steps);
       e.nodes = std::max(extrapolate_nodes(born, last - 1, total, double(real_node_cap), &node_steps), n);
+      curve.extrapolated = true;
       if (trial_node_steps > 0) ms_per_node = e.trial_ms * node_steps / trial_node_steps / std::max(e.nodes, 1.0);
     } else {
       e.nodes = n;
@@ -108,6 +145,82 @@ growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, co
   // Growth, then the mesh: about 5 µs per node with its leaves on one core.
   e.seconds = e.nodes * (ms_per_node + 0.005) / 1000.0;
   e.bytes = e.nodes * bytes_per_node;
+  return e;
+}
+
+}  // namespace
+
+growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, const estimate_limits& limits) {
+  trial_curve curve;
+  growth_estimate e = estimate_one(spec, o, limits, curve);
+  const int reached = curve.reached;
+  if (e.exact || e.cancelled || (spec.keyframes.empty() && spec.cuts.empty())) return e;
+  const int total = o.steps >= 0 ? o.steps : default_steps(spec.params);
+  // The growth phases the trial did not reach: the distinct keyframe steps after `reached`.
+  std::vector<int> phases;
+  for (const keyframe& k : spec.keyframes)
+    if (k.step > reached && k.step <= total && (phases.empty() || phases.back() != k.step)) phases.push_back(k.step);
+  std::sort(phases.begin(), phases.end());
+  phases.erase(std::unique(phases.begin(), phases.end()), phases.end());
+  if (int(phases.size()) > max_phase_trials) {   // evenly chosen, the last phase kept
+    std::vector<int> chosen;
+    for (int i = 0; i < max_phase_trials; ++i)
+      chosen.push_back(phases[size_t((i + 1) * phases.size() / max_phase_trials - 1)]);
+    phases = chosen;
+  }
+  double real_node_cap = 0;
+  std::visit([&](const auto& p) { real_node_cap = double(p.node_cap); }, spec.params);
+  bool certain = !e.uncertain;
+  for (int step : phases) {
+    tree_spec phase = spec;
+    std::visit([&](auto& p) { p = params_at_step(p, spec.keyframes, step); }, phase.params);
+    phase.keyframes.clear();
+    phase.cuts.clear();
+    grow_options po;
+    po.steps = total;
+    po.cancel = o.cancel;
+    po.cancel_value = o.cancel_value;
+    trial_curve phase_curve;
+    const growth_estimate pe = estimate_one(phase, po, limits, phase_curve);
+    if (pe.cancelled) {
+      e.cancelled = true;
+      return e;
+    }
+    ++e.phase_trials;
+    e.trial_ms += pe.trial_ms;
+    certain = certain || !pe.uncertain;
+    // The tree as grown up to step k − 1, then what the phase's params grow from step k to the end
+    // on a tree grown with them from the start (larger when they raise growth: conservative; when
+    // they lower it, the unkeyed estimate stays the larger).
+    const double before = curve.at(step - 1);
+    const double phase_nodes =
+        std::min(before + std::max(phase_curve.at(total) - phase_curve.at(step - 1), 0.0), std::max(curve.cap, before));
+    if (phase_nodes > e.nodes) {
+      e.seconds *= phase_nodes / std::max(e.nodes, 1.0);
+      e.nodes = phase_nodes;
+    }
+  }
+  std::vector<int> cut_steps;
+  for (const prune_cut& c : spec.cuts)
+    if (c.step > reached && c.step <= total) cut_steps.push_back(c.step);
+  std::sort(cut_steps.begin(), cut_steps.end());
+  e.cut_steps = int(std::unique(cut_steps.begin(), cut_steps.end()) - cut_steps.begin());
+  if (e.cut_steps > 0) {
+    const double grown = e.nodes;
+    e.nodes = std::min(e.nodes * (1 + e.cut_steps), std::max(real_node_cap, grown));
+    e.seconds *= e.nodes / std::max(grown, 1.0);
+  }
+  e.uncertain = !certain;
+  e.bytes = e.nodes * bytes_per_node;
+  if (e.phase_trials > 0 || e.cut_steps > 0) {
+    e.note = "counted conservatively:";
+    if (e.phase_trials > 0)
+      e.note += " the largest of the growth phases from step " + std::to_string(phases.front()) + " on (" +
+                std::to_string(e.phase_trials) + " more trial" + (e.phase_trials > 1 ? "s" : "") + ")";
+    if (e.cut_steps > 0)
+      e.note += std::string(e.phase_trials > 0 ? ";" : "") + " regrowth after cuts in " + std::to_string(e.cut_steps) +
+                " later step" + (e.cut_steps > 1 ? "s" : "");
+  }
   return e;
 }
 

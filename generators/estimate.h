@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "generators/tree_spec.h"
@@ -23,6 +24,11 @@ struct growth_estimate {
   grow_report report;      // the trial's report
   growth_debug debug;      // the trial's debug output
   double trial_ms = 0;
+  // Keyframes and cuts the trial did not reach (issue 18), counted conservatively; `note` says how
+  // ("" when there were none): see estimate_growth.
+  int phase_trials = 0;    // extra trials, one per growth phase the trial did not reach
+  int cut_steps = 0;       // steps with cuts the trial did not reach
+  std::string note;
 };
 
 struct estimate_limits {
@@ -35,7 +41,16 @@ struct estimate_limits {
 inline constexpr double bytes_per_node = 1500;
 
 // Grows a trial of `spec`. `o.cancel` cancels it; `o.progress` hears the trial's progress.
+// When the trial stops before the last step, keyframes and cuts after the step it reached are not
+// in its node counts, so they are counted conservatively:
+// - each growth phase the trial did not reach (the params in effect from a later keyframe step on)
+//   gets its own trial with those params from step 1, and the largest estimate is taken (at most
+//   `max_phase_trials`, evenly chosen, the last phase always);
+// - each later step with cuts may make the tree grow again what it grows uncut: a pruned tree keeps
+//   its cut nodes in its history and regrows into the space, light and points the cut freed, so
+//   the node estimate is multiplied by 1 + the number of such steps (capped at the node cap).
 growth_estimate estimate_growth(const tree_spec& spec, const grow_options& o, const estimate_limits& limits = {});
+inline constexpr int max_phase_trials = 4;
 
 // Extrapolates nodes born per step (index = step) over `complete_steps` full steps to
 // `total_steps`: the last increment grows on at the recent step-to-step ratio, and a falling ratio

@@ -2,11 +2,13 @@
 // not flag the shipped presets (issue 14).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 #include "generators/estimate.h"
+#include "generators/pruning.h"
 #include "render/preset.h"
 
 using namespace sylva;
@@ -80,4 +82,58 @@ TEST(GrowthEstimate, ATrialStoppedByTimeAsksNothing) {
   e = estimate_growth(spec, {});
   EXPECT_FALSE(e.uncertain);
   EXPECT_GT(e.nodes, 500000.0);
+}
+
+// Issue 18: keyframes and cuts the trial does not reach are counted, conservatively, and said so.
+TEST(GrowthEstimate, KeyframesAndCutsAfterTheTrialAreCountedConservatively) {
+  tree_spec spec;
+  self_organizing_params p;
+  spec.params = p;
+  estimate_limits small;
+  small.trial_nodes = 1500;   // the trial stops in the first steps (about 20,000 nodes in 27)
+  const growth_estimate plain = estimate_growth(spec, {}, small);
+  ASSERT_FALSE(plain.exact);
+  EXPECT_TRUE(plain.note.empty());
+  EXPECT_EQ(plain.phase_trials, 0);
+  // From step 22 on (of 27), 1.5 times the resource: more shoots in the last years.
+  tree_spec keyed = spec;
+  keyed.keyframes.push_back({22, "alpha", glm::vec3(p.alpha * 1.5f, 0, 0)});
+  const growth_estimate e = estimate_growth(keyed, {}, small);
+  EXPECT_EQ(e.phase_trials, 1);
+  EXPECT_GT(e.nodes, plain.nodes);
+  EXPECT_NE(e.note.find("from step 22 on"), std::string::npos) << e.note;
+  grow_report rep;
+  const tree_skeleton t = grow(keyed, {}, &rep);
+  ASSERT_FALSE(rep.error) << rep.message;
+  std::printf("keyed alpha@22: estimate %.0f (unkeyed %.0f), grown %zu\n", e.nodes, plain.nodes, t.size());
+  EXPECT_GE(e.nodes, double(t.size()));   // conservative
+  // The same with the editor's trial (20,000 nodes) on a larger tree: 33 years, keyed from 30 on.
+  tree_spec big = spec;
+  std::get<self_organizing_params>(big.params).steps = 33;
+  const growth_estimate big_plain = estimate_growth(big, {});
+  big.keyframes.push_back({30, "alpha", glm::vec3(p.alpha * 1.5f, 0, 0)});
+  const growth_estimate big_e = estimate_growth(big, {});
+  const size_t big_n = grow(big, {}).size();
+  std::printf("33 years, alpha@30: estimate %.0f (unkeyed %.0f, %d phase trials), grown %zu\n", big_e.nodes, big_plain.nodes,
+              big_e.phase_trials, big_n);
+  EXPECT_GE(big_e.nodes, double(big_n));
+  // A keyframe the trial reached is in its counts already: no extra trial.
+  tree_spec early = spec;
+  early.keyframes.push_back({1, "alpha", glm::vec3(p.alpha * 3, 0, 0)});
+  EXPECT_EQ(estimate_growth(early, {}, small).phase_trials, 0);
+  // A cut in a later step: the tree may regrow what it loses, so the estimate doubles.
+  tree_spec cut = spec;
+  prune_cut c;
+  c.step = 22;
+  c.shape = prune_shape::outside_ellipsoid;
+  c.point = glm::vec3(0, 2, 0);
+  c.size = glm::vec3(1.0f, 1.5f, 1.0f);
+  cut.cuts.push_back(c);
+  const growth_estimate ec = estimate_growth(cut, {}, small);
+  EXPECT_EQ(ec.cut_steps, 1);
+  EXPECT_NEAR(ec.nodes, std::min(2 * plain.nodes, double(p.node_cap)), 1e-6 * plain.nodes);
+  EXPECT_NE(ec.note.find("regrowth after cuts"), std::string::npos) << ec.note;
+  const tree_skeleton tc = grow(cut, {}, &rep);
+  std::printf("cut at 22: estimate %.0f, grown %zu (uncut %zu)\n", ec.nodes, tc.size(), grow(spec, {}).size());
+  EXPECT_GE(ec.nodes, double(tc.size()));
 }
