@@ -403,6 +403,8 @@ int run_cli(int argc, char** argv) {
   bench->add_option("--height", bench_height, "--render: image height")->check(CLI::Range(16, 8192));
   bench->add_flag("--preset-light", bench_preset_light,
                   "--render: keep each preset's sun (default: backlit with shadows and god rays, every pass runs)");
+  std::string bench_ab;
+  bench->add_option("--ab", bench_ab, "--render: time the A/B view (each preset as A beside this one as B) against A alone");
 
   try {
     app.parse(argc, argv);
@@ -423,8 +425,11 @@ int run_cli(int argc, char** argv) {
     if (bench->parsed() && bench_lods)
       return run_bench_lods(bench_paths, repeat, bench_json, bench_sheet, bench_width, bench_height);
     if (bench->parsed() && bench_edit) return run_bench_edit(bench_paths, repeat, bench_json, bench_width, bench_height);
+    if (bench->parsed() && !bench_ab.empty() && !bench_render) return usage_error("bench", "--ab times frames: give it with --render");
     if (bench->parsed() && bench_render) {
       if (bench_export) return usage_error("bench", "--render and --export time different things; give one");
+      if (!bench_ab.empty())
+        return run_bench_render_ab(bench_paths, bench_ab, repeat, bench_json, bench_width, bench_height, bench_preset_light);
       return run_bench_render(bench_paths, repeat, bench_json, bench_width, bench_height, bench_preset_light);
     }
     if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export);
