@@ -112,7 +112,7 @@ struct editor_state {
   GLFWwindow* window = nullptr;
   float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
   // Growth state (issue 14): the status bar shows exactly one of these.
-  enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;
+  enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;   // = ab_growth
   std::string growth_text;        // detail for done / cancelled / failed
   uint32_t posted_generation = 0; // the newest request
   uint32_t stale_before = 0;      // results older than this were cancelled
@@ -127,14 +127,21 @@ struct editor_state {
   enum class then { nothing, quit, open } pending = then::nothing;
   std::string pending_path;
   bool open_confirm = false, continue_after_save = false, close_requested = false, quit_confirmed = false;
-  // Recovery: the document is autosaved while modified and offered back on the next start.
+  bool save_all = false;          // quitting with A/B: "Save" saves every slot with changes in turn
+  // Recovery: each slot's document is autosaved while modified and offered back on the next start
+  // (slot A in .recovery.json, slot B in .recovery_b.json).
   std::string home;               // ~/Sylva or $SYLVA_HOME
   double autosave_wait = 0;
-  preset autosaved;
-  bool autosaved_any = false;
+  preset autosaved[2];
+  bool autosaved_any[2] = {false, false};
   bool open_recovery = false;
   preset recovered;
   std::string recovered_path;
+  bool recovered_a = false;       // slot A's document was recovered
+  bool recovered_b = false;       // slot B's too: restored as B once A's tree shows
+  bool restore_b_pending = false;
+  preset recovered_b_doc;
+  std::string recovered_b_path;
   std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
   ab_state ab;                    // app/editor_ab.h: slot B and the A/B view
@@ -166,6 +173,9 @@ void clear_error(editor_state& e) {
 }
 
 void handle_ab(editor_state& e, ab_action a);   // A/B comparison (defined below take_new_tree)
+static_assert(int(editor_state::growth::growing) == ab_growth::growing && int(editor_state::growth::asking) == ab_growth::asking &&
+              int(editor_state::growth::done) == ab_growth::done && int(editor_state::growth::cancelled) == ab_growth::cancelled &&
+              int(editor_state::growth::failed) == ab_growth::failed);
 
 // ---------------------------------------------------------------- parameter panel
 
@@ -472,36 +482,83 @@ std::string default_save_path(const editor_state& e) {
 
 bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
 
-std::string recovery_path(const editor_state& e) { return (fs::path(e.home) / ".recovery.json").string(); }   // hidden from the file browser
+// The slots with unsaved changes (A/B: both slots; the selected one first).
+std::vector<int> unsaved_slots(const editor_state& e) { return ab_unsaved_slots(e.ab, e.doc, e.browser.baseline); }
 
-void remove_recovery(editor_state& e) {
-  std::error_code ec;
-  fs::remove(recovery_path(e), ec);
-  fs::remove(recovery_path(e) + ".source", ec);
-  e.autosaved_any = false;
+// Slot A's recovery file, or slot B's (hidden from the file browser).
+std::string recovery_path(const editor_state& e, int slot = 0) {
+  return (fs::path(e.home) / (slot == 0 ? ".recovery.json" : ".recovery_b.json")).string();
 }
 
-// Every few seconds while modified: the document to ~/Sylva/.recovery.json, its own path beside it.
+void remove_recovery(editor_state& e, int slot) {
+  std::error_code ec;
+  fs::remove(recovery_path(e, slot), ec);
+  fs::remove(recovery_path(e, slot) + ".source", ec);
+  e.autosaved_any[slot] = false;
+}
+void remove_recovery(editor_state& e) {
+  remove_recovery(e, 0);
+  remove_recovery(e, 1);
+}
+
+// Every few seconds while modified: each slot's document to ~/Sylva/.recovery[_b].json, its own
+// path beside it. Slots are A and B, not selected and other, so a recovery names the right slot.
 void autosave(editor_state& e, double dt) {
   if (e.quit_confirmed) return;
-  if (!modified(e)) {
-    if (e.autosaved_any) remove_recovery(e);
+  const std::vector<int> unsaved = unsaved_slots(e);
+  for (int slot = 0; slot < 2; ++slot)
+    if (e.autosaved_any[slot] && std::find(unsaved.begin(), unsaved.end(), slot) == unsaved.end()) remove_recovery(e, slot);
+  if (unsaved.empty()) {
     e.autosave_wait = 0;
     return;
   }
   e.autosave_wait += dt;
-  if (e.autosave_wait < 3.0 || (e.autosaved_any && e.doc == e.autosaved)) return;
+  if (e.autosave_wait < 3.0) return;
   e.autosave_wait = 0;
   std::error_code ec;
   fs::create_directories(e.home, ec);
-  if (!save_preset_file(e.doc, recovery_path(e)).empty()) return;   // best effort; never interrupts
-  (void)write_file_atomic(recovery_path(e) + ".source", e.path);
-  e.autosaved = e.doc;
-  e.autosaved_any = true;
+  for (int slot : unsaved) {
+    const bool selected = !e.ab.has_b || slot == e.ab.selected;
+    const preset& doc = selected ? e.doc : e.ab.other_doc.doc;
+    if (e.autosaved_any[slot] && doc == e.autosaved[slot]) continue;
+    if (!save_preset_file(doc, recovery_path(e, slot)).empty()) continue;   // best effort; never interrupts
+    (void)write_file_atomic(recovery_path(e, slot) + ".source", selected ? e.path : e.ab.other_doc.path);
+    e.autosaved[slot] = doc;
+    e.autosaved_any[slot] = true;
+  }
+}
+
+void select_slot(editor_state& e, int slot);   // A/B (defined below take_new_tree)
+void perform_pending(editor_state& e);
+
+// Quit with "Save": saves the next slot with unsaved changes (the selected one first). A slot
+// without its own file selects it and asks where (Save as), then goes on. Returns false when a
+// slot is waiting for its Save as, or a save failed (the quit stops there).
+bool save_next_slot(editor_state& e) {
+  const std::vector<int> unsaved = unsaved_slots(e);
+  if (unsaved.empty()) return true;
+  if (e.ab.has_b && unsaved.front() != e.ab.selected) select_slot(e, unsaved.front());
+  if (e.path.empty() || is_installed_preset(e.path)) {
+    e.continue_after_save = true;
+    e.open_save_as = true;
+    return false;
+  }
+  if (!save_to(e, e.path)) {
+    e.save_all = false;
+    e.pending = editor_state::then::nothing;
+    return false;
+  }
+  return true;
 }
 
 // Carries out what waited for the unsaved-changes question.
 void perform_pending(editor_state& e) {
+  // Quitting with "Save" and two slots: every slot with changes is saved before the quit.
+  if (e.pending == editor_state::then::quit && e.save_all) {
+    while (!unsaved_slots(e).empty())
+      if (!save_next_slot(e)) return;
+    e.save_all = false;
+  }
   const editor_state::then what = e.pending;
   e.pending = editor_state::then::nothing;
   e.continue_after_save = false;
@@ -514,11 +571,13 @@ void perform_pending(editor_state& e) {
   }
 }
 
-// Quit, window close, Open and the library go through here: asks first when the document is modified.
+// Quit, window close, Open and the library go through here: asks first when the document is
+// modified. Open replaces the selected slot only; quitting asks about both A/B slots.
 void request(editor_state& e, editor_state::then what, const std::string& path = "") {
   e.pending = what;
   e.pending_path = path;
-  if (!modified(e)) return perform_pending(e);
+  e.save_all = false;
+  if (what == editor_state::then::quit ? unsaved_slots(e).empty() : !modified(e)) return perform_pending(e);
   e.open_confirm = true;
 }
 
@@ -957,12 +1016,20 @@ void draw_status(editor_state& e, float y, float w) {
   }
   ImGui::SameLine();
   if (ab_showing(e.ab)) {   // A/B: both slots' counts and timings in place of the one tree's
-    const ab_counts mine = ab_counts_of(e.shown.get()), other = ab_counts_of(e.ab.other.shown.get());
+    ab_counts mine = ab_counts_of(e.shown.get()), other = ab_counts_of(e.ab.other.shown.get());
+    // A slot whose last growth failed or waits shows it, with the counts of the tree it still shows.
+    mine.problem = ab_slot_problem(int(e.growth_state), e.growth_text);
+    other.problem = ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text);
     ImGui::Text("   %s   frame %.1f ms", (e.ab.selected == 0 ? ab_compare_text(mine, other) : ab_compare_text(other, mine)).c_str(),
                 e.frame_ms);
   } else {
     ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
                 e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+    // The hidden slot's failure still shows (A/B view off).
+    if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text) : ""; !p.empty()) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "   %s: %s", e.ab.selected == 0 ? "B" : "A", p.c_str());
+    }
   }
   if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) {
     ImGui::SameLine();
@@ -1062,6 +1129,7 @@ void draw_dialogs(editor_state& e) {
   } else if (was_open && e.files.title.empty()) {   // cancelled
     if (e.browse == editor_state::browsing::save_as) {
       e.continue_after_save = false;
+      e.save_all = false;
       e.pending = editor_state::then::nothing;
     }
   }
@@ -1075,12 +1143,25 @@ void draw_dialogs(editor_state& e) {
   }
   if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     e.prompts_shown.push_back("Unsaved changes");
-    ImGui::Text("\"%s\" has changes that are not saved.", e.doc.name.c_str());
-    ImGui::TextUnformatted(e.pending == editor_state::then::quit ? "Save them before quitting?" : "Save them before opening another preset?");
+    const bool quitting = e.pending == editor_state::then::quit;
+    // Quitting with A/B asks about both slots: the list names each slot with changes.
+    const std::vector<int> unsaved = quitting ? unsaved_slots(e) : std::vector<int>{e.ab.has_b ? e.ab.selected : 0};
+    if (unsaved.size() == 1) {
+      ImGui::Text("%s has changes that are not saved.", ab_unsaved_line(e.ab, unsaved[0], e.doc, e.path).c_str());
+    } else {
+      ImGui::TextUnformatted("These have changes that are not saved:");
+      for (int slot : unsaved) ImGui::BulletText("%s", ab_unsaved_line(e.ab, slot, e.doc, e.path).c_str());
+    }
+    ImGui::TextUnformatted(quitting ? (unsaved.size() > 1 ? "Save them all before quitting? (A slot without a file asks where.)"
+                                                          : "Save them before quitting?")
+                                    : "Save them before opening another preset?");
     ImGui::Spacing();
-    if (scripted_button(e, "Save")) {
+    if (scripted_button(e, unsaved.size() > 1 ? "Save all" : "Save")) {
       ImGui::CloseCurrentPopup();
-      if (e.path.empty() || is_installed_preset(e.path)) {
+      if (quitting) {   // every slot with changes, in turn (perform_pending)
+        e.save_all = true;
+        perform_pending(e);
+      } else if (e.path.empty() || is_installed_preset(e.path)) {
         e.continue_after_save = true;
         e.open_save_as = true;
       } else if (save_to(e, e.path)) {
@@ -1106,9 +1187,13 @@ void draw_dialogs(editor_state& e) {
   if (ImGui::BeginPopupModal("Large tree", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     e.prompts_shown.push_back("Large tree");
     const grow_result* b = e.budget_answer.get();
+    // The question belongs to the slot that asked: switching A/B drops it (the slot asks again
+    // when it is selected again).
+    if (!b) ImGui::CloseCurrentPopup();
     if (b) {
       ImGui::Text("This will grow about %s nodes, ~%s, ~%.1f GB.", count_text(b->estimated_nodes).c_str(),
                   seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
+      if (!b->estimate_note.empty()) ImGui::TextDisabled("Keyframes and cuts after the trial's reach are %s.", b->estimate_note.c_str());
       ImGui::Text("The node budget is %s (Edit > Preferences).", count_text(double(e.worker->node_budget.load())).c_str());
       ImGui::TextDisabled("The tree on screen stays until you choose.");
     }
@@ -1132,15 +1217,22 @@ void draw_dialogs(editor_state& e) {
   }
   if (ImGui::BeginPopupModal("Restore unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     e.prompts_shown.push_back("Restore unsaved work?");
-    ImGui::Text("Sylva closed with unsaved changes to \"%s\"%s%s.", e.recovered.name.c_str(),
-                e.recovered_path.empty() ? "" : " from ", e.recovered_path.c_str());
-    ImGui::TextDisabled("Autosaved in %s", recovery_path(e).c_str());
+    if (e.recovered_a)
+      ImGui::Text("Sylva closed with unsaved changes to \"%s\"%s%s.", e.recovered.name.c_str(),
+                  e.recovered_path.empty() ? "" : " from ", e.recovered_path.c_str());
+    if (e.recovered_b)
+      ImGui::Text("%s unsaved changes to slot B \"%s\"%s%s (restored as slot B).", e.recovered_a ? "And" : "Sylva closed with",
+                  e.recovered_b_doc.name.c_str(), e.recovered_b_path.empty() ? "" : " from ", e.recovered_b_path.c_str());
+    ImGui::TextDisabled("Autosaved in %s", recovery_path(e, e.recovered_a ? 0 : 1).c_str());
     if (scripted_button(e, "Restore")) {
-      e.undo.push_back(e.doc);
-      e.doc = e.recovered;
-      e.undo_base = e.doc;
-      e.path = e.recovered_path;
-      e.frame_new = true;
+      if (e.recovered_a) {
+        e.undo.push_back(e.doc);
+        e.doc = e.recovered;
+        e.undo_base = e.doc;
+        e.path = e.recovered_path;
+        e.frame_new = true;
+      }
+      e.restore_b_pending = e.recovered_b;   // once slot A's tree is shown (restore_slot_b)
       set_status(e, "Restored unsaved work; save it to keep it");
       ImGui::CloseCurrentPopup();
     }
@@ -1410,6 +1502,20 @@ void handle_ab(editor_state& e, ab_action a) {
   }
 }
 
+// A recovered slot B comes back as B once slot A's tree is shown (B starts as A's duplicate).
+void restore_slot_b(editor_state& e) {
+  if (!e.restore_b_pending || !e.shown || !e.shown->skeleton || e.growth_state == editor_state::growth::growing) return;
+  e.restore_b_pending = false;
+  if (e.ab.has_b && e.ab.selected != 0) select_slot(e, 0);
+  handle_ab(e, ab_action::duplicate);   // selects B
+  if (!e.ab.has_b || e.ab.selected != 1) return;
+  e.doc = e.recovered_b_doc;
+  e.undo_base = e.doc;
+  e.path = e.recovered_b_path;
+  // B stays selected so its restored document is grown (post_if_changed); Edit A switches back.
+  set_status(e, "Restored unsaved work in slot B (and A); save them to keep them");
+}
+
 std::string slot_label(const preset& p) {
   const size_t g = p.spec.params.index();
   return p.name + " - " + (g < size_t(generator_count) ? generator_labels[g] : "?");
@@ -1431,6 +1537,9 @@ std::string slot_label(const preset& p) {
 //   remember / expect_same_tree / expect_new_tree
 //   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
 //   ab_duplicate / ab_select a|b / ab_mode off|side|split / ab_divider F / ab_wait (the other slot's tree)
+//   expect_other_state STATE   until the unselected A/B slot's growth state is STATE (as expect_state)
+//   expect_recovery_b 0|1      whether slot B's autosaved recovery file exists (waits for it)
+//   wait_growing S             until the growth in progress has run S seconds (fails if it ends first)
 //   frame_median N             prints the median time of the next N frames
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
@@ -1480,10 +1589,18 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "set") {
       if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
       sc.frames_left = 2;   // posted on the next frame
-    } else if (cmd == "expect_recovery") {
+    } else if (cmd == "expect_recovery" || cmd == "expect_recovery_b") {
       std::error_code ec;
-      done = fs::exists(recovery_path(e), ec) == (arg == "1");
+      done = fs::exists(recovery_path(e, cmd == "expect_recovery" ? 0 : 1), ec) == (arg == "1");
       if (!done && waited > 20) return fail(arg == "1" ? "no recovery file" : "the recovery file stays");
+    } else if (cmd == "wait_growing") {
+      if (!growing) return fail("the growth ended before " + arg + " s");
+      done = seconds_since(e.posted_at) >= std::atof(arg.c_str());
+    } else if (cmd == "expect_other_state") {
+      static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
+      const int st = e.ab.has_b ? e.ab.other.growth : 0;
+      done = arg == names[std::clamp(st, 0, 5)];
+      if (!done && waited > 60) return fail(std::string("the other slot's state is ") + names[std::clamp(st, 0, 5)]);
     } else if (cmd == "key" || cmd == "taps") {
       std::string name = arg;
       int taps = 1;
@@ -1652,7 +1769,15 @@ int run_editor(const editor_options& o) {
       std::string source;
       (void)read_file(recovery_path(*e) + ".source", source);
       e->recovered_path = source;
-      e->open_recovery = true;
+      e->recovered_a = e->open_recovery = true;
+    }
+  }
+  if (std::error_code ec; !automated && fs::exists(recovery_path(*e, 1), ec)) {   // slot B's (A/B)
+    if (load_preset_file(recovery_path(*e, 1), e->recovered_b_doc).ok) {
+      std::string source;
+      (void)read_file(recovery_path(*e, 1) + ".source", source);
+      e->recovered_b_path = source;
+      e->recovered_b = e->open_recovery = true;
     }
   }
   e->show_overlays = o.overlays;
@@ -1785,8 +1910,12 @@ int run_editor(const editor_options& o) {
     draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
     handle_keys(*e);
     const view_rect view{left, top, float(win_w) - left, bottom - top};
+    // A slot whose growth failed or waits marks its (older) tree stale.
+    const bool stale_mine = !ab_slot_problem(int(e->growth_state), e->growth_text).empty();
+    const bool stale_other = !ab_slot_problem(e->ab.other.growth, e->ab.other.growth_text).empty();
     const bool ab_drag = draw_ab_overlay(e->ab, view.x, view.y, view.w, view.h, slot_label(e->ab.selected == 0 ? e->doc : e->ab.other_doc.doc),
-                                         slot_label(e->ab.selected == 0 ? e->ab.other_doc.doc : e->doc));
+                                         slot_label(e->ab.selected == 0 ? e->ab.other_doc.doc : e->doc),
+                                         e->ab.selected == 0 ? stale_mine : stale_other, e->ab.selected == 0 ? stale_other : stale_mine);
     // Side by side: picking and the picked branch use the selected slot's half.
     view_rect pick_view = view;
     if (ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side) {
@@ -1801,6 +1930,7 @@ int run_editor(const editor_options& o) {
 
     post_if_changed(*e);
     take_new_tree(*e);
+    restore_slot_b(*e);
     ab_poll_other(e->ab, e->step);
     if (e->ab.other.worker) e->ab.other.worker->node_budget = e->worker->node_budget.load();
     if (scripted && !script.failed && !script.finished) {

@@ -52,18 +52,8 @@ void ab_stop_view(ab_view& v) {
 void ab_poll_other(ab_state& s, int step) {
   if (!s.has_b || !s.other.worker) return;
   ab_view& v = s.other;
-  if (std::shared_ptr<const grow_result> r = take_result(*v.worker, v.seen_generation)) {
-    v.seen_generation = r->generation;
-    const bool stale = int32_t(r->generation - v.stale_before) < 0;
-    // An over-budget answer or a failed growth keeps the slot's last tree; selecting the slot
-    // again posts its document anew (its posted spec is reset), where the editor asks or reports.
-    if (!stale && (r->over_budget || r->report.error || !r->skeleton)) {
-      if (r->generation == v.posted_generation) v.posted_once = false;
-    } else if (!stale) {
-      if (r->generation == v.posted_generation) v.growth = 3;   // editor_state::growth::done
-      show_result(v, r, step);
-    }
-  }
+  if (std::shared_ptr<const grow_result> r = take_result(*v.worker, v.seen_generation))
+    if (ab_take_other_result(v, *r) == ab_result_use::show) show_result(v, r, step);
   if (v.shown && v.shown->skeleton) {
     const int st = std::clamp(step, 0, v.shown->skeleton->steps);
     if (st != v.renderer.step) set_tree_step(v.renderer, *v.shown->skeleton, v.shown->mesh_settings.min_radius, st);
@@ -155,15 +145,19 @@ ab_action draw_ab_controls(ab_state& s) {
   return act;
 }
 
-bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std::string& a_label, const std::string& b_label) {
+bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std::string& a_label, const std::string& b_label,
+                     bool a_stale, bool b_stale) {
   if (!ab_showing(s)) return false;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
   const ImU32 text = IM_COL32(235, 235, 235, 230), line = IM_COL32(255, 255, 255, 200);
   const float mid = s.mode == ab_mode::split ? x + w * s.divider : x + w * 0.5f;
   const float pad = 8;
   const ImU32 sel = IM_COL32(255, 200, 80, 255);
-  const std::string a = "A: " + a_label + (s.selected == 0 ? "  (edited)" : "");
-  const std::string b = "B: " + b_label + (s.selected == 1 ? "  (edited)" : "");
+  // The stale mark goes first so that a long name cannot clip it off.
+  const char* stale = "stale (last tree, see the status bar) - ";
+  const std::string a = std::string("A: ") + (a_stale ? stale : "") + a_label + (s.selected == 0 ? "  (edited)" : "");
+  const std::string b = std::string("B: ") + (b_stale ? stale : "") + b_label + (s.selected == 1 ? "  (edited)" : "");
+  const ImU32 red = IM_COL32(255, 115, 100, 255);
   const ImVec4 clip_a(x, y, mid - pad, y + h), clip_b(mid, y, x + w - pad, y + h);   // each label stays in its part
   // A dark band under each label keeps it readable over a bright sky.
   const float band = ImGui::GetTextLineHeight() + pad;
@@ -171,8 +165,8 @@ bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std:
                     IM_COL32(0, 0, 0, 120));
   dl->AddRectFilled(ImVec2(mid, y), ImVec2(std::min(x + w, mid + ImGui::CalcTextSize(b.c_str()).x + 2 * pad), y + band + pad * 0.5f),
                     IM_COL32(0, 0, 0, 120));
-  dl->AddText(nullptr, 0, ImVec2(x + pad, y + pad), s.selected == 0 ? sel : text, a.c_str(), nullptr, 0, &clip_a);
-  dl->AddText(nullptr, 0, ImVec2(mid + pad, y + pad), s.selected == 1 ? sel : text, b.c_str(), nullptr, 0, &clip_b);
+  dl->AddText(nullptr, 0, ImVec2(x + pad, y + pad), a_stale ? red : s.selected == 0 ? sel : text, a.c_str(), nullptr, 0, &clip_a);
+  dl->AddText(nullptr, 0, ImVec2(mid + pad, y + pad), b_stale ? red : s.selected == 1 ? sel : text, b.c_str(), nullptr, 0, &clip_b);
   dl->AddLine(ImVec2(mid, y), ImVec2(mid, y + h), line, s.mode == ab_mode::split ? 2.0f : 1.0f);
   if (s.mode != ab_mode::split) {
     s.dragging = false;

@@ -29,6 +29,11 @@ struct ab_doc {
   std::string baseline_path;
 };
 
+// The editor's growth states (editor.cpp's editor_state::growth), as a slot stores them.
+namespace ab_growth {
+inline constexpr int idle = 0, growing = 1, asking = 2, done = 3, cancelled = 4, failed = 5;
+}
+
 // The growth and drawing part of a slot (needs a GL context and a worker thread).
 struct ab_view {
   std::unique_ptr<worker_state> worker;
@@ -39,7 +44,7 @@ struct ab_view {
   mesh_params posted_mesh;
   bool posted_once = false;
   uint32_t seen_generation = 0, posted_generation = 0, stale_before = 0, error_after = 0, frame_generation = 0;
-  int growth = 0;                   // the editor's growth state, as an int
+  int growth = 0;                   // the editor's growth state, as an int (ab_growth)
   std::string growth_text;
   std::chrono::steady_clock::time_point posted_at{};
   int overlay_generator = -1;
@@ -75,13 +80,31 @@ std::string ab_save_slot(ab_state& s, int slot, ab_doc& current, const std::stri
 // Drops slot B; if B was selected, A becomes the current document again.
 void ab_drop_doc(ab_state& s, ab_doc& current);
 
+// Unsaved work in both slots (quit, window close, autosave). `current_doc` and `current_baseline`
+// are the selected slot's document and its saved state (the editor keeps the baseline in its
+// preset browser). Returns the slots (0 A, 1 B) with unsaved changes, the selected one first.
+std::vector<int> ab_unsaved_slots(const ab_state& s, const preset& current_doc, const preset& current_baseline);
+// "Slot B \"Oak (B)\" (no file yet)" for the quit prompt's list.
+std::string ab_unsaved_line(const ab_state& s, int slot, const preset& current_doc, const std::string& current_path);
+
+// The unselected slot's growth: what to do with a result its worker published (ab_poll_other).
+// A newer tree is shown; a failed or over-budget answer keeps the last tree, and the slot's growth
+// state and text say so ("growth stopped: ...", "over the node budget ..."), so the comparison line
+// shows it and the tree is marked stale until the slot grows again.
+enum class ab_result_use { ignore, show, keep };
+ab_result_use ab_take_other_result(ab_view& v, const grow_result& r);
+// "" when the slot's tree is its document's; else why the tree shown is an older one.
+std::string ab_slot_problem(int growth, const std::string& growth_text);
+
 struct ab_counts {
   size_t nodes = 0, leaves = 0, triangles = 0;
   double grow_ms = 0, mesh_ms = 0;
   bool present = false;
+  std::string problem;   // ab_slot_problem: the counts are of the slot's last tree
 };
 ab_counts ab_counts_of(const grow_result* r);   // the whole tree (the final step)
-// "A 1.2k nodes, 3.4k leaves, 56k tris, grow 12 ms, mesh 3 ms | B ... " for the status bar.
+// "A 1.2k nodes, 3.4k leaves, 56k tris, grow 12 ms, mesh 3 ms | B ... " for the status bar; a slot
+// with a problem reads "B growth stopped: ... (last tree 1.2k nodes ...)".
 std::string ab_compare_text(const ab_counts& a, const ab_counts& b);
 const char* ab_mode_label(ab_mode m);
 bool ab_showing(const ab_state& s);   // B exists and the mode is not off
@@ -106,6 +129,8 @@ enum class ab_action { none, duplicate, select_a, select_b, drop };
 ab_action draw_ab_controls(ab_state& s);
 // ImGui: slot labels and the split divider over the 3D view (window coordinates). Returns true
 // while the divider is dragged (the camera must not take that drag).
-bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std::string& a_label, const std::string& b_label);
+// A stale slot (its growth failed or waits: it shows an older tree) is labelled so, in red.
+bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std::string& a_label, const std::string& b_label,
+                     bool a_stale = false, bool b_stale = false);
 
 }  // namespace sylva

@@ -49,6 +49,60 @@ void ab_drop_doc(ab_state& s, ab_doc& current) {
   s.selected = 0;
 }
 
+std::vector<int> ab_unsaved_slots(const ab_state& s, const preset& current_doc, const preset& current_baseline) {
+  std::vector<int> out;
+  if (!(current_doc == current_baseline)) out.push_back(s.has_b ? s.selected : 0);
+  if (s.has_b && !(s.other_doc.doc == s.other_doc.baseline)) out.push_back(1 - s.selected);
+  return out;
+}
+
+std::string ab_unsaved_line(const ab_state& s, int slot, const preset& current_doc, const std::string& current_path) {
+  const bool selected = !s.has_b || slot == s.selected;
+  const preset& doc = selected ? current_doc : s.other_doc.doc;
+  const std::string& path = selected ? current_path : s.other_doc.path;
+  std::string line = std::string(s.has_b ? (slot == 0 ? "Slot A " : "Slot B ") : "") + "\"" + doc.name + "\"";
+  line += path.empty() ? " (no file yet)" : " (" + path + ")";
+  return line;
+}
+
+ab_result_use ab_take_other_result(ab_view& v, const grow_result& r) {
+  v.seen_generation = r.generation;
+  if (int32_t(r.generation - v.stale_before) < 0) return ab_result_use::ignore;   // cancelled before it arrived
+  const bool newest = r.generation == v.posted_generation;
+  // An over-budget answer or a failed growth keeps the slot's last tree; selecting the slot again
+  // posts its document anew (its posted spec is reset), where the editor asks or reports.
+  if (r.over_budget || r.report.error || !r.skeleton) {
+    if (!newest) return ab_result_use::ignore;
+    v.posted_once = false;
+    char b[160];
+    if (r.over_budget) {
+      std::snprintf(b, sizeof b, "over the node budget (about %.0f nodes): select the slot to grow it anyway",
+                    r.estimated_nodes);
+      v.growth = ab_growth::asking;
+      v.growth_text = b;
+    } else {
+      v.growth = ab_growth::failed;
+      v.growth_text = r.report.message.empty() ? "the growth failed" : r.report.message;
+    }
+    return ab_result_use::keep;
+  }
+  if (newest) {
+    v.growth = ab_growth::done;
+    v.growth_text = r.report.stop_reason;
+    if (!r.report.message.empty()) v.growth_text += " (" + r.report.message + ")";
+  }
+  return ab_result_use::show;
+}
+
+std::string ab_slot_problem(int growth, const std::string& growth_text) {
+  switch (growth) {
+    case ab_growth::asking: return "waiting: " + growth_text;
+    case ab_growth::failed: return "growth stopped: " + growth_text;
+    case ab_growth::cancelled: return "cancelled: " + growth_text;
+    default: return "";
+  }
+}
+
 ab_counts ab_counts_of(const grow_result* r) {
   ab_counts c;
   if (!r || !r->skeleton) return c;
@@ -70,11 +124,12 @@ std::string short_count(size_t n) {
   return b;
 }
 std::string slot_text(const char* name, const ab_counts& c) {
-  if (!c.present) return std::string(name) + " growing";
+  if (!c.present) return std::string(name) + (c.problem.empty() ? " growing" : " " + c.problem);
   char b[160];
-  std::snprintf(b, sizeof b, "%s %s nodes %s leaves %s tris grow %.0f ms mesh %.0f ms", name, short_count(c.nodes).c_str(),
+  std::snprintf(b, sizeof b, "%s nodes %s leaves %s tris grow %.0f ms mesh %.0f ms", short_count(c.nodes).c_str(),
                 short_count(c.leaves).c_str(), short_count(c.triangles).c_str(), c.grow_ms, c.mesh_ms);
-  return b;
+  if (!c.problem.empty()) return std::string(name) + " " + c.problem + " (last tree: " + b + ")";
+  return std::string(name) + " " + b;
 }
 }  // namespace
 

@@ -61,7 +61,11 @@ TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   std::ofstream(dir / "script.txt") << "wait_tree\nab_duplicate\nab_mode side\nframes 2\nshot " << same
                                     << "\nframes 3\nset lambda=0.42\nwait_tree\nab_wait\nframes 2\nshot " << differ
                                     << "\nframes 3\nab_select a\nexpect_param lambda=" << lambda
-                                    << "\nab_select b\nexpect_param lambda=0.42\n";
+                                    << "\nab_select b\nexpect_param lambda=0.42\n"
+                                    // Quitting with A selected and clean still asks: B has unsaved changes
+                                    // (and its own recovery file). Discard quits and removes both files.
+                                    << "expect_recovery_b 1\nab_select a\nexpect_modified 0\nexpect_recovery 0\nquit\n"
+                                       "expect_prompt Unsaved changes\nanswer Discard\nnot reached: Discard quits\n";
   const std::string log = (dir / "log.txt").string();
   const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
                           "' SYLVA_WINDOW=900x400 SYLVA_UI_SCALE=1 '" + std::string(SYLVA_BINARY) + "' '" + preset +
@@ -71,6 +75,9 @@ TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   std::stringstream out;
   out << in.rdbuf();
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out.str();
+  EXPECT_NE(out.str().find("ok expect_prompt Unsaved changes"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("the editor closed before line 24"), std::string::npos) << out.str();
+  EXPECT_FALSE(fs::exists(dir / "home" / ".recovery_b.json"));
   int w = 0;
   const double d_same = halves_differ(same, &w), d_differ = halves_differ(differ);
   ASSERT_EQ(w, 900) << out.str();

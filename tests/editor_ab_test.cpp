@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -117,6 +119,88 @@ TEST(EditorAB, CompareTextNamesBothSlots) {
   const std::string t = ab_compare_text(a, b);
   EXPECT_EQ(t, "A 1234 nodes 56.8k leaves 2.50M tris grow 12 ms mesh 3 ms | B growing");
   EXPECT_EQ(ab_counts_of(nullptr).present, false);
+}
+
+// Quitting asks about both slots: B's unsaved change is found while A is selected and clean.
+TEST(EditorAB, QuitSeesSlotBsChangesWhileAIsSelectedAndClean) {
+  ab_state s;
+  ab_doc cur = start_doc();
+  EXPECT_TRUE(ab_unsaved_slots(s, cur.doc, cur.baseline).empty());   // no B: A is clean
+  ASSERT_TRUE(ab_duplicate_doc(s, cur));
+  ASSERT_TRUE(ab_select_doc(s, 1, cur));
+  cur.doc.spec.seed = 77;   // an edit of B
+  ASSERT_TRUE(ab_select_doc(s, 0, cur));
+  // B was never saved, and is edited; A is selected and as saved.
+  EXPECT_EQ(cur.doc, cur.baseline);
+  EXPECT_EQ(ab_unsaved_slots(s, cur.doc, cur.baseline), std::vector<int>{1});
+  EXPECT_EQ(ab_unsaved_line(s, 1, cur.doc, cur.path), "Slot B \"Oak (B)\" (no file yet)");
+  EXPECT_EQ(ab_unsaved_line(s, 0, cur.doc, cur.path), "Slot A \"Oak\" (/somewhere/oak.json)");
+  // Saved, B is clean: nothing to ask.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("sylva_ab_quit_" + std::to_string(getpid()) + ".json")).string();
+  ASSERT_EQ(ab_save_slot(s, 1, cur, path), "");
+  EXPECT_TRUE(ab_unsaved_slots(s, cur.doc, cur.baseline).empty());
+  // Both edited: both listed, the selected slot first.
+  cur.doc.spec.seed = 5;
+  EXPECT_EQ(ab_unsaved_slots(s, cur.doc, cur.baseline), std::vector<int>{0});
+  ASSERT_TRUE(ab_select_doc(s, 1, cur));
+  cur.doc.spec.seed = 6;
+  EXPECT_EQ(ab_unsaved_slots(s, cur.doc, cur.baseline), (std::vector<int>{1, 0}));
+  EXPECT_EQ(ab_unsaved_line(s, 1, cur.doc, cur.path), "Slot B \"Oak (B)\" (" + path + ")");
+  std::filesystem::remove(path);
+  // Without B the line names the document only.
+  ab_state alone;
+  EXPECT_EQ(ab_unsaved_line(alone, 0, cur.doc, ""), "\"Oak (B)\" (no file yet)");
+}
+
+// The unselected slot's failed or over-budget regrow keeps its tree, and says so.
+TEST(EditorAB, SlotBsFailedRegrowIsShownAndItsTreeMarkedStale) {
+  ab_view v;
+  v.posted_generation = 4;
+  v.posted_once = true;
+  v.growth = ab_growth::growing;
+  grow_result ok;
+  ok.generation = 3;   // an older request's tree: shown, the state stays growing
+  ok.skeleton = std::make_shared<tree_skeleton>();
+  EXPECT_EQ(ab_take_other_result(v, ok), ab_result_use::show);
+  EXPECT_EQ(v.growth, ab_growth::growing);
+  EXPECT_EQ(ab_slot_problem(v.growth, v.growth_text), "");
+  grow_result failed = ok;   // the newest request failed (the worker re-publishes the last tree)
+  failed.generation = 4;
+  failed.report.error = true;
+  failed.report.message = "out of memory while growing: lower the node cap or the step count";
+  EXPECT_EQ(ab_take_other_result(v, failed), ab_result_use::keep);
+  EXPECT_EQ(v.growth, ab_growth::failed);
+  EXPECT_FALSE(v.posted_once);   // selecting B posts its document again
+  const std::string problem = ab_slot_problem(v.growth, v.growth_text);
+  EXPECT_EQ(problem, "growth stopped: out of memory while growing: lower the node cap or the step count");
+  ab_counts a, b;
+  a.present = b.present = true;
+  a.nodes = 10, b.nodes = 20;
+  b.problem = problem;
+  const std::string line = ab_compare_text(a, b);
+  EXPECT_NE(line.find("| B growth stopped: out of memory"), std::string::npos) << line;
+  EXPECT_NE(line.find("(last tree: 20 nodes"), std::string::npos) << line;
+  // Over the budget: kept, and the slot waits for the user's answer.
+  ab_view w;
+  w.posted_generation = 2;
+  grow_result big = ok;
+  big.generation = 2;
+  big.over_budget = true;
+  big.estimated_nodes = 1.5e6;
+  EXPECT_EQ(ab_take_other_result(w, big), ab_result_use::keep);
+  EXPECT_EQ(w.growth, ab_growth::asking);
+  EXPECT_NE(ab_slot_problem(w.growth, w.growth_text).find("over the node budget (about 1500000 nodes)"), std::string::npos);
+  // A cancelled request's late answer is dropped; a good newest answer clears the problem.
+  w.stale_before = 6;
+  big.generation = 5;
+  EXPECT_EQ(ab_take_other_result(w, big), ab_result_use::ignore);
+  w.posted_generation = 6;
+  ok.generation = 6;
+  ok.report.stop_reason = "finished";
+  EXPECT_EQ(ab_take_other_result(w, ok), ab_result_use::show);
+  EXPECT_EQ(w.growth, ab_growth::done);
+  EXPECT_EQ(ab_slot_problem(w.growth, w.growth_text), "");
 }
 
 }  // namespace
