@@ -135,6 +135,48 @@ not reached: Discard quits
   EXPECT_FALSE(std::filesystem::exists(test_dir("session") / "home" / ".recovery.json"));
 }
 
+// Cancel (Esc) while a long growth runs: the previous tree and document stay, the status says
+// cancelled. The fixture grows for about a minute without reaching a cap (many attraction points,
+// short segments, a small kill distance), so the cancel always lands while it runs.
+TEST(EditorSession, CancellingALongGrowthKeepsThePreviousTree) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset cube;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/space_colonization_seed_cube.json", cube).ok);
+  cube.mesh.leaves_enabled = false;
+  const std::string start = test_dir("cube.json").string();
+  ASSERT_EQ(sylva::save_preset_file(cube, start), "");
+  auto p = std::get<sylva::space_colonization_params>(cube.spec.params);
+  p.points = 400000;
+  p.segment_length = 0.02f;
+  p.influence_radius = 1.0f;
+  p.kill_distance = 0.1f;
+  p.max_branches = 10000000;
+  p.steps = 20000;
+  p.node_cap = 20000000;
+  cube.spec.params = p;
+  cube.name = "Long growth";
+  const std::string long_growth = test_dir("long.json").string();
+  ASSERT_EQ(sylva::save_preset_file(cube, long_growth), "");
+  std::string script = R"(wait_tree
+remember
+budget 100000000
+open LONG
+wait_progress
+wait_growing 2
+key escape
+expect_state cancelled
+expect_same_tree
+expect_param segment_length=0.5
+expect_param points=10000
+expect_modified 0
+)";
+  script.replace(script.find("LONG"), 4, long_growth);
+  run_result r = run_script("cancel", script, start);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok expect_state cancelled"), std::string::npos) << r.output;
+}
+
 TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
