@@ -32,7 +32,8 @@ TEST(BenchAB, RenderWithAB_PrintsBothFramesAndTheRatio) {
   EXPECT_GT(j["triangles_a"].get<double>(), 0);
   EXPECT_GT(j["triangles_b"].get<double>(), 0);
   EXPECT_NE(j["triangles_a"], j["triangles_b"]);   // two different trees were drawn
-  for (const char* k : {"single_a_ms", "single_b_ms", "side_by_side_ms", "split_ms", "side_by_side_ratio", "split_ratio"})
+  for (const char* k : {"single_a_ms", "single_b_ms", "side_by_side_ms", "split_ms", "side_by_side_ratio", "split_ratio",
+                    "side_by_side_ratio_heavier", "split_ratio_heavier"})
     EXPECT_GT(j[k].get<double>(), 0) << k;
   EXPECT_NEAR(j["side_by_side_ratio"].get<double>(), j["side_by_side_ms"].get<double>() / j["single_a_ms"].get<double>(), 1e-6);
 }
