@@ -1375,6 +1375,7 @@ void take_new_tree(editor_state& e) {
     e.growth_state = r->report.error ? editor_state::growth::failed : editor_state::growth::done;
     e.growth_text = r->report.error ? r->report.message : r->report.stop_reason;
     if (!r->report.error && !r->report.message.empty()) e.growth_text += " (" + r->report.message + ")";
+    if (r->resumed_at > 0) e.growth_text += ", resumed at step " + std::to_string(r->resumed_at);
   }
   if (e.shown && keeps_last_tree(*r)) return set_status(e, r->report.message, true);
   if (newest) e.before_open.reset();   // the opened preset's own tree (or a later edit's) is shown

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <new>
 
+#include "generators/resume.h"
 #include "generators/timing.h"
 
 namespace sylva {
@@ -51,6 +52,11 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
 
 void run_worker(worker_state& w) {
   std::shared_ptr<const grow_result> last;   // the worker's own previous result, for skeleton reuse
+  // Honda's states at the top of each derivation of the last full growth (generators/resume.h): an
+  // edit of keyframes from step k on resumes at k.
+  growth_resume resume;
+  tree_spec resume_spec;
+  bool have_resume = false;
   for (;;) {
     worker_request req;
     {
@@ -82,23 +88,40 @@ void run_worker(worker_state& w) {
       std::shared_ptr<tree_skeleton> skeleton;
       w.progress = 0;
       o.progress = [&w](float f) { w.progress.store(f, std::memory_order_relaxed); };
+      const int changed = have_resume && can_resume(req.spec) ? first_changed_step(resume_spec, req.spec) : 0;
+      const bool resumable = changed >= 1 && changed != INT_MAX;
       try {
-        // A capped trial first: small trees are done by it, large ones get an estimate (issue 14).
-        growth_estimate est = estimate_growth(req.spec, o);
-        if (est.cancelled) {
-          w.busy = false;
-          continue;
-        }
-        if (!est.exact && !est.uncertain && !req.approved && est.nodes > double(w.node_budget.load())) {
-          publish_failure(w, last, req, "", &est);
-          continue;
-        }
-        if (est.exact) {
-          skeleton = std::make_shared<tree_skeleton>(std::move(est.trial));
-          result->report = std::move(est.report);
-          *debug = std::move(est.debug);
+        if (resumable) {
+          // Only keyframes from step `changed` on differ from the recorded growth: the node cap and
+          // derivation count are the ones that growth ran under, so no new estimate is asked for.
+          have_resume = false;
+          skeleton = std::make_shared<tree_skeleton>(grow_resumable(req.spec, o, resume_spec, resume, &result->report, debug.get()));
+          resume_spec = req.spec;
+          have_resume = !result->report.cancelled;
+          result->resumed_at = resume.resumed_at;
         } else {
-          skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+          // A capped trial first: small trees are done by it, large ones get an estimate (issue 14).
+          growth_estimate est = estimate_growth(req.spec, o);
+          if (est.cancelled) {
+            w.busy = false;
+            continue;
+          }
+          if (!est.exact && !est.uncertain && !req.approved && est.nodes > double(w.node_budget.load())) {
+            publish_failure(w, last, req, "", &est);
+            continue;
+          }
+          if (est.exact) {
+            skeleton = std::make_shared<tree_skeleton>(std::move(est.trial));
+            result->report = std::move(est.report);
+            *debug = std::move(est.debug);
+          } else if (can_resume(req.spec)) {   // recorded, so that a later keyframe edit resumes
+            have_resume = false;
+            skeleton = std::make_shared<tree_skeleton>(grow_resumable(req.spec, o, tree_spec{}, resume, &result->report, debug.get()));
+            resume_spec = req.spec;
+            have_resume = !result->report.cancelled;
+          } else {
+            skeleton = std::make_shared<tree_skeleton>(grow(req.spec, o, &result->report, debug.get()));
+          }
         }
       } catch (const std::bad_alloc&) {
         publish_failure(w, last, req, "out of memory while growing: lower the node cap or the step count");

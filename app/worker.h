@@ -27,6 +27,7 @@ struct grow_result {
   grow_report report;
   double grow_ms = 0, mesh_ms = 0;
   bool regrown = true;   // false when only the mesh was rebuilt from the previous skeleton
+  int resumed_at = 0;    // > 0: only keyframes from this step on changed, and growth resumed there (generators/resume.h)
   // Over the node budget: nothing was grown; the previous tree is re-published with the estimate
   // and the editor asks before growing it (post_request with approved = true).
   bool over_budget = false;

@@ -1,4 +1,5 @@
 // Honda's parametric binary tree as an L-system (Prusinkiewicz, Hammel, Hanan & Měch 1996).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/lsystem.h"
+#include "generators/resume.h"
 
 namespace sylva {
 namespace {
@@ -22,6 +24,16 @@ struct apex {
 };
 
 }  // namespace
+
+// Everything a derivation reads, at the top of derivation `step` (before its keyframes and cuts):
+// resuming from it grows what a full regrow grows from there (generators/resume.h).
+struct honda_state {
+  tree_skeleton t;
+  std::vector<apex> current;
+  lsystem_params p;
+  float wq1 = 0, wq2 = 0;
+  grow_report rep;
+};
 
 tree_skeleton grow_honda(const lsystem_params& p_in, const grow_options& o, grow_report* report) {
   lsystem_params p = p_in;   // growth phases change it from a keyed derivation on
@@ -40,8 +52,29 @@ tree_skeleton grow_honda(const lsystem_params& p_in, const grow_options& o, grow
   std::vector<apex> current{{frame0, glm::vec3(0), p.s0, p.w0, 0, 0}}, next;
   float wq1 = std::pow(p.q, p.e), wq2 = std::pow(1 - p.q, p.e);
   int step = 0;
-  for (int k = 1; k <= steps && !current.empty(); ++k) {
+  int first = 1;
+  growth_resume* const resume = o.resume;
+  if (resume && resume->from_step >= 1 && resume->from_step <= steps && size_t(resume->from_step) < resume->honda.size() &&
+      resume->honda[size_t(resume->from_step)]) {
+    const honda_state& s = *resume->honda[size_t(resume->from_step)];
+    t = s.t;
+    current = s.current;
+    p = s.p;
+    wq1 = s.wq1, wq2 = s.wq2;
+    rep = s.rep;
+    first = resume->from_step;
+    step = first - 1;
+    resume->resumed_at = first;
+  }
+  if (resume && resume->record) resume->honda.resize(size_t(first));   // what is recorded from here on is replaced
+  for (int k = first; k <= steps && !current.empty(); ++k) {
     if (o.cancelled()) { rep.cancelled = true; break; }
+    if (resume && resume->record) {
+      const std::vector<int>& only = resume->record_steps;
+      resume->honda.resize(size_t(k) + 1);
+      if (only.empty() || std::find(only.begin(), only.end(), k) != only.end())
+        resume->honda[size_t(k)] = std::make_shared<const honda_state>(honda_state{t, current, p, wq1, wq2, rep});
+    }
     // Growth phases: derivation k rewrites with the values keyed up to k (the daughters it
     // creates carry them into the internodes of derivation k+1).
     if (apply_keyframes(p, o.keyframes, k)) {

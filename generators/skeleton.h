@@ -107,6 +107,7 @@ using progress_fn = std::function<void(float)>;
 
 struct keyframe;   // generators/keyframes.h
 struct prune_cut;  // generators/pruning.h
+struct growth_resume;   // generators/resume.h
 
 struct grow_options {
   uint64_t seed = 1;
@@ -118,6 +119,8 @@ struct grow_options {
   const std::vector<keyframe>* keyframes = nullptr;
   // Pruning: cuts the generator makes at the top of their steps (grow() checks them first).
   const std::vector<prune_cut>* cuts = nullptr;
+  // Resuming from a recorded step, and recording (generators/resume.h; Honda's L-system only).
+  growth_resume* resume = nullptr;
   bool cancelled() const {
     return cancel && cancel->load(std::memory_order_relaxed) != cancel_value;
   }

@@ -1,0 +1,58 @@
+// Resuming a regrow from a recorded step (resume.h).
+#include "generators/resume.h"
+
+#include <algorithm>
+
+#include "generators/keyframes.h"
+#include "generators/lsystem.h"
+#include "generators/pruning.h"
+
+namespace sylva {
+
+int first_changed_step(const tree_spec& a, const tree_spec& b) {
+  if (!(a.params == b.params) || a.seed != b.seed || !(a.wood == b.wood) || !(a.cuts == b.cuts)) return 0;
+  int first = INT_MAX;
+  // Keyframes are compared step by step: the lists of one step, in order (a step's keys apply in
+  // list order, so a reordering is a change of that step).
+  auto at = [](const std::vector<keyframe>& ks, int step) {
+    std::vector<keyframe> out;
+    for (const keyframe& k : ks)
+      if (k.step == step) out.push_back(k);
+    return out;
+  };
+  for (const std::vector<keyframe>* list : {&a.keyframes, &b.keyframes})
+    for (const keyframe& k : *list)
+      if (k.step < first && at(a.keyframes, k.step) != at(b.keyframes, k.step)) first = k.step;
+  return first;
+}
+
+bool can_resume(const tree_spec& spec) {
+  const auto* p = std::get_if<lsystem_params>(&spec.params);
+  return p && p->mode == lsystem_mode::honda;
+}
+
+tree_skeleton grow_resumable(const tree_spec& spec, const grow_options& o, const tree_spec& recorded, growth_resume& r,
+                             grow_report* report, growth_debug* debug) {
+  r.from_step = 0;
+  r.resumed_at = 0;
+  if (can_resume(spec)) {
+    const int k = first_changed_step(recorded, spec);
+    // Step k's own state is recorded before its keyframes apply, so the latest state at or before
+    // k will do; INT_MAX (no change) regrows from the last recorded step, the same tree again.
+    for (int from = int(std::min<int64_t>(k, int64_t(r.honda.size()) - 1)); k >= 1 && from >= 1; --from)
+      if (r.honda[size_t(from)]) {
+        r.from_step = from;
+        break;
+      }
+    r.record_steps.clear();
+    for (const keyframe& kf : spec.keyframes) r.record_steps.push_back(kf.step);
+    if (r.record_steps.empty()) r.record_steps.push_back(INT_MAX);   // nothing to record
+  } else {
+    r.honda.clear();
+  }
+  grow_options opt = o;
+  opt.resume = can_resume(spec) ? &r : nullptr;
+  return grow(spec, opt, report, debug);
+}
+
+}  // namespace sylva
