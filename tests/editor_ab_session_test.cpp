@@ -86,3 +86,34 @@ TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   EXPECT_GT(d_differ, 0.01) << "B was edited: the halves should differ";
   fs::remove_all(dir);
 }
+
+// Slot B's unsaved work has its own recovery file, and comes back as slot B on the next start.
+TEST(EditorABSession, SlotBsUnsavedWorkIsRecoveredAsSlotB) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_ab_recovery_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "home");
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  auto run = [&](const std::string& script) {
+    std::ofstream(dir / "script.txt") << script;
+    const std::string log = (dir / "log.txt").string();
+    const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
+                            "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(log);
+    std::stringstream out;
+    out << in.rdbuf();
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, out.str());
+  };
+  // First session: B edited, A untouched; it ends without asking (as a crash would).
+  auto [code1, out1] = run("wait_tree\nab_duplicate\nset derivations=7\nwait_tree\nexpect_recovery_b 1\nexpect_recovery 0\n");
+  ASSERT_EQ(code1, 0) << out1;
+  ASSERT_TRUE(fs::exists(dir / "home" / ".recovery_b.json"));
+  // Second: the prompt offers B's work; restored, B holds it (selected, to regrow) and A is as opened.
+  auto [code2, out2] = run("expect_prompt Restore unsaved work?\nanswer Restore\nframes 2\nwait_tree\nframes 3\nwait_tree\n"
+                           "expect_param derivations=7\nexpect_modified 1\nab_select a\nexpect_param derivations=10\n"
+                           "expect_modified 0\n");
+  EXPECT_EQ(code2, 0) << out2;
+  EXPECT_EQ(out2.find("FAIL"), std::string::npos) << out2;
+  fs::remove_all(dir);
+}
