@@ -189,19 +189,54 @@ vec3 wind_branch(float amp, float phase, float freq) {
   float a = length(r);
   return a > 0.8 ? r * (0.8 / a) : r;
 }
-vec3 wind_sway(vec3 p, int node) {
-  if (u_wind_on == 0) return p;
-  vec4 a = texelFetch(u_wind, 3 * node), b = texelFetch(u_wind, 3 * node + 1), c = texelFetch(u_wind, 3 * node + 2);
-  if (b.w > 0.0) p = b.xyz + wind_rotate(p - b.xyz, wind_branch(b.w, c.z, c.w));
-  if (a.w > 0.0) p = a.xyz + wind_rotate(p - a.xyz, wind_branch(a.w, c.x, c.y));
-  float h = clamp(p.y - u_wind_ground, 0.0, u_wind_height);
-  return p + u_wind_toward * (u_wind_trunk * h * h / (2.0 * u_wind_height));
+mat3 wind_rotation(vec3 w) {   // Rodrigues as a matrix: c I + s [k]x + (1 - c) k k^T
+  float a = length(w);
+  if (a < 1e-9) return mat3(1.0);
+  vec3 k = w / a;
+  float c = cos(a);
+  return c * mat3(1.0) + sin(a) * mat3(0.0, k.z, -k.y, -k.z, 0.0, k.x, k.y, -k.x, 0.0) + (1.0 - c) * outerProduct(k, k);
 }
-// Leaf flutter: the blade flaps along its normal, more toward the tip (tip 0 at the petiole, 1 at the tip).
-vec3 wind_flutter(vec3 p, vec3 n, float tip, float size, float phase) {
+// The sway of point p on `node`, and of the surface frame there: the normal n and the tangents t, b
+// turn with the branch rotations; the trunk's bend is a shear p += toward f(h), f = theta h^2 / 2H,
+// whose Jacobian J = I + toward (f'(h) up)^T moves tangents by J (t += toward f' t.y) and normals by
+// J^-T (n -= up f' (toward . n)), so the lighting follows the sway exactly.
+vec3 wind_sway_frame(vec3 p, int node, inout vec3 n, inout vec3 t, inout vec3 b) {
   if (u_wind_on == 0) return p;
-  float s = sin(WIND_TWO_PI * u_wind_leaf_hz * u_wind_time + phase + 2.0 * tip);
-  return p + n * (u_wind_flutter * min(u_wind_strength, 1.0) * 0.3 * size * tip * s);
+  vec4 ta = texelFetch(u_wind, 3 * node), tb = texelFetch(u_wind, 3 * node + 1), tc = texelFetch(u_wind, 3 * node + 2);
+  if (tb.w > 0.0) {
+    mat3 r = wind_rotation(wind_branch(tb.w, tc.z, tc.w));
+    p = tb.xyz + r * (p - tb.xyz); n = r * n; t = r * t; b = r * b;
+  }
+  if (ta.w > 0.0) {
+    mat3 r = wind_rotation(wind_branch(ta.w, tc.x, tc.y));
+    p = ta.xyz + r * (p - ta.xyz); n = r * n; t = r * t; b = r * b;
+  }
+  float h = p.y - u_wind_ground;
+  float hc = clamp(h, 0.0, u_wind_height);
+  float slope = h > 0.0 && h < u_wind_height ? u_wind_trunk * h / u_wind_height : 0.0;   // f'(h)
+  n.y -= slope * dot(u_wind_toward, n);
+  t += u_wind_toward * (slope * t.y);
+  b += u_wind_toward * (slope * b.y);
+  return p + u_wind_toward * (u_wind_trunk * hc * hc / (2.0 * u_wind_height));
+}
+vec3 wind_sway(vec3 p, int node) {   // position only (the frame's work is dead code, dropped by the compiler)
+  vec3 n = vec3(0.0), t = vec3(0.0), b = vec3(0.0);
+  return wind_sway_frame(p, node, n, t, b);
+}
+// Leaf flutter: the blade flaps along its normal n, more toward the tip (tip 0 at the petiole, 1 at
+// the tip): offset n A tip sin(psi), psi = w t + phase + 2 tip, A = flutter 0.3 size. Along the
+// blade (b, `size` metres per unit of tip) that offset's slope is g = A / size (sin psi + 2 tip cos psi),
+// so the blade's frame turns about its tangent: b += g n, n -= g b.
+vec3 wind_flutter_frame(vec3 p, inout vec3 n, inout vec3 b, float tip, float size, float phase) {
+  if (u_wind_on == 0) return p;
+  float psi = WIND_TWO_PI * u_wind_leaf_hz * u_wind_time + phase + 2.0 * tip;
+  float k = u_wind_flutter * min(u_wind_strength, 1.0) * 0.3;
+  vec3 out_p = p + n * (k * size * tip * sin(psi));
+  float g = k * (sin(psi) + 2.0 * tip * cos(psi));
+  vec3 n0 = n;
+  n = n - b * g;
+  b = b + n0 * g;
+  return out_p;
 }
 )";
 }

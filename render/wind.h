@@ -96,9 +96,11 @@ glm::vec3 wind_displace(const wind_rig& rig, const wind_motion& m, uint32_t node
 // The rotation (axis * angle, radians) of a branch with amplitude `amp`, phase, frequency multiplier at t.
 glm::vec3 wind_branch_rotation(const wind_motion& m, float amp, float phase, float freq, float t);
 
-// GLSL (#version-less) that declares the wind uniforms and `vec3 wind_sway(vec3 p, int node)`,
-// `vec3 wind_flutter(vec3 p, vec3 n, float tip, float size, float phase)`; included by the bark
-// and leaf vertex shaders (render/gl/renderer.cpp). Uniform names: see set_wind_uniforms.
+// GLSL (#version-less) that declares the wind uniforms and
+// `vec3 wind_sway_frame(vec3 p, int node, inout vec3 n, inout vec3 t, inout vec3 b)` (the sway of a
+// point and of its normal and tangents), `vec3 wind_sway(vec3 p, int node)` (position only),
+// `vec3 wind_flutter_frame(vec3 p, inout vec3 n, inout vec3 b, float tip, float size, float phase)`;
+// included by the bark and leaf vertex shaders (render/gl/renderer.cpp). Uniforms: set_wind_uniforms.
 const char* wind_glsl();
 
 // ---------------------------------------------------------------- glTF skin (export)
