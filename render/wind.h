@@ -124,9 +124,14 @@ struct wind_skin {
   int merged = 0;                           // of which merged into their nearest jointed ancestor
   std::string message;                      // "" or a note for the user (merges)
 };
-// Joints on each trunk (up to 4 segments) and on the thickest major and minor branches up to
-// `max_joints`; the other branches merge into their nearest jointed ancestor branch (the trunk last).
-wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_joints = wind_max_joints);
+inline constexpr int wind_trunk_segments_max = 12;
+
+// Joints on each trunk (one segment per trunk internode, at least 8 when the trunk has them and up
+// to `max_trunk_segments` as far as the major branches leave joints over) and on the thickest major
+// and minor branches up to `max_joints`; the other branches merge into their nearest jointed
+// ancestor branch (the trunk last).
+wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_joints = wind_max_joints,
+                          int max_trunk_segments = wind_trunk_segments_max);
 
 // Local rotation of joint j at time t (the joint's rest frame is the identity rotation).
 glm::quat wind_joint_rotation(const wind_skin& s, const wind_motion& m, size_t j, float t);
