@@ -153,3 +153,93 @@ TEST_F(WindNormals, LightingFollowsTheSway) {
   EXPECT_LT(vs_cpu * 5, vs_unturned) << "the shading matches the turned normals, not the rest ones";
   EXPECT_LT(vs_cpu, size_t(size * size / 200)) << "shader and CPU pose agree but at leaf card edges (the CPU poses each card rigidly)";
 }
+
+// Leaf flutter: the blade flaps along its normal, more toward the tip, and wind_flutter_frame turns
+// its frame by the flap's slope. The GLSL itself is run (transform feedback) at points along a
+// blade; the blade's direction, taken by central differences of the returned positions, must be
+// the returned bitangent's, and the returned normal perpendicular to it.
+TEST_F(WindNormals, LeafFlutterTurnsTheBladeFrame) {
+  const std::string vs = std::string("#version 330 core\n") + wind_glsl() + R"(
+uniform float u_size; uniform float u_phase; uniform int u_steps;
+out vec3 o_p; out vec3 o_n; out vec3 o_b;
+void main() {
+  float tip = float(gl_VertexID) / float(u_steps);
+  vec3 n = vec3(0.0, 0.0, 1.0), b = vec3(0.0, 1.0, 0.0);
+  o_p = wind_flutter_frame(vec3(0.0, tip * u_size, 0.0), n, b, tip, u_size, u_phase);
+  o_n = n; o_b = b;
+}
+)";
+  auto compile = [](GLenum type, const std::string& src) {
+    const GLuint s = glCreateShader(type);
+    const char* c = src.c_str();
+    glShaderSource(s, 1, &c, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    EXPECT_TRUE(ok);
+    return s;
+  };
+  const GLuint v = compile(GL_VERTEX_SHADER, vs);
+  const GLuint f = compile(GL_FRAGMENT_SHADER, "#version 330 core\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n");
+  gl_program prog;
+  prog.id = glCreateProgram();
+  glAttachShader(prog.id, v);
+  glAttachShader(prog.id, f);
+  const char* varyings[] = {"o_p", "o_n", "o_b"};
+  glTransformFeedbackVaryings(prog.id, 3, varyings, GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(prog.id);
+  GLint linked = 0;
+  glGetProgramiv(prog.id, GL_LINK_STATUS, &linked);
+  ASSERT_TRUE(linked);
+  glDeleteShader(v);
+  glDeleteShader(f);
+
+  const int steps = 200;
+  const float size = 0.5f;
+  gl_buffer out;
+  glGenBuffers(1, &out.id);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, out.id);
+  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, (steps + 1) * 9 * sizeof(float), nullptr, GL_STATIC_READ);
+  GLuint vao = 0;
+  glGenVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glUseProgram(prog.id);
+  wind_params w;
+  w.enabled = true;
+  w.strength = 1;
+  w.leaf_flutter = 1;
+  const wind_motion m = make_wind_motion(w);
+  set_uniform(prog, "u_wind_on", 1);
+  set_uniform(prog, "u_wind_strength", m.strength);
+  set_uniform(prog, "u_wind_flutter", m.flutter);
+  set_uniform(prog, "u_wind_leaf_hz", m.leaf_hz);
+  set_uniform(prog, "u_size", size);
+  set_uniform(prog, "u_steps", steps);
+  float largest_turn = 0, worst = 0;
+  for (float time : {0.0f, 0.13f, 0.31f, 0.55f}) {
+    set_uniform(prog, "u_wind_time", time);
+    set_uniform(prog, "u_phase", 1.0f + time);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out.id);
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, steps + 1);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    std::vector<glm::vec3> got(size_t(steps + 1) * 3);
+    glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, GLsizeiptr(got.size() * sizeof(glm::vec3)), got.data());
+    for (int i = 1; i < steps; ++i) {
+      const glm::vec3 along = glm::normalize(got[size_t(i + 1) * 3] - got[size_t(i - 1) * 3]);
+      const glm::vec3 n = glm::normalize(got[size_t(i) * 3 + 1]), b = glm::normalize(got[size_t(i) * 3 + 2]);
+      EXPECT_NEAR(glm::dot(along, b), 1.0f, 2e-4f) << "t " << time << " tip " << i;
+      EXPECT_NEAR(glm::dot(along, n), 0.0f, 1e-3f) << "t " << time << " tip " << i;
+      worst = std::max(worst, std::abs(glm::dot(along, n)));
+      largest_turn = std::max(largest_turn, std::acos(std::min(1.0f, n.z)));
+    }
+  }
+  std::printf("flutter: the blade turns up to %.2f rad; normal . blade direction at most %.1e\n", double(largest_turn), double(worst));
+  EXPECT_GT(largest_turn, 0.2f) << "the flap turns the blade";
+  glDeleteVertexArrays(1, &vao);
+  glUseProgram(0);
+  delete_gl(out);
+  delete_gl(prog);
+}
