@@ -16,6 +16,7 @@
 
 #include <epoxy/gl.h>
 
+#include "app/bench_set.h"
 #include "app/cli.h"
 #include "app/headless.h"
 #include "generators/timing.h"
@@ -192,6 +193,10 @@ int bench_one(const std::string& path, int repeat, bool as_json, bool with_expor
       return 1;
     }
     for (const std::string& w : loaded.warnings) warn(path, w);
+    if (std::string e = apply_bench_sets(p); !e.empty()) {
+      std::fprintf(stderr, "sylva bench: %s: %s\n", path.c_str(), e.c_str());
+      return 1;
+    }
     bool isolated = false;
     const bench_result r = measure_isolated(p, repeat, with_export, isolated);
     if (r.message[0]) {
@@ -369,6 +374,11 @@ int bench_render_presets(std::vector<std::string> paths, int repeat, bool as_jso
       continue;
     }
     for (const std::string& w : loaded.warnings) warn(path, w);
+    if (std::string e = apply_bench_sets(p); !e.empty()) {
+      std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.c_str());
+      ++failures;
+      continue;
+    }
     render_bench_result r;
     if (std::string e = measure_render(p, repeat, width, height, !preset_light, r); !e.empty()) {
       std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.c_str());

@@ -16,6 +16,7 @@
 #include <glm/common.hpp>
 
 #include "app/bench.h"
+#include "app/bench_set.h"
 #include "app/cli.h"
 #include "app/headless.h"
 #include "generators/timing.h"
@@ -150,6 +151,7 @@ int run_bench_render_ab(std::vector<std::string> paths, const std::string& b_pat
   preset pb;
   load_result loaded_b = load_preset_file(b_path, pb);
   if (!loaded_b.ok) return fail(cmd, b_path + ": " + loaded_b.error);
+  if (std::string e = apply_bench_sets(pb); !e.empty()) return fail(cmd, b_path + ": " + e);   // --set applies to both slots
   if (!as_json)
     std::printf("%-28s %-28s %9s %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", "preset A", "preset B", "tris_A", "tris_B", "A_ms",
                 "B_ms", "side_ms", "split_ms", "side/A", "split/A", "side/mx", "split/mx");
@@ -159,6 +161,11 @@ int run_bench_render_ab(std::vector<std::string> paths, const std::string& b_pat
     load_result loaded = load_preset_file(path, pa);
     if (!loaded.ok) {
       std::fprintf(stderr, "sylva %s: %s\n", cmd, loaded.error.c_str());
+      ++failures;
+      continue;
+    }
+    if (std::string e = apply_bench_sets(pa); !e.empty()) {
+      std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.c_str());
       ++failures;
       continue;
     }

@@ -1,6 +1,7 @@
 // The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
 #include "app/cli.h"
 #include "app/bench.h"
+#include "app/bench_set.h"
 #include "app/cli_lods.h"
 #include "app/editor_bench.h"
 
@@ -405,6 +406,10 @@ int run_cli(int argc, char** argv) {
                   "--render: keep each preset's sun (default: backlit with shadows and god rays, every pass runs)");
   std::string bench_ab;
   bench->add_option("--ab", bench_ab, "--render: time the A/B view (each preset as A beside this one as B) against A alone");
+  std::vector<std::string> bench_sets;
+  bench->add_option("--set", bench_sets,
+                    "key=value (as export --set, one value; repeatable) applied to every preset benched, e.g. render.wind=true")
+      ->allow_extra_args(false);   // one value per --set: the preset paths that follow stay positional
 
   try {
     app.parse(argc, argv);
@@ -422,6 +427,10 @@ int run_cli(int argc, char** argv) {
   try {
     if (params->parsed()) return run_params(params_json, params_preset);
     if (exp->parsed()) return run_export(ex);
+    if (bench->parsed()) {
+      if (std::string e = set_bench_sets(bench_sets); !e.empty()) return usage_error("bench", e);
+      if (!bench_sets.empty()) std::fprintf(stderr, "sylva bench: every preset with %s\n", bench_sets_label().c_str());
+    }
     if (bench->parsed() && bench_lods)
       return run_bench_lods(bench_paths, repeat, bench_json, bench_sheet, bench_width, bench_height);
     if (bench->parsed() && bench_edit) return run_bench_edit(bench_paths, repeat, bench_json, bench_width, bench_height);

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "app/bench.h"
+#include "app/bench_set.h"
 #include "app/headless.h"
 #include "generators/timing.h"
 #include "generators/tree_spec.h"
@@ -117,6 +118,11 @@ int run_bench_lods(std::vector<std::string> paths, int repeat, bool as_json, con
     const load_result lr = load_preset_file(path, p);
     if (!lr.ok) {
       std::fprintf(stderr, "sylva bench --lods: %s: %s\n", path.c_str(), lr.error.c_str());
+      ++failures;
+      continue;
+    }
+    if (std::string e = apply_bench_sets(p); !e.empty()) {
+      std::fprintf(stderr, "sylva bench --lods: %s: %s\n", path.c_str(), e.c_str());
       ++failures;
       continue;
     }

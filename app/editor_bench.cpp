@@ -10,6 +10,7 @@
 #include <epoxy/gl.h>
 
 #include "app/bench.h"
+#include "app/bench_set.h"
 #include "app/headless.h"
 #include "generators/timing.h"
 #include "app/worker.h"
@@ -113,6 +114,11 @@ int run_bench_edit(std::vector<std::string> paths, int repeat, bool as_json, int
     const load_result loaded = load_preset_file(path, p);
     if (!loaded.ok) {
       std::fprintf(stderr, "sylva bench --edit: %s\n", loaded.error.c_str());
+      ++failures;
+      continue;
+    }
+    if (std::string e = apply_bench_sets(p); !e.empty()) {
+      std::fprintf(stderr, "sylva bench --edit: %s: %s\n", path.c_str(), e.c_str());
       ++failures;
       continue;
     }

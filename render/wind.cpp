@@ -189,67 +189,123 @@ vec3 wind_branch(float amp, float phase, float freq) {
   float a = length(r);
   return a > 0.8 ? r * (0.8 / a) : r;
 }
-vec3 wind_sway(vec3 p, int node) {
-  if (u_wind_on == 0) return p;
-  vec4 a = texelFetch(u_wind, 3 * node), b = texelFetch(u_wind, 3 * node + 1), c = texelFetch(u_wind, 3 * node + 2);
-  if (b.w > 0.0) p = b.xyz + wind_rotate(p - b.xyz, wind_branch(b.w, c.z, c.w));
-  if (a.w > 0.0) p = a.xyz + wind_rotate(p - a.xyz, wind_branch(a.w, c.x, c.y));
-  float h = clamp(p.y - u_wind_ground, 0.0, u_wind_height);
-  return p + u_wind_toward * (u_wind_trunk * h * h / (2.0 * u_wind_height));
+mat3 wind_rotation(vec3 w) {   // Rodrigues as a matrix: c I + s [k]x + (1 - c) k k^T
+  float a = length(w);
+  if (a < 1e-9) return mat3(1.0);
+  vec3 k = w / a;
+  float c = cos(a);
+  return c * mat3(1.0) + sin(a) * mat3(0.0, k.z, -k.y, -k.z, 0.0, k.x, k.y, -k.x, 0.0) + (1.0 - c) * outerProduct(k, k);
 }
-// Leaf flutter: the blade flaps along its normal, more toward the tip (tip 0 at the petiole, 1 at the tip).
-vec3 wind_flutter(vec3 p, vec3 n, float tip, float size, float phase) {
+// The sway of point p on `node`, and of the surface frame there: the normal n and the tangents t, b
+// turn with the branch rotations; the trunk's bend is a shear p += toward f(h), f = theta h^2 / 2H,
+// whose Jacobian J = I + toward (f'(h) up)^T moves tangents by J (t += toward f' t.y) and normals by
+// J^-T (n -= up f' (toward . n)), so the lighting follows the sway exactly.
+vec3 wind_sway_frame(vec3 p, int node, inout vec3 n, inout vec3 t, inout vec3 b) {
   if (u_wind_on == 0) return p;
-  float s = sin(WIND_TWO_PI * u_wind_leaf_hz * u_wind_time + phase + 2.0 * tip);
-  return p + n * (u_wind_flutter * min(u_wind_strength, 1.0) * 0.3 * size * tip * s);
+  vec4 ta = texelFetch(u_wind, 3 * node), tb = texelFetch(u_wind, 3 * node + 1), tc = texelFetch(u_wind, 3 * node + 2);
+  if (tb.w > 0.0) {
+    mat3 r = wind_rotation(wind_branch(tb.w, tc.z, tc.w));
+    p = tb.xyz + r * (p - tb.xyz); n = r * n; t = r * t; b = r * b;
+  }
+  if (ta.w > 0.0) {
+    mat3 r = wind_rotation(wind_branch(ta.w, tc.x, tc.y));
+    p = ta.xyz + r * (p - ta.xyz); n = r * n; t = r * t; b = r * b;
+  }
+  float h = p.y - u_wind_ground;
+  float hc = clamp(h, 0.0, u_wind_height);
+  float slope = h > 0.0 && h < u_wind_height ? u_wind_trunk * h / u_wind_height : 0.0;   // f'(h)
+  n.y -= slope * dot(u_wind_toward, n);
+  t += u_wind_toward * (slope * t.y);
+  b += u_wind_toward * (slope * b.y);
+  return p + u_wind_toward * (u_wind_trunk * hc * hc / (2.0 * u_wind_height));
+}
+vec3 wind_sway(vec3 p, int node) {   // position only (the frame's work is dead code, dropped by the compiler)
+  vec3 n = vec3(0.0), t = vec3(0.0), b = vec3(0.0);
+  return wind_sway_frame(p, node, n, t, b);
+}
+// Leaf flutter: the blade flaps along its normal n, more toward the tip (tip 0 at the petiole, 1 at
+// the tip): offset n A tip sin(psi), psi = w t + phase + 2 tip, A = flutter 0.3 size. Along the
+// blade (b, `size` metres per unit of tip) that offset's slope is g = A / size (sin psi + 2 tip cos psi),
+// so the blade's frame turns about its tangent: b += g n, n -= g b.
+vec3 wind_flutter_frame(vec3 p, inout vec3 n, inout vec3 b, float tip, float size, float phase) {
+  if (u_wind_on == 0) return p;
+  float psi = WIND_TWO_PI * u_wind_leaf_hz * u_wind_time + phase + 2.0 * tip;
+  float k = u_wind_flutter * min(u_wind_strength, 1.0) * 0.3;
+  vec3 out_p = p + n * (k * size * tip * sin(psi));
+  float g = k * (sin(psi) + 2.0 * tip * cos(psi));
+  vec3 n0 = n;
+  n = n - b * g;
+  b = b + n0 * g;
+  return out_p;
 }
 )";
 }
 
 // ---------------------------------------------------------------- skin
 
-wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_joints) {
+wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_joints, int max_trunk_segments) {
   wind_skin s;
   const size_t n = t.size();
   max_joints = std::clamp(max_joints, 2, 255);
   s.joints.push_back({});   // 0: the static root at the origin
-  // Trunks: up to 4 segments per tree, fewer when many trees share the budget.
+  // Trunks: one segment per trunk internode, at least 8 (when the trunk has them) and up to
+  // `max_trunk_segments` as far as the major branches leave joints over; all trunks together keep
+  // at most half the joints. A rigid chain of N equal segments meets the viewport's bend at the
+  // joints and strays from it by theta H / 8 N^2 between them.
   std::vector<int32_t> roots;
   for (size_t i = 0; i < n; ++i)
     if (t.parent[i] < 0) roots.push_back(int32_t(i));
-  const int trunk_budget = std::max(0, std::min(max_joints / 2, max_joints - 1));
-  const int per_tree = roots.empty() ? 0 : std::clamp(trunk_budget / int(roots.size()), 0, 4);
   std::vector<int32_t> tree_of(n, 0);
   for (size_t i = 0; i < n; ++i) tree_of[i] = t.parent[i] < 0 ? int32_t(std::find(roots.begin(), roots.end(), int32_t(i)) - roots.begin()) : tree_of[size_t(t.parent[i])];
-  struct trunk_info { float base = 0, top = 0; std::vector<int> joints; std::vector<float> heights; };
+  struct trunk_info { float base = 0, top = 0; int nodes = 0; std::vector<int> joints; std::vector<float> heights; };
   std::vector<trunk_info> trunks(roots.size());
+  int majors = 0;
   for (size_t i = 0; i < n; ++i) {
     trunk_info& tr = trunks[size_t(tree_of[i])];
     if (t.parent[i] < 0) tr.base = tr.top = t.position[i].y;
     else if (rig.major[i] < 0) tr.top = std::max(tr.top, t.position[i].y);   // trunk nodes
+    tr.nodes += rig.major[i] < 0;
+    majors += rig.major[i] == int32_t(i);
   }
-  for (size_t k = 0; k < roots.size() && per_tree > 0; ++k) {
+  const int trees = std::max(int(roots.size()), 1);
+  const int trunk_budget = std::max(0, std::min(max_joints / 2, max_joints - 1)) / trees;
+  const int left_per_tree = std::max(0, max_joints - 1 - majors) / trees;
+  for (size_t k = 0; k < roots.size(); ++k) {
     trunk_info& tr = trunks[k];
-    const float len = std::max(tr.top - tr.base, 1e-3f);
-    const glm::vec3 root = t.position[size_t(roots[k])];
-    for (int j = 0; j < per_tree; ++j) tr.heights.push_back(tr.base + len * float(j) / float(per_tree));
-    tr.heights.push_back(tr.top);
-    for (int j = 0; j < per_tree; ++j) {
-      // The pivot: the trunk node nearest that height (the trunk may lean), else straight above the root.
-      const float h = tr.heights[size_t(j)];
-      glm::vec3 pivot(root.x, h, root.z);
-      float best = 1e30f;
-      for (size_t i = 0; i < n; ++i)
-        if (tree_of[i] == int32_t(k) && rig.major[i] < 0 && std::abs(t.position[i].y - h) < best)
-          best = std::abs(t.position[i].y - h), pivot = t.position[i];
+    const int edges = std::max(tr.nodes - 1, 1);
+    const int want = std::max(std::min(8, edges), left_per_tree);
+    const int segments = std::min({want, edges, std::max(max_trunk_segments, 1), trunk_budget});
+    if (segments <= 0) continue;
+    // The joints sit on the leader (from the root, always the thickest trunk child), spread evenly
+    // over its nodes; a node lower than the joint before it (a winding trunk) is skipped.
+    std::vector<size_t> leader{size_t(roots[k])};
+    for (bool more = true; more;) {
+      more = false;
+      size_t next = 0;
+      for (size_t i = leader.back() + 1; i < n; ++i)
+        if (t.parent[i] == int32_t(leader.back()) && rig.major[i] < 0 && (!more || t.radius[i] > t.radius[next]))
+          next = i, more = true;
+      if (more) leader.push_back(next);
+    }
+    const int along = std::min(segments, std::max(int(leader.size()) - 1, 1));
+    std::vector<glm::vec3> pivots;
+    for (int j = 0; j < along; ++j) {
+      const glm::vec3 pivot = t.position[leader[size_t(std::lround(double(j) * double(leader.size() - 1) / along))]];
+      if (!pivots.empty() && pivot.y <= pivots.back().y) continue;
+      pivots.push_back(pivot);
+    }
+    for (const glm::vec3& p : pivots) tr.heights.push_back(p.y);
+    tr.heights.push_back(std::max(tr.top, tr.heights.back()));
+    for (size_t j = 0; j < pivots.size(); ++j) {
       wind_joint jt;
       jt.kind = 1;
       jt.parent = j == 0 ? 0 : tr.joints.back();
-      jt.pivot = pivot;
-      // Cumulative slope over segments 0..j ~ theta * (segment j's mid height above the ground) / H,
-      // as the viewport's bend (wind_displace): each segment adds the rise of the mid height.
+      jt.pivot = pivots[j];
+      // Cumulative slope over segments 0..j = theta * (segment j's mid height above the ground) / H:
+      // the chord slope of the viewport's parabola (wind_displace) over the segment, so the chain
+      // meets the parabola at every joint. Each segment adds the rise of the mid height.
       auto mid = [&](int q) { return q < 0 ? rig.ground : 0.5f * (tr.heights[size_t(q)] + tr.heights[size_t(q) + 1]); };
-      jt.trunk_share = std::max(mid(j) - mid(j - 1), 0.0f) / rig.height;
+      jt.trunk_share = std::max(mid(int(j)) - mid(int(j) - 1), 0.0f) / rig.height;
       tr.joints.push_back(int(s.joints.size()));
       s.joints.push_back(jt);
     }
@@ -273,11 +329,14 @@ wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_j
       we.x = 1;
     }
   };
-  // Branch candidates: every major branch and every minor branch, thickest first.
+  // Branch candidates: every major branch, thickest first, then every minor branch, thickest first.
   std::vector<int32_t> cand;
   for (size_t i = 0; i < n; ++i)
     if (rig.branch_start[i] == int32_t(i) && (rig.major[i] == int32_t(i) || rig.minor[i] == int32_t(i))) cand.push_back(int32_t(i));
-  std::stable_sort(cand.begin(), cand.end(), [&](int32_t a, int32_t b) { return t.radius[size_t(a)] > t.radius[size_t(b)]; });
+  std::stable_sort(cand.begin(), cand.end(), [&](int32_t a, int32_t b) {
+    const bool ma = rig.major[size_t(a)] == a, mb = rig.major[size_t(b)] == b;
+    return ma != mb ? ma : t.radius[size_t(a)] > t.radius[size_t(b)];
+  });
   s.candidates = int(cand.size());
   std::vector<int32_t> joint_of(n, -1);   // branch start -> joint
   std::vector<int32_t> chosen;

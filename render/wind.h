@@ -96,9 +96,11 @@ glm::vec3 wind_displace(const wind_rig& rig, const wind_motion& m, uint32_t node
 // The rotation (axis * angle, radians) of a branch with amplitude `amp`, phase, frequency multiplier at t.
 glm::vec3 wind_branch_rotation(const wind_motion& m, float amp, float phase, float freq, float t);
 
-// GLSL (#version-less) that declares the wind uniforms and `vec3 wind_sway(vec3 p, int node)`,
-// `vec3 wind_flutter(vec3 p, vec3 n, float tip, float size, float phase)`; included by the bark
-// and leaf vertex shaders (render/gl/renderer.cpp). Uniform names: see set_wind_uniforms.
+// GLSL (#version-less) that declares the wind uniforms and
+// `vec3 wind_sway_frame(vec3 p, int node, inout vec3 n, inout vec3 t, inout vec3 b)` (the sway of a
+// point and of its normal and tangents), `vec3 wind_sway(vec3 p, int node)` (position only),
+// `vec3 wind_flutter_frame(vec3 p, inout vec3 n, inout vec3 b, float tip, float size, float phase)`;
+// included by the bark and leaf vertex shaders (render/gl/renderer.cpp). Uniforms: set_wind_uniforms.
 const char* wind_glsl();
 
 // ---------------------------------------------------------------- glTF skin (export)
@@ -122,9 +124,14 @@ struct wind_skin {
   int merged = 0;                           // of which merged into their nearest jointed ancestor
   std::string message;                      // "" or a note for the user (merges)
 };
-// Joints on each trunk (up to 4 segments) and on the thickest major and minor branches up to
-// `max_joints`; the other branches merge into their nearest jointed ancestor branch (the trunk last).
-wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_joints = wind_max_joints);
+inline constexpr int wind_trunk_segments_max = 12;
+
+// Joints on each trunk (one segment per trunk internode, at least 8 when the trunk has them and up
+// to `max_trunk_segments` as far as the major branches leave joints over) and on the thickest major
+// and minor branches up to `max_joints`; the other branches merge into their nearest jointed
+// ancestor branch (the trunk last).
+wind_skin build_wind_skin(const tree_skeleton& t, const wind_rig& rig, int max_joints = wind_max_joints,
+                          int max_trunk_segments = wind_trunk_segments_max);
 
 // Local rotation of joint j at time t (the joint's rest frame is the identity rotation).
 glm::quat wind_joint_rotation(const wind_skin& s, const wind_motion& m, size_t j, float t);

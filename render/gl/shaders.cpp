@@ -53,8 +53,10 @@ void main() {
   vec4 r = texelFetch(u_radius, int(a_node));
   v_alive = r.w > -1e29 ? 1.0 : 0.0;
   v_world = a_position + r.xyz + a_normal * (v_alive > 0.5 ? r.w : 0.0);
-  v_world = wind_sway(v_world, int(a_node));   // render/wind.h; a no-op while the wind is off
-  v_normal = a_normal; v_uv = a_uv; v_ao = a_ao;
+  // Wind (render/wind.h; a no-op while it is off): the normal turns with the sway.
+  vec3 n = a_normal, t_unused = vec3(0.0), b_unused = vec3(0.0);
+  v_world = wind_sway_frame(v_world, int(a_node), n, t_unused, b_unused);
+  v_normal = n; v_uv = a_uv; v_ao = a_ao;
   gl_Position = u_viewproj * vec4(v_world, 1.0);
 }
 )";
@@ -135,11 +137,12 @@ void main() {
   vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * size;
   v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend
   v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
-  // Wind (render/wind.h): the card follows its branch, and its tip flaps along the normal.
-  v_world = wind_flutter(wind_sway(v_world, int(i_node)), v_normal, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
   // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
+  // Wind (render/wind.h): the card and its frame follow its branch, and its tip flaps along the normal.
+  v_world = wind_sway_frame(v_world, int(i_node), v_normal, v_tangent, v_bitangent);
+  v_world = wind_flutter_frame(v_world, v_normal, v_bitangent, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(i_texture) % u_layers);
   v_ao = i_ao;
