@@ -16,7 +16,7 @@
 namespace sylva {
 
 // Edge in pixels of a baked card texture; the renderer scales it to its 512 px leaf layers.
-inline constexpr int card_texture_size = 256;
+inline constexpr int card_texture_size = 128;
 // Cards per LOD level and in all: leaf_instance::texture = leaf_archetype_count + k stays below 32,
 // the width of the season's deciduous mask (render/season.h).
 inline constexpr int cards_per_level = 6;
