@@ -124,13 +124,14 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       std::printf("  LOD0 px %zu, LOD%d px %zu, both %zu\n", covered, k, lv, both);
       std::printf("%s LOD%d at coverage %.3f: IoU %.3f (%zu / %zu triangles)\n", name, k, double(c.coverage[size_t(k) - 1]),
                   score, c.triangles[size_t(k)], c.triangles[0]);
-      // Issue 17 asks for 0.9. Measured (docs/LOD.md): oak 0.97 / 0.81 / 0.83, pine 0.97 / 0.90 /
-      // 0.87, maple_cards 0.95 / 0.94 / 0.95; each floor is that less about 0.02, so that it guards
-      // what exists (0.9 or more where 0.9 is reached with room).
+      // Issue 17 asks for 0.9. Measured with baked cluster cards (docs/LOD.md): oak 0.958 / 0.797 /
+      // 0.818, pine 0.973 / 0.892 / 0.885, maple_cards 0.946 / 0.944 / 0.945; each floor is that
+      // less about 0.02, so that it guards what exists. LOD0 against itself turned by half a degree
+      // scores oak 0.87 / 0.83 / 0.78 (DISABLED_Lod0AgainstItselfTurned below).
       const std::string n(name);
-      const double floors[3] = {n == "species_oak.json" ? 0.95 : n == "species_pine.json" ? 0.95 : 0.92,
-                                n == "species_oak.json" ? 0.79 : n == "species_pine.json" ? 0.88 : 0.92,
-                                n == "species_oak.json" ? 0.81 : n == "species_pine.json" ? 0.85 : 0.92};
+      const double floors[3] = {n == "species_oak.json" ? 0.94 : n == "species_pine.json" ? 0.95 : 0.92,
+                                n == "species_oak.json" ? 0.78 : n == "species_pine.json" ? 0.87 : 0.92,
+                                n == "species_oak.json" ? 0.80 : n == "species_pine.json" ? 0.86 : 0.92};
       EXPECT_GE(score, floors[k - 1]) << "LOD" << k;
     }
   }
@@ -205,7 +206,9 @@ TEST_F(LodRender, ImpostorCardKeepsLod0SilhouetteWhereItTakesOver) {
   dump(full, imp, "species_oak.json_impostor");
   std::printf("species_oak.json impostor (view %d, azimuth %.1f) at coverage %.3f: IoU %.3f\n", impostor_view(a, azimuth),
               double(azimuth), double(c.coverage[3]), score);
-  EXPECT_GE(score, 0.5);
+  // Measured 0.789 (docs/LOD.md): one flat card of the nearest view keeps the crown's outline; the
+  // gaps differ as the view is 35 - 45 = -10 degrees off.
+  EXPECT_GE(score, 0.77);
 }
 
 // The metric's own noise floor (run with --gtest_also_run_disabled_tests; docs/LOD.md): LOD0 against
