@@ -46,11 +46,20 @@ void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, c
   int level = step < t.steps ? 0 : s.wanted;
   const glm::vec3 eye = camera_eye(cam) - centre;
   const float azimuth = glm::degrees(std::atan2(eye.x, eye.z));   // from +Z toward +X, as the atlas's views
+  // A new atlas when what it was rendered with changes (its views, size, tints or cut-off).
+  const render_params& ip = s.impostor_params;
+  if (s.impostor && (ip.lod.impostor_views != p.impostor_views || ip.lod.impostor_size != p.impostor_size ||
+                     ip.leaf_color != rp.leaf_color || ip.bark_color != rp.bark_color || ip.alpha_cutoff != rp.alpha_cutoff)) {
+    s.impostor.reset();
+    s.impostor_error.clear();
+    if (s.uploaded == lod_levels) s.uploaded = -1;
+  }
   if (level == lod_levels && !s.impostor && s.impostor_error.empty()) {
     // Rendered once per chain from LOD0, then kept as leaf layers.
     upload_tree(r, m);
     set_tree_step(r, t, mp.min_radius, t.steps);
     s.atlas = render_impostor(r, rp, p.impostor_views, p.impostor_size);
+    s.impostor_params = rp;
     s.uploaded = 0;
     if (s.atlas.error.empty()) s.impostor = impostor_layers(s.atlas);
     else s.impostor_error = s.atlas.error;

@@ -23,6 +23,7 @@ struct editor_lod {
   std::shared_ptr<const baked_card_textures> impostor;   // the atlas views as leaf layers
   float impostor_azimuth = 1e9f;      // the camera azimuth the uploaded card faces (degrees)
   std::string impostor_error;         // why the impostor could not be made (LOD3 shows instead)
+  render_params impostor_params;      // what the atlas was rendered with (views, size, tints, cut-off)
   double build_ms = 0;
   // The chain is built once a new tree has been shown this long, so that dragging a slider (a new
   // tree every few frames) does not rebuild it for each one; until then LOD0 shows.
