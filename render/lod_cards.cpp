@@ -61,6 +61,7 @@ card_fit fit_card(const leaf_instance* leaves, size_t n, const glm::vec4& orient
     projected += l.size * l.size * archetype_share(l.texture) * std::abs(glm::dot(g.z, f.z));
   }
   c.size = std::max({hi_x - lo_x, hi_y - lo_y, 1e-6f});
+  if (!std::isfinite(c.size) || !std::isfinite(projected)) return card_fit{orientation, ref, 1e-6f, 0.0f};   // bad leaves
   const float mx = 0.5f * (lo_x + hi_x), my = 0.5f * (lo_y + hi_y);
   c.position = ref + f.x * mx + f.y * (my - 0.5f * c.size);
   // Leaves scattered at random over the square overlap as a Poisson process: the covered share of
@@ -100,6 +101,9 @@ leaf_texture_set bake_card(const leaf_instance* leaves, size_t n, const card_fit
         lo_i = std::min(lo_i, a * float(size)), hi_i = std::max(hi_i, a * float(size));
         lo_j = std::min(lo_j, (1 - b) * float(size)), hi_j = std::max(hi_j, (1 - b) * float(size));
       }
+    if (!(std::isfinite(lo_i) && std::isfinite(hi_i) && std::isfinite(lo_j) && std::isfinite(hi_j))) continue;
+    lo_i = std::max(lo_i, -1.0f), lo_j = std::max(lo_j, -1.0f);
+    hi_i = std::min(hi_i, float(size)), hi_j = std::min(hi_j, float(size));
     const int i0 = std::max(0, int(std::floor(lo_i))), i1 = std::min(size - 1, int(std::ceil(hi_i)));
     const int j0 = std::max(0, int(std::floor(lo_j))), j1 = std::min(size - 1, int(std::ceil(hi_j)));
     const int tw = t.color.width, th = t.color.height;

@@ -110,7 +110,9 @@ TEST(LodCards, LevelsShareOneSetAndEveryCardNamesABakedTexture) {
       baked += l.texture >= leaf_archetype_count;
       EXPECT_TRUE(std::isfinite(l.size) && l.size > 0);
     }
-    if (k == 2) EXPECT_GT(baked, size_t(0)) << "LOD3 merges leaves";
+    if (k == 2) {
+      EXPECT_GT(baked, size_t(0)) << "LOD3 merges leaves";
+    }
   }
 }
 
@@ -151,4 +153,13 @@ TEST(LodCards, ExportsCarryTheBakedTextures) {
   EXPECT_TRUE(fs::exists(dir / file)) << file;
   EXPECT_NE(slurp((dir / "tree_lod3.obj").string()).find("usemtl leaves_lod_card"), std::string::npos);
   fs::remove_all(dir);
+}
+
+TEST(LodCards, BadLeavesBakeNothingAndNeverCrash) {
+  leaf_instance bad[3] = {flat_leaf({0, 0, 0}, 1.0f), flat_leaf({0, 0, 0}, 1.0f), flat_leaf({1e30f, 0, 0}, 1e30f)};
+  bad[1].orientation = glm::vec4(std::nanf(""), 0, 0, 1);
+  const card_fit f = fit_card(bad, 3, glm::vec4(0, 0, 0, 1));
+  EXPECT_TRUE(std::isfinite(f.size));
+  const leaf_texture_set s = bake_card(bad + 1, 2, fit_card(bad, 1, glm::vec4(0, 0, 0, 1)), 32);
+  EXPECT_EQ(s.color.pixels.size(), size_t(32 * 32 * 4));
 }
