@@ -65,7 +65,9 @@ void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, c
     else s.impostor_error = s.atlas.error;
     s.atlas.color.clear(), s.atlas.color.shrink_to_fit(), s.atlas.normal.clear(), s.atlas.normal.shrink_to_fit();
   }
-  if (level == lod_levels && !s.impostor) level = lod_levels - 1;   // no impostor: LOD3 stands in
+  // No impostor, or the user's own leaf texture replacing every leaf layer (the atlas views too):
+  // LOD3 stands in.
+  if (level == lod_levels && (!s.impostor || r.user_leaf)) level = lod_levels - 1;
   if (level == lod_levels) {
     // The card turns with the camera; a new upload only when it has turned by a degree.
     if (s.uploaded == level && std::abs(azimuth - s.impostor_azimuth) < 1.0f) return;
