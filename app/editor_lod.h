@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "render/gl/impostor.h"
 #include "render/gl/renderer.h"
 #include "render/lod.h"
 
@@ -15,8 +16,14 @@ struct editor_lod {
   std::unique_ptr<lod_chain> chain;   // of `built_for`; rebuilt when the tree or the budgets change
   const tree_mesh* built_for = nullptr;
   lod_params built_params;
-  int uploaded = 0;                   // the level in the renderer (0: the tree's own mesh)
-  int wanted = 0;                     // the pick, lod_levels meaning "impostor distance" (LOD3 shown)
+  int uploaded = 0;                   // the level in the renderer (0: the tree's own mesh; lod_levels: impostor)
+  int wanted = 0;                     // the pick, lod_levels meaning the impostor
+  // The impostor (render/gl/impostor.h), rendered from LOD0 the first time it is wanted for this chain.
+  impostor_atlas atlas;               // pixels dropped once the layers are made; geometry kept
+  std::shared_ptr<const baked_card_textures> impostor;   // the atlas views as leaf layers
+  float impostor_azimuth = 1e9f;      // the camera azimuth the uploaded card faces (degrees)
+  std::string impostor_error;         // why the impostor could not be made (LOD3 shows instead)
+  render_params impostor_params;      // what the atlas was rendered with (views, size, tints, cut-off)
   double build_ms = 0;
   // The chain is built once a new tree has been shown this long, so that dragging a slider (a new
   // tree every few frames) does not rebuild it for each one; until then LOD0 shows.
@@ -29,6 +36,7 @@ void editor_lod_new_tree(editor_lod& s);
 // Once a frame before drawing. Levels apply at the final step only (scrubbing shows LOD0).
 void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, const tree_mesh& m,
                        const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step);
+// Below LOD3's coverage (or with "Show LOD" 4) the impostor shows: a card facing the camera.
 // "LOD1 of 0-3: 120k 48k 18k 6k triangles" for the status bar ("" before the first build).
 std::string editor_lod_status(const editor_lod& s);
 

@@ -1,5 +1,6 @@
 // Exporters: glTF 2.0 (.glb / .gltf + .bin + PNGs), OBJ + MTL + PNGs, and the skeleton JSON.
 #include "render/export.h"
+#include "render/lod_cards.h"
 #include "render/export_wind.h"
 
 #include <sys/stat.h>
@@ -49,8 +50,9 @@ struct geometry {
 };
 
 // Leaves go into one geometry per material slot: the archetype index, or slot 0 for everything
-// when the user's leaf texture replaces the archetypes.
-constexpr int leaf_slots = leaf_archetype_count;
+// when the user's leaf texture replaces the archetypes; a LOD level's baked cluster cards
+// (render/lod_cards.h) take the slots after the archetypes'.
+constexpr int leaf_slots = leaf_archetype_count + max_baked_cards;
 
 struct tree_part {
   geometry bark;
@@ -379,6 +381,8 @@ class material_source {
  public:
   material_source(const export_options& o, std::string& warning)
       : o_(o), size_(std::clamp(o.texture_size, 16, 4096)), warning_(warning) {
+    for (const export_lod_level& l : o.lods)
+      if (l.mesh && l.mesh->cards) cards_ = l.mesh->cards;   // the levels share one set
     const std::string bark_name = bark_archetype_names[std::clamp(int(o.bark), 0, bark_archetype_count - 1)];
     user_bark_ = load("bark texture", o.bark_texture, "using the procedural " + bark_name + " bark", bark_color_);
     user_bark_normal_ = load("bark normal map", o.bark_normal_texture,
@@ -409,7 +413,9 @@ class material_source {
     return user_bark_ ? "bark_custom" : std::string("bark_") + bark_archetype_names[std::clamp(int(o_.bark), 0, bark_archetype_count - 1)];
   }
   std::string leaf_name(int slot) const {
-    return user_leaf_ ? "leaves_custom" : std::string("leaves_") + leaf_archetype_names[std::clamp(slot, 0, leaf_slots - 1)];
+    if (user_leaf_) return "leaves_custom";
+    if (slot >= leaf_archetype_count) return "leaves_lod_card" + std::to_string(slot - leaf_archetype_count);
+    return std::string("leaves_") + leaf_archetype_names[std::clamp(slot, 0, leaf_archetype_count - 1)];
   }
   float alpha_cutoff() const { return std::clamp(o_.alpha_cutoff, 0.0f, 1.0f); }
 
@@ -431,8 +437,17 @@ class material_source {
     auto& cached = leaves_[size_t(slot)];
     if (cached) return &*cached;
     material_pngs m;
+    const size_t card = size_t(std::max(slot - leaf_archetype_count, 0));
     if (user_leaf_) {
       m.color = png_of(leaf_);
+    } else if (slot >= leaf_archetype_count) {
+      // A baked cluster card, tinted as the leaves it was baked from.
+      if (cards_ && card < cards_->sets.size()) {
+        m.color = encode(tinted_texture(cards_->sets[card].color, season_color(cards_->source[card])));
+        m.normal = encode(cards_->sets[card].normal);
+      } else {
+        m.color = encode(image{1, 1, 4, {128, 128, 128, 255}});   // a card index no set names: plain grey
+      }
     } else if (auto p = procedural_pngs(false, slot, size_, o_.texture_seed, season_color(slot), error)) {
       m = *p;
     }
@@ -472,6 +487,7 @@ class material_source {
   user_image bark_color_, bark_normal_, leaf_;
   std::optional<material_pngs> bark_;
   std::array<std::optional<material_pngs>, leaf_slots> leaves_;
+  std::shared_ptr<const baked_card_textures> cards_;
 };
 
 // Percent-encodes a file name for a glTF uri (RFC 3986: unreserved characters stay).

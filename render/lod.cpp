@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
+#include "render/lod_cards.h"
 #include "render/textures.h"
 #include "generators/vec_util.h"
 
@@ -382,11 +384,19 @@ std::vector<std::pair<size_t, size_t>> group_leaves(const leaf_input& in, size_t
 // One card per group: centred on the group's leaves, oriented as the member nearest that centre,
 // covering the leaves' opaque area (sum of sides^2 times each texture's alpha coverage, over the
 // card texture's) but no wider than 3x the group's spread, so the crown's outline stays.
+// The card texture is baked from the tree's own leaves (render/lod_cards.h): a few representative
+// groups of the level, at evenly spaced quantiles of their expected coverage, are rasterised onto
+// their cards' planes into `baked`, and every merged card takes the one whose expected coverage is
+// nearest its own; the card's area rule then uses that texture's own opaque share. Without room
+// for more baked textures, the cluster archetype `card_texture` stands in.
 void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t>>& groups, uint8_t card_texture,
-                float area_gain, tree_mesh& m) {
+                float area_gain, baked_card_textures& baked, tree_mesh& m) {
   m.leaves.clear();
   m.leaves.reserve(groups.size());
-  for (const auto& [a, b] : groups) {
+  struct merged { size_t group, slot; card_fit fit; glm::vec3 centre; float opaque, spread; };
+  std::vector<merged> cards;
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto [a, b] = groups[gi];
     if (b - a == 1) { m.leaves.push_back(in.leaves[a]); continue; }
     glm::vec3 c(0);
     float opaque = 0, occl = 0;
@@ -408,19 +418,45 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
       spread = std::max(spread, d + 0.5f * in.leaves[k].size);
       if (d < best) { best = d; nearest = k; }
     }
-    // The card's opaque area matches its leaves' opaque area (each texture's alpha coverage), so a
-    // sparse cluster texture standing for solid leaves grows to cover as many pixels. The cap, 3x
-    // the group's spread, lets a tight whorl's card reach the disc its leaves sweep; 2x held oak
-    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/lod_render_test.cpp, docs/LOD.md).
-    const float side = std::min(std::sqrt(opaque / alpha_coverage(card_texture) * area_gain), 3.0f * spread);
     leaf_instance card = in.leaves[nearest];
-    card.size = side;
-    card.position = c - rotate(card.orientation, glm::vec3(0, 0.5f * side, 0));
     card.born = born;
     card.died = died;
     card.texture = card_texture;
     card.occlusion = uint8_t(std::clamp(occl / float(b - a), 0.0f, 255.0f));
+    cards.push_back({gi, m.leaves.size(), fit_card(&in.leaves[a], b - a, card.orientation), c, opaque, spread});
     m.leaves.push_back(card);
+  }
+  std::vector<std::pair<float, int>> tiles;   // expected coverage, texture index
+  std::vector<size_t> order(cards.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return cards[x].fit.coverage < cards[y].fit.coverage; });
+  const size_t room = size_t(max_baked_cards) - std::min(baked.sets.size(), size_t(max_baked_cards));
+  const size_t count = std::min({size_t(cards_per_level), order.size(), room});
+  for (size_t q = 0; q < count; ++q) {
+    const merged& p = cards[order[(2 * q + 1) * order.size() / (2 * count)]];
+    const auto [a, b] = groups[p.group];
+    baked.sets.push_back(bake_card(&in.leaves[a], b - a, p.fit));
+    std::array<int, leaf_archetype_count> votes{};
+    for (size_t k = a; k < b; ++k) ++votes[size_t(std::clamp(int(in.leaves[k].texture), 0, leaf_archetype_count - 1))];
+    baked.source.push_back(uint8_t(std::max_element(votes.begin(), votes.end()) - votes.begin()));
+    baked.opaque.push_back(opaque_share(baked.sets.back().color));
+    tiles.push_back({p.fit.coverage, leaf_archetype_count + int(baked.sets.size()) - 1});
+  }
+  for (const merged& p : cards) {
+    leaf_instance& card = m.leaves[p.slot];
+    float share = alpha_coverage(card_texture), best = 1e30f;
+    for (const auto& [cov, tex] : tiles)
+      if (std::abs(cov - p.fit.coverage) < best) {
+        best = std::abs(cov - p.fit.coverage);
+        card.texture = uint8_t(tex);
+        share = baked.opaque[size_t(tex - leaf_archetype_count)];
+      }
+    // The card's opaque area matches its leaves' opaque area (each texture's alpha coverage), so a
+    // sparse card texture standing for solid leaves grows to cover as many pixels. The cap, 3x
+    // the group's spread, lets a tight whorl's card reach the disc its leaves sweep; 2x held oak
+    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/lod_render_test.cpp, docs/LOD.md).
+    card.size = std::min(std::sqrt(p.opaque / share * area_gain), 3.0f * p.spread);
+    card.position = p.centre - rotate(card.orientation, glm::vec3(0, 0.5f * card.size, 0));
   }
   // Sorted by born, with the per-step table, as LOD0's leaves.
   std::stable_sort(m.leaves.begin(), m.leaves.end(), [](const leaf_instance& x, const leaf_instance& y) { return x.born < y.born; });
@@ -488,6 +524,9 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
 
   c.reduced = true;
   std::vector<kept_axis> axes;
+  // Merged cards get textures baked from the tree's own leaves (render/lod_cards.h), shared by the
+  // three levels (every level's mesh points at the same set).
+  auto baked = std::make_shared<baked_card_textures>();
   for (int k = 1; k < lod_levels; ++k) {
     const float b = c.budget[size_t(k)] / 100.0f;
     const size_t target = size_t(double(t0) * b);
@@ -520,7 +559,9 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     const size_t bark_tris = out.index.size() / 3;
     const size_t cards = (target > bark_tris ? target - bark_tris : 0) / 2;
     // A merged card stands for its leaves' area; 1.0 keeps the total card area of LOD0.
-    emit_cards(leaves, group_leaves(leaves, std::max<size_t>(cards, leaves.leaves.empty() ? 0 : 1)), card_texture, 1.0f, out);
+    emit_cards(leaves, group_leaves(leaves, std::max<size_t>(cards, leaves.leaves.empty() ? 0 : 1)), card_texture, 1.0f,
+               *baked, out);
+    out.cards = baked;
     out.bounds_min = m.bounds_min;
     out.bounds_max = m.bounds_max;
     bake_crown_occlusion(out);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,8 @@ struct leaf_instance {
   uint8_t occlusion = 255; // sky visibility baked from the depth inside the crown (255: open sky)
 };
 
+struct baked_card_textures;   // render/lod_cards.h
+
 struct tree_mesh {
   // Bark: rings of radial_segments+1 vertices (the seam is duplicated for UVs): one per node, a
   // base ring per lateral, rings inserted where a branch curves, collars and the root flare, and
@@ -98,6 +101,9 @@ struct tree_mesh {
   int steps = 0;
   int radial_segments = 0;           // ring stride is radial_segments + 1
   std::string message;               // for the status bar, e.g. the leaf cap was reached
+  // LOD levels only (render/lod_cards.h): cluster cards baked from the tree's own leaves; a leaf
+  // with texture leaf_archetype_count + k uses card k. Null for LOD0.
+  std::shared_ptr<const baked_card_textures> cards;
   size_t triangles() const { return index.size() / 3; }
 };
 

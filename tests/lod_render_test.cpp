@@ -124,13 +124,14 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       std::printf("  LOD0 px %zu, LOD%d px %zu, both %zu\n", covered, k, lv, both);
       std::printf("%s LOD%d at coverage %.3f: IoU %.3f (%zu / %zu triangles)\n", name, k, double(c.coverage[size_t(k) - 1]),
                   score, c.triangles[size_t(k)], c.triangles[0]);
-      // Issue 17 asks for 0.9. Measured (docs/LOD.md): oak 0.97 / 0.81 / 0.83, pine 0.97 / 0.90 /
-      // 0.87, maple_cards 0.95 / 0.94 / 0.95; each floor is that less about 0.02, so that it guards
-      // what exists (0.9 or more where 0.9 is reached with room).
+      // Issue 17 asks for 0.9. Measured with baked cluster cards (docs/LOD.md): oak 0.958 / 0.797 /
+      // 0.818, pine 0.973 / 0.892 / 0.885, maple_cards 0.946 / 0.944 / 0.945; each floor is that
+      // less about 0.02, so that it guards what exists. LOD0 against itself turned by half a degree
+      // scores oak 0.87 / 0.83 / 0.78 (DISABLED_Lod0AgainstItselfTurned below).
       const std::string n(name);
-      const double floors[3] = {n == "species_oak.json" ? 0.95 : n == "species_pine.json" ? 0.95 : 0.92,
-                                n == "species_oak.json" ? 0.79 : n == "species_pine.json" ? 0.88 : 0.92,
-                                n == "species_oak.json" ? 0.81 : n == "species_pine.json" ? 0.85 : 0.92};
+      const double floors[3] = {n == "species_oak.json" ? 0.94 : n == "species_pine.json" ? 0.95 : 0.92,
+                                n == "species_oak.json" ? 0.78 : n == "species_pine.json" ? 0.87 : 0.92,
+                                n == "species_oak.json" ? 0.80 : n == "species_pine.json" ? 0.86 : 0.92};
       EXPECT_GE(score, floors[k - 1]) << "LOD" << k;
     }
   }
@@ -178,4 +179,57 @@ TEST_F(LodRender, ImpostorAtlasHasEveryViewWithAlphaAndNormals) {
   std::string color, normal;
   ASSERT_EQ(impostor_pngs(a, color, normal), "");
   EXPECT_EQ(color.substr(1, 3), "PNG");
+}
+
+// The viewport's impostor (render/gl/impostor.h): one camera-facing card showing the atlas view
+// nearest the camera, drawn by the leaf pipeline, against LOD0 where it takes over from LOD3.
+TEST_F(LodRender, ImpostorCardKeepsLod0SilhouetteWhereItTakesOver) {
+  preset p;
+  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_oak.json", p).ok);
+  const tree_skeleton t = grow(p.spec, grow_options{});
+  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+  const lod_chain c = build_lods(t, m, p.mesh, p.render.lod);
+  upload_tree(r, m);
+  set_tree_step(r, t, p.mesh.min_radius, t.steps);
+  const impostor_atlas a = render_impostor(r, p.render, 8, 512);
+  ASSERT_EQ(a.error, "");
+  const auto layers = impostor_layers(a);
+  ASSERT_EQ(layers->sets.size(), size_t(8));
+  mask_render view(r, m, c.coverage[3]);
+  const glm::vec3 eye = camera_eye(view.cam) - view.cam.target;
+  const float azimuth = glm::degrees(std::atan2(eye.x, eye.z));
+  const tree_mesh card = impostor_mesh(a, layers, m, azimuth);
+  ASSERT_EQ(card.leaves.size(), size_t(1));
+  EXPECT_EQ(card.leaves[0].texture, impostor_texture_base + leaf_archetype_count + impostor_view(a, azimuth));
+  const std::vector<bool> full = view.mask(m, t), imp = view.mask(card, t);
+  const double score = iou(full, imp);
+  dump(full, imp, "species_oak.json_impostor");
+  std::printf("species_oak.json impostor (view %d, azimuth %.1f) at coverage %.3f: IoU %.3f\n", impostor_view(a, azimuth),
+              double(azimuth), double(c.coverage[3]), score);
+  // Measured 0.789 (docs/LOD.md): one flat card of the nearest view keeps the crown's outline; the
+  // gaps differ as the view is 35 - 45 = -10 degrees off.
+  EXPECT_GE(score, 0.77);
+}
+
+// The metric's own noise floor (run with --gtest_also_run_disabled_tests; docs/LOD.md): LOD0 against
+// itself with the camera turned by 0.5 and 2 degrees about the tree, at each takeover coverage. The
+// crown's gaps are a pixel or two wide there, so a shift of one pixel changes many of them.
+
+TEST_F(LodRender, DISABLED_Lod0AgainstItselfTurned) {
+  for (const char* name : {"species_oak.json", "species_pine.json"}) {
+    preset p;
+    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name, p).ok);
+    const tree_skeleton t = grow(p.spec, grow_options{});
+    const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+    const lod_chain c = build_lods(t, m, p.mesh, p.render.lod);
+    for (int k = 1; k < lod_levels; ++k) {
+      for (float dy : {0.5f, 2.0f}) {
+        mask_render view(r, m, c.coverage[size_t(k) - 1]);
+        const std::vector<bool> full = view.mask(m, t);
+        view.cam.yaw += dy;
+        const std::vector<bool> turned = view.mask(m, t);
+        std::printf("%s LOD0 vs LOD0 turned %.1f deg at coverage %.3f: IoU %.3f\n", name, double(dy), double(c.coverage[size_t(k) - 1]), iou(full, turned));
+      }
+    }
+  }
 }

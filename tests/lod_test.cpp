@@ -6,6 +6,7 @@
 #include "generators/tree_spec.h"
 #include "render/preset.h"
 #include "render/lod.h"
+#include "render/lod_cards.h"
 #include "render/textures.h"
 
 using namespace sylva;
@@ -74,7 +75,16 @@ TEST(Lod, MergedCardsKeepTheOpaqueLeafArea) {
     for (size_t i = 0; i < size_t(im.width) * size_t(im.height); ++i) n += im.pixels[i * 4 + 3] >= 128;
     cover[a] = double(n) / double(size_t(im.width) * size_t(im.height));
   }
-  auto opaque = [&](const leaf_instance& l) { return double(l.size) * l.size * cover[std::min<int>(l.texture, leaf_archetype_count - 1)]; };
+  // A baked cluster card (render/lod_cards.h) counts its own texture's opaque share.
+  const auto& baked = c.level[0].cards;
+  ASSERT_NE(baked, nullptr);
+  auto opaque = [&](const leaf_instance& l) {
+    const double share = l.texture < leaf_archetype_count ? cover[l.texture]
+                         : size_t(l.texture - leaf_archetype_count) < baked->opaque.size()
+                             ? double(baked->opaque[size_t(l.texture - leaf_archetype_count)])
+                             : 1.0;
+    return double(l.size) * l.size * share;
+  };
   double area0 = 0;
   for (const leaf_instance& l : g.m.leaves)
     if (l.born <= g.m.steps && g.m.steps < l.died) area0 += opaque(l);

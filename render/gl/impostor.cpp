@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "generators/timing.h"
@@ -186,6 +188,71 @@ std::string impostor_pngs(const impostor_atlas& a, std::string& color_png, std::
   if (std::string e = encode_png(img, color_png); !e.empty()) return e;
   img.pixels.assign(a.normal.begin(), a.normal.end());
   return encode_png(img, normal_png);
+}
+
+std::shared_ptr<const baked_card_textures> impostor_layers(const impostor_atlas& a) {
+  auto out = std::make_shared<baked_card_textures>();
+  if (a.views <= 0 || a.cell <= 0 || a.color.size() != size_t(a.width) * size_t(a.height) * 4 || a.normal.size() != a.color.size())
+    return out;
+  for (int k = 0; k < a.views; ++k) {
+    const float az = 6.2831853f * float(k) / float(a.views);
+    // View k's card frame: x to the image's right, y up, z toward the camera (render_impostor's camera).
+    const glm::vec3 x(std::cos(az), 0, -std::sin(az)), y(0, 1, 0), z(std::sin(az), 0, std::cos(az));
+    leaf_texture_set set;
+    for (image* im : {&set.color, &set.normal, &set.thickness}) {
+      im->width = im->height = a.cell;
+      im->channels = im == &set.color ? 4 : 3;
+      im->pixels.assign(size_t(a.cell) * size_t(a.cell) * size_t(im->channels), 0);   // thickness 0: no glow through
+    }
+    const int x0 = (k % a.columns) * a.cell, y0 = (k / a.columns) * a.cell;
+    for (int j = 0; j < a.cell; ++j)
+      for (int i = 0; i < a.cell; ++i) {
+        const size_t from = (size_t(y0 + j) * size_t(a.width) + size_t(x0 + i)) * 4, to = size_t(j) * size_t(a.cell) + size_t(i);
+        std::copy_n(a.color.begin() + std::ptrdiff_t(from), 4, set.color.pixels.begin() + std::ptrdiff_t(to * 4));
+        glm::vec3 n = glm::vec3(a.normal[from], a.normal[from + 1], a.normal[from + 2]) / 127.5f - 1.0f;
+        glm::vec3 t(glm::dot(n, x), glm::dot(n, y), glm::dot(n, z));
+        t = a.normal[from + 3] >= 128 && glm::length(t) > 0.1f ? glm::normalize(t) : glm::vec3(0, 0, 1);
+        for (int c = 0; c < 3; ++c) set.normal.pixels[to * 3 + size_t(c)] = uint8_t(std::clamp((t[c] + 1.0f) * 127.5f, 0.0f, 255.0f));
+      }
+    out->sets.push_back(std::move(set));
+    out->source.push_back(255);   // never deciduous: the atlas holds final colours
+  }
+  return out;
+}
+
+int impostor_view(const impostor_atlas& a, float azimuth_deg) {
+  const int views = std::max(a.views, 1);
+  const float step = 360.0f / float(views);
+  const int k = int(std::lround((std::isfinite(azimuth_deg) ? azimuth_deg : 0.0f) / step));
+  return ((k % views) + views) % views;
+}
+
+tree_mesh impostor_mesh(const impostor_atlas& a, std::shared_ptr<const baked_card_textures> layers, const tree_mesh& like,
+                        float azimuth_deg) {
+  tree_mesh m;
+  m.steps = like.steps;
+  m.radial_segments = like.radial_segments;
+  m.final_radius = like.final_radius;
+  m.bounds_min = like.bounds_min;
+  m.bounds_max = like.bounds_max;
+  m.index_end.assign(size_t(std::max(like.steps, 0)) + 1, 0);
+  m.leaf_end.assign(size_t(std::max(like.steps, 0)) + 1, 0);
+  if (a.views <= 0 || !layers || layers->sets.size() != size_t(a.views)) return m;
+  const float half = 0.5f * glm::radians(std::isfinite(azimuth_deg) ? azimuth_deg : 0.0f);
+  leaf_instance l{};
+  l.orientation = glm::vec4(0, std::sin(half), 0, std::cos(half));   // about +Y: the card's +Z to the azimuth
+  l.size = a.cell_metres;
+  l.position = a.centre - glm::vec3(0, 0.5f * a.cell_metres, 0);   // the petiole point: the bottom edge's centre
+  l.born = 0;
+  l.died = 0xffff;
+  l.node = 0;
+  l.texture = uint8_t(impostor_texture_base + leaf_archetype_count + impostor_view(a, azimuth_deg));
+  l.occlusion = 255;
+  m.leaves.push_back(l);
+  m.leaf_end.back() = 1;
+  for (uint32_t& e : m.leaf_end) e = 1;
+  m.cards = std::move(layers);
+  return m;
 }
 
 }  // namespace sylva

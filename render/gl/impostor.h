@@ -2,12 +2,14 @@
 // off-screen by Sylva's renderer into one atlas of colour with alpha and one of normals.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "render/gl/renderer.h"
+#include "render/lod_cards.h"
 
 namespace sylva {
 
@@ -31,5 +33,18 @@ impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int vie
 
 // Writes the two atlases as PNG bytes ("" or the error).
 std::string impostor_pngs(const impostor_atlas& a, std::string& color_png, std::string& normal_png);
+
+// The impostor as the viewport draws it (issue 17): one card of the renderer's leaf pipeline, so it
+// is lit from the atlas's normals, shadowed and fogged as the tree is. The atlas views become leaf
+// layers (colour final: leaf_instance::texture >= impostor_texture_base skips the leaf tint; normals
+// turned into each view's card frame); the card turns about the vertical to face the camera and
+// shows the view nearest the camera's azimuth.
+inline constexpr int impostor_texture_base = 128;
+std::shared_ptr<const baked_card_textures> impostor_layers(const impostor_atlas& a);
+// View index for a camera at azimuth `azimuth_deg` (degrees from +Z toward +X, as the atlas's).
+int impostor_view(const impostor_atlas& a, float azimuth_deg);
+// A mesh of one card: `like`'s steps, node radii and bounds, no bark; the card faces `azimuth_deg`.
+tree_mesh impostor_mesh(const impostor_atlas& a, std::shared_ptr<const baked_card_textures> layers, const tree_mesh& like,
+                        float azimuth_deg);
 
 }  // namespace sylva

@@ -4,6 +4,7 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
+#include "render/lod_cards.h"
 #include "render/season.h"
 #include "render/textures.h"
 
@@ -180,13 +181,39 @@ void upload_leaf_textures(renderer_gpu& r, const std::vector<const image*>& colo
   if (layers) r.leaf_layers = layers;
 }
 
+// Nearest-texel scaling of a baked card to the array's layer size.
+image scaled_to(const image& im, int size) {
+  image out{size, size, im.channels, std::vector<uint8_t>(size_t(size) * size_t(size) * size_t(im.channels))};
+  if (im.width <= 0 || im.height <= 0) return out;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const size_t from = (size_t(y * im.height / size) * size_t(im.width) + size_t(x * im.width / size)) * size_t(im.channels);
+      std::copy_n(im.pixels.begin() + std::ptrdiff_t(from), im.channels, out.pixels.begin() + std::ptrdiff_t((size_t(y) * size_t(size) + size_t(x)) * size_t(im.channels)));
+    }
+  return out;
+}
+
+// The archetypes' layers, then the LOD levels' baked cluster cards (render/lod_cards.h), if any.
 void upload_procedural_leaves(renderer_gpu& r) {
   std::vector<const image*> color, normal, thickness;
   for (int i = 0; i < leaf_archetype_count; ++i) {
     const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), 512);
     color.push_back(&t.color), normal.push_back(&t.normal), thickness.push_back(&t.thickness);
   }
+  std::vector<image> scaled;
+  if (r.cards) {
+    scaled.reserve(r.cards->sets.size() * 3);
+    for (const leaf_texture_set& t : r.cards->sets) {
+      scaled.push_back(scaled_to(t.color, 512));
+      color.push_back(&scaled.back());
+      scaled.push_back(scaled_to(t.normal, 512));
+      normal.push_back(&scaled.back());
+      scaled.push_back(scaled_to(t.thickness, 512));
+      thickness.push_back(&scaled.back());
+    }
+  }
   upload_leaf_textures(r, color, normal, thickness);
+  r.cards_shown = r.cards.get();
 }
 
 void upload_procedural_bark(renderer_gpu& r, bark_archetype a) {
@@ -260,6 +287,7 @@ void update_user_textures(renderer_gpu& r, const render_params& rp) {
     }
   }
   if (!r.user_bark && r.bark_shown != int(rp.bark)) upload_procedural_bark(r, rp.bark);
+  if (!r.user_leaf && r.cards.get() != r.cards_shown) upload_procedural_leaves(r);   // a LOD's baked cards
   if (paths_changed) check_gl("user textures");
 }
 
@@ -485,6 +513,10 @@ frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_ca
   f.light = light_viewproj(r, f.sun, &f.texel_world);
   f.lit_ok = !r.bark.failed && !r.leaf.failed;
   f.season = season_leaf_look(rp);
+  // Baked cluster cards are deciduous when the leaves they were baked from are.
+  if (r.cards)
+    for (size_t k = 0; k < r.cards->source.size() && leaf_archetype_count + k < 32; ++k)
+      if (r.cards->source[k] < 32 && (f.season.deciduous_mask >> r.cards->source[k]) & 1u) f.season.deciduous_mask |= 1u << (leaf_archetype_count + k);
   // Rays that meet no surface cross fog only to a little past the tree: the sky model already holds
   // the atmosphere beyond.
   f.sky_distance = cam.distance + f.scene;
@@ -1020,6 +1052,7 @@ void upload_tree(renderer_gpu& r, const tree_mesh& m) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   r.uploads_total += 7;
 
+  if (m.cards) r.cards = m.cards;   // kept when LOD0 comes back: the layers stay valid
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;
   r.final_radius = m.final_radius;

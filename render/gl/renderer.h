@@ -64,6 +64,9 @@ struct renderer_gpu {
   std::string bark_texture_path, leaf_texture_path, leaf_opacity_path, texture_message;
   bool user_bark = false, user_leaf = false;
   int bark_shown = -1;                // the bark archetype uploaded; -1 none or the user's texture
+  // LOD levels' baked cluster cards (render/lod_cards.h): layers after the archetypes' in the leaf arrays.
+  std::shared_ptr<const baked_card_textures> cards;
+  const void* cards_shown = nullptr;
   // The uploaded tree.
   std::vector<uint32_t> index_end, leaf_end;
   std::vector<float> final_radius;

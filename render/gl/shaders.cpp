@@ -141,13 +141,17 @@ void main() {
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
   // Wind (render/wind.h): the card and its frame follow its branch, and its tip flaps along the normal.
+  // An impostor card (texture >= 128, render/gl/impostor.h) carries final colours and does not flutter.
   v_world = wind_sway_frame(v_world, int(i_node), v_normal, v_tangent, v_bitangent);
-  v_world = wind_flutter_frame(v_world, v_normal, v_bitangent, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
+  bool plain = i_texture >= 128u;
+  if (!plain)
+    v_world = wind_flutter_frame(v_world, v_normal, v_bitangent, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
-  v_layer = float(int(i_texture) % u_layers);
+  v_layer = float(int(i_texture & 127u) % u_layers);
   v_ao = i_ao;
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
+  if (plain) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/textures.h)
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
 }
 )";
