@@ -2,6 +2,7 @@
 // it takes over, and the impostor atlas, with the editor's renderer off-screen.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -43,6 +44,10 @@ struct mask_render {
     cam.yaw = 35;
     cam.distance = glm::length(half) / (coverage * std::tan(glm::radians(cam.fov) * 0.5f));
     EXPECT_EQ(create_color_target(screen, screen, color, fbo), "");
+    rebase();
+  }
+  // The empty frame the masks are taken against, for the current camera.
+  void rebase() {
     upload_tree(r, tree_mesh{});
     background = frame();
   }
@@ -97,6 +102,40 @@ double iou(const std::vector<bool>& a, const std::vector<bool>& b) {
   return any ? double(both) / double(any) : 1.0;
 }
 
+// The outline of a mask: a morphological closing (dilate, then erode) with a (2 radius + 1)^2
+// square, which fills gaps up to 2 radius pixels wide between leaves and keeps the crown's edge
+// where it is. At a level's takeover distance the crown's gaps are one or two pixels wide and turn
+// change with small changes of view (LOD0 against itself turned by 2 degrees: oak 0.79 / 0.79 / 0.85,
+// DISABLED_Lod0AgainstItselfTurned), so the strict mask IoU measures that speckle as much as the
+// shape; the outline IoU is the shape alone. Both are printed and both have floors.
+std::vector<bool> outline(const std::vector<bool>& m, int radius) {
+  auto pass = [&](const std::vector<bool>& in, bool dilate) {
+    std::vector<bool> rows(in.size()), out(in.size());
+    for (int y = 0; y < screen; ++y)   // separable: along x, then along y
+      for (int x = 0; x < screen; ++x) {
+        bool v = !dilate;
+        for (int d = -radius; d <= radius; ++d) {
+          const int xx = std::clamp(x + d, 0, screen - 1);
+          const bool b = in[size_t(y) * screen + size_t(xx)];
+          v = dilate ? (v || b) : (v && b);
+        }
+        rows[size_t(y) * screen + size_t(x)] = v;
+      }
+    for (int y = 0; y < screen; ++y)
+      for (int x = 0; x < screen; ++x) {
+        bool v = !dilate;
+        for (int d = -radius; d <= radius; ++d) {
+          const int yy = std::clamp(y + d, 0, screen - 1);
+          const bool b = rows[size_t(yy) * screen + size_t(x)];
+          v = dilate ? (v || b) : (v && b);
+        }
+        out[size_t(y) * screen + size_t(x)] = v;
+      }
+    return out;
+  };
+  return pass(pass(m, true), false);
+}
+
 class LodRender : public sylva_test::renderer_test {};
 
 }  // namespace
@@ -127,12 +166,18 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       // Issue 17 asks for 0.9. Measured with baked cluster cards (docs/LOD.md): oak 0.958 / 0.797 /
       // 0.818, pine 0.973 / 0.892 / 0.885, maple_cards 0.946 / 0.944 / 0.945; each floor is that
       // less about 0.02, so that it guards what exists. LOD0 against itself turned by half a degree
-      // scores oak 0.87 / 0.83 / 0.78 (DISABLED_Lod0AgainstItselfTurned below).
+      // scores oak 0.89 / 0.88 / 0.93, pine 0.97 (DISABLED_Lod0AgainstItselfTurned below): the oak's
+      // LOD2 and LOD3 miss the goal by more than view noise.
       const std::string n(name);
       const double floors[3] = {n == "species_oak.json" ? 0.94 : n == "species_pine.json" ? 0.95 : 0.92,
                                 n == "species_oak.json" ? 0.78 : n == "species_pine.json" ? 0.87 : 0.92,
                                 n == "species_oak.json" ? 0.80 : n == "species_pine.json" ? 0.86 : 0.92};
       EXPECT_GE(score, floors[k - 1]) << "LOD" << k;
+      // The outline (gaps of up to 2 px closed) reaches issue 17's 0.9 at every level of the three:
+      // measured oak 0.978 / 0.934 / 0.940, pine 0.977 / 0.924 / 0.905, maple_cards 0.976 / 0.970 / 0.971.
+      const double shape = iou(outline(full, 1), outline(level, 1));
+      std::printf("%s LOD%d outline IoU %.3f\n", name, k, shape);
+      EXPECT_GE(shape, 0.9) << "LOD" << k << " outline";
     }
   }
 }
@@ -227,8 +272,10 @@ TEST_F(LodRender, DISABLED_Lod0AgainstItselfTurned) {
         mask_render view(r, m, c.coverage[size_t(k) - 1]);
         const std::vector<bool> full = view.mask(m, t);
         view.cam.yaw += dy;
+        view.rebase();   // the sky turns with the camera: its empty frame is taken again
         const std::vector<bool> turned = view.mask(m, t);
-        std::printf("%s LOD0 vs LOD0 turned %.1f deg at coverage %.3f: IoU %.3f\n", name, double(dy), double(c.coverage[size_t(k) - 1]), iou(full, turned));
+        std::printf("%s LOD0 vs LOD0 turned %.1f deg at coverage %.3f: IoU %.3f, outline IoU %.3f\n", name, double(dy),
+                    double(c.coverage[size_t(k) - 1]), iou(full, turned), iou(outline(full, 1), outline(turned, 1)));
       }
     }
   }
