@@ -1022,9 +1022,21 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   export_result r;
   if ((ext == ".glb" || ext == ".gltf" || ext == ".obj") && season_changes_leaves(o.season)) {
-    const tree_mesh seasonal = apply_season(m, o.season);   // fallen leaves out, spring's smaller
-    if (ext == ".obj") return export_obj(t, seasonal, info, path, o);
-    return export_gltf(t, seasonal, info, path, o, ext == ".glb");
+    // Fallen leaves out, spring's smaller: on LOD0 and on every level (their baked cards fall with
+    // the leaves they were baked from). The copy's look keeps its colours but no longer drops or
+    // scales leaves, so the second pass below writes the seasonal meshes as they are.
+    const tree_mesh seasonal = apply_season(m, o.season);
+    std::vector<tree_mesh> levels;
+    levels.reserve(o.lods.size());
+    export_options so = o;
+    for (export_lod_level& l : so.lods)
+      if (l.mesh) {
+        levels.push_back(apply_season(*l.mesh, o.season));
+        l.mesh = &levels.back();
+      }
+    so.season.deciduous_keep = 1.0f;
+    so.season.deciduous_scale = 1.0f;
+    return export_tree(t, seasonal, info, path, so);
   }
   if (ext == ".glb" || ext == ".gltf") return export_gltf(t, m, info, path, o, ext == ".glb");
   if (ext == ".obj" && !o.lods.empty()) {

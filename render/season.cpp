@@ -1,6 +1,8 @@
 // Season looks (render/season.h): colours, sizes and fallen leaves for spring, summer, autumn, winter.
 #include "render/season.h"
 
+#include "render/lod_cards.h"
+
 #include <algorithm>
 
 #include <glm/common.hpp>
@@ -62,7 +64,16 @@ bool season_changes_leaves(const season_look& s) {
   return s.deciduous_mask != 0 && (s.deciduous_keep < 1.0f || s.deciduous_scale != 1.0f);
 }
 
-tree_mesh apply_season(const tree_mesh& m, const season_look& s) {
+season_look with_card_seasons(season_look s, const baked_card_textures* cards) {
+  if (!cards) return s;
+  const uint32_t archetypes = s.deciduous_mask;
+  for (size_t k = 0; k < cards->source.size() && leaf_archetype_count + k < 32; ++k)
+    if (cards->source[k] < 32 && (archetypes >> cards->source[k]) & 1u) s.deciduous_mask |= 1u << (leaf_archetype_count + k);
+  return s;
+}
+
+tree_mesh apply_season(const tree_mesh& m, const season_look& look) {
+  const season_look s = with_card_seasons(look, m.cards.get());
   tree_mesh out = m;
   if (!season_changes_leaves(s)) return out;
   out.leaves.clear();

@@ -35,6 +35,12 @@ season_look season_leaf_look(const render_params& rp);
 // index in tree_mesh::leaves): `salt` 0 decides whether the leaf is on the tree, 1 its colour mix.
 float season_leaf_random(uint32_t leaf_index, uint32_t salt);
 
+// The look with the baked cluster cards of a LOD level (render/lod_cards.h) added to the deciduous
+// mask where the leaves a card was baked from are deciduous (`cards` may be null: no change). The
+// viewport's leaf shader and apply_season use the same rule, so a winter LOD drops its broadleaf
+// cards as LOD0 drops its leaves.
+season_look with_card_seasons(season_look s, const baked_card_textures* cards);
+
 // True when the look changes which leaves exist or their size (then exports need apply_season).
 bool season_changes_leaves(const season_look& s);
 

@@ -13,6 +13,7 @@
 #include "render/export.h"
 #include "render/preset.h"
 #include "render/lod.h"
+#include "render/season.h"
 #include "render/textures.h"
 #include "run_sylva.h"
 
@@ -152,6 +153,32 @@ TEST(LodExport, ObjWritesOneFilePerLevelAllOrNothing) {
   EXPECT_NE(bad.error, "");
   EXPECT_EQ(slurp(dir / "tree_lod1.obj"), before);
   EXPECT_FALSE(fs::exists(dir / "tree_lod3.obj"));
+}
+
+TEST(LodExport, WinterDropsBroadleavesAndTheirBakedCardsOnEveryLevel) {
+  lod_scratch dir;
+  lod_tree h("species_oak");
+  h.o.impostor = nullptr;
+  ASSERT_TRUE(h.c.level[2].cards) << "LOD3 of the oak carries baked cluster cards";
+  render_params rp = h.p.render;
+  rp.season = leaf_season::winter;
+  h.o.season = season_leaf_look(rp);
+  ASSERT_TRUE(season_changes_leaves(h.o.season));
+  ASSERT_EQ(export_tree(h.t, h.m, {"oak", 1}, dir / "tree.obj", h.o).error, "");
+  auto faces = [&](const std::string& f) {
+    std::istringstream s(slurp(dir / f));
+    size_t n = 0;
+    for (std::string line; std::getline(s, line);) n += line.rfind("f ", 0) == 0;
+    return n;
+  };
+  // Every oak leaf is a broadleaf, so winter leaves only the bark: each level's triangles less two
+  // per leaf (or card), on every level's file, not only LOD0's.
+  EXPECT_EQ(faces("tree.obj"), h.c.triangles[0] - 2 * h.m.leaves.size());
+  for (int k = 1; k < lod_levels; ++k) {
+    const tree_mesh& l = h.c.level[size_t(k) - 1];
+    ASSERT_GT(l.leaves.size(), size_t(0));
+    EXPECT_EQ(faces("tree_lod" + std::to_string(k) + ".obj"), h.c.triangles[size_t(k)] - 2 * l.leaves.size()) << "LOD" << k;
+  }
 }
 
 TEST(LodExport, CliWritesLevelsAndRefusesWhatItCannot) {

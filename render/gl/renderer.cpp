@@ -512,11 +512,7 @@ frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_ca
   r.wind_reach = wind_reach(r, rp);
   f.light = light_viewproj(r, f.sun, &f.texel_world);
   f.lit_ok = !r.bark.failed && !r.leaf.failed;
-  f.season = season_leaf_look(rp);
-  // Baked cluster cards are deciduous when the leaves they were baked from are.
-  if (r.cards)
-    for (size_t k = 0; k < r.cards->source.size() && leaf_archetype_count + k < 32; ++k)
-      if (r.cards->source[k] < 32 && (f.season.deciduous_mask >> r.cards->source[k]) & 1u) f.season.deciduous_mask |= 1u << (leaf_archetype_count + k);
+  f.season = with_card_seasons(season_leaf_look(rp), r.cards.get());   // baked cards fall with their leaves
   // Rays that meet no surface cross fog only to a little past the tree: the sky model already holds
   // the atmosphere beyond.
   f.sky_distance = cam.distance + f.scene;
