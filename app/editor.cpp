@@ -80,6 +80,7 @@ struct editor_state {
   float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
+  bool framed_side_by_side = false;   // the A/B view was side by side when the tree was last framed
   uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
@@ -1959,7 +1960,15 @@ int run_editor(const editor_options& o) {
       e->step = std::clamp(e->step, 0, steps);
       if (e->step != e->renderer.step) set_tree_step(e->renderer, *e->shown->skeleton, e->shown->mesh_settings.min_radius, e->step);
     }
-    if (e->frame_now && e->shown) frame_view(e->camera, e->renderer.bounds_min, e->renderer.bounds_max, e->view_aspect);
+    if (e->frame_now && e->shown) {
+      // With A and B on screen, both trees fit (the same camera draws both).
+      glm::vec3 lo = e->renderer.bounds_min, hi = e->renderer.bounds_max;
+      if (ab_showing(e->ab) && e->ab.other.shown) {
+        lo = glm::min(lo, e->ab.other.renderer.bounds_min);
+        hi = glm::max(hi, e->ab.other.renderer.bounds_max);
+      }
+      frame_view(e->camera, lo, hi, e->view_aspect);
+    }
     e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
@@ -1971,7 +1980,12 @@ int run_editor(const editor_options& o) {
     const int vx = int(left * sx), vy = int((float(win_h) - bottom) * sy);
     const int vw = std::max(1, fb_w - vx), vh = std::max(1, int((bottom - top) * sy));
     e->view_aspect = float(vw) / float(vh);   // framing fits the tree to the 3D view's own shape
-    if (ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side) e->view_aspect = float(std::max(1, vw / 2)) / float(vh);
+    const bool side_by_side = ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side;
+    if (side_by_side) e->view_aspect = float(std::max(1, vw / 2)) / float(vh);
+    // Each half is half as wide as the view: going into or out of side by side frames the trees
+    // again for the new shape (next frame), as F would; a camera moved meanwhile is kept otherwise.
+    if (side_by_side != e->framed_side_by_side) e->frame_now = true;
+    e->framed_side_by_side = side_by_side;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);
