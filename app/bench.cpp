@@ -187,16 +187,7 @@ int bench_presets(std::vector<std::string> paths, int repeat, bool as_json, bool
 int bench_one(const std::string& path, int repeat, bool as_json, bool with_export) {
   {
     preset p;
-    load_result loaded = load_preset_file(path, p);
-    if (!loaded.ok) {
-      std::fprintf(stderr, "sylva bench: %s\n", loaded.error.c_str());
-      return 1;
-    }
-    for (const std::string& w : loaded.warnings) warn(path, w);
-    if (std::string e = apply_bench_sets(p); !e.empty()) {
-      std::fprintf(stderr, "sylva bench: %s: %s\n", path.c_str(), e.c_str());
-      return 1;
-    }
+    if (!load_bench_preset("bench", path, p)) return 1;
     bool isolated = false;
     const bench_result r = measure_isolated(p, repeat, with_export, isolated);
     if (r.message[0]) {
@@ -367,15 +358,7 @@ int bench_render_presets(std::vector<std::string> paths, int repeat, bool as_jso
   int failures = 0;
   for (const std::string& path : paths) {
     preset p;
-    load_result loaded = load_preset_file(path, p);
-    if (!loaded.ok) {
-      std::fprintf(stderr, "sylva %s: %s\n", cmd, loaded.error.c_str());
-      ++failures;
-      continue;
-    }
-    for (const std::string& w : loaded.warnings) warn(path, w);
-    if (std::string e = apply_bench_sets(p); !e.empty()) {
-      std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.c_str());
+    if (!load_bench_preset(cmd, path, p)) {
       ++failures;
       continue;
     }

@@ -149,23 +149,14 @@ int run_bench_render_ab(std::vector<std::string> paths, const std::string& b_pat
   if (std::string why = display_missing("rendering"); !why.empty()) return fail(cmd, why);
   if (paths.empty()) paths.push_back((fs::path(SYLVA_SOURCE_DIR) / "presets" / "self_organizing_default.json").string());
   preset pb;
-  load_result loaded_b = load_preset_file(b_path, pb);
-  if (!loaded_b.ok) return fail(cmd, b_path + ": " + loaded_b.error);
-  if (std::string e = apply_bench_sets(pb); !e.empty()) return fail(cmd, b_path + ": " + e);   // --set applies to both slots
+  if (!load_bench_preset(cmd, b_path, pb)) return 1;   // --set applies to both slots
   if (!as_json)
     std::printf("%-28s %-28s %9s %9s %9s %9s %9s %9s %7s %7s %7s %7s\n", "preset A", "preset B", "tris_A", "tris_B", "A_ms",
                 "B_ms", "side_ms", "split_ms", "side/A", "split/A", "side/mx", "split/mx");
   int failures = 0;
   for (const std::string& path : paths) {
     preset pa;
-    load_result loaded = load_preset_file(path, pa);
-    if (!loaded.ok) {
-      std::fprintf(stderr, "sylva %s: %s\n", cmd, loaded.error.c_str());
-      ++failures;
-      continue;
-    }
-    if (std::string e = apply_bench_sets(pa); !e.empty()) {
-      std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.c_str());
+    if (!load_bench_preset(cmd, path, pa)) {
       ++failures;
       continue;
     }

@@ -2,7 +2,9 @@
 #include "app/bench_set.h"
 
 #include <algorithm>
+#include <cstdio>
 
+#include "app/cli.h"
 #include "render/preset.h"
 
 namespace sylva {
@@ -46,6 +48,19 @@ std::string bench_sets_label() {
   std::string s;
   for (const std::string& set : kept()) s += (s.empty() ? "" : ", ") + set;
   return s;
+}
+
+bool load_bench_preset(const char* cmd, const std::string& path, preset& p) {
+  const load_result loaded = load_preset_file(path, p);
+  std::string why = loaded.ok ? "" : loaded.error;
+  if (loaded.ok) {
+    for (const std::string& w : loaded.warnings) warn(path, w);
+    why = apply_bench_sets(p);
+  }
+  if (why.empty()) return true;
+  if (why.find(path) == std::string::npos) why = path + ": " + why;
+  std::fprintf(stderr, "sylva %s: %s\n", cmd, why.c_str());
+  return false;
 }
 
 }  // namespace sylva

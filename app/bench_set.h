@@ -18,6 +18,10 @@ std::string set_bench_sets(const std::vector<std::string>& sets);
 // expand_param_sweep, one value each). Returns "" or the error; on an error `p` may be partly set.
 std::string apply_bench_sets(preset& p);
 
+// Loads one preset for a bench mode: its warnings go to stderr, then the kept assignments are
+// applied. On a failure prints "sylva CMD: PATH: why" and returns false (the caller counts it).
+bool load_bench_preset(const char* cmd, const std::string& path, preset& p);
+
 // The kept assignments joined by ", " ("" when none), for the bench's footer.
 std::string bench_sets_label();
 

@@ -115,14 +115,7 @@ int run_bench_lods(std::vector<std::string> paths, int repeat, bool as_json, con
   int failures = 0;
   for (const std::string& path : paths) {
     preset p;
-    const load_result lr = load_preset_file(path, p);
-    if (!lr.ok) {
-      std::fprintf(stderr, "sylva bench --lods: %s: %s\n", path.c_str(), lr.error.c_str());
-      ++failures;
-      continue;
-    }
-    if (std::string e = apply_bench_sets(p); !e.empty()) {
-      std::fprintf(stderr, "sylva bench --lods: %s: %s\n", path.c_str(), e.c_str());
+    if (!load_bench_preset("bench --lods", path, p)) {
       ++failures;
       continue;
     }

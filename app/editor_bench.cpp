@@ -111,14 +111,7 @@ int run_bench_edit(std::vector<std::string> paths, int repeat, bool as_json, int
   int failures = 0;
   for (const std::string& path : paths) {
     preset p;
-    const load_result loaded = load_preset_file(path, p);
-    if (!loaded.ok) {
-      std::fprintf(stderr, "sylva bench --edit: %s\n", loaded.error.c_str());
-      ++failures;
-      continue;
-    }
-    if (std::string e = apply_bench_sets(p); !e.empty()) {
-      std::fprintf(stderr, "sylva bench --edit: %s: %s\n", path.c_str(), e.c_str());
+    if (!load_bench_preset("bench --edit", path, p)) {
       ++failures;
       continue;
     }
