@@ -109,29 +109,23 @@ double iou(const std::vector<bool>& a, const std::vector<bool>& b) {
 // DISABLED_Lod0AgainstItselfTurned), so the strict mask IoU measures that speckle as much as the
 // shape; the outline IoU is the shape alone. Both are printed and both have floors.
 std::vector<bool> outline(const std::vector<bool>& m, int radius) {
-  auto pass = [&](const std::vector<bool>& in, bool dilate) {
-    std::vector<bool> rows(in.size()), out(in.size());
-    for (int y = 0; y < screen; ++y)   // separable: along x, then along y
-      for (int x = 0; x < screen; ++x) {
-        bool v = !dilate;
-        for (int d = -radius; d <= radius; ++d) {
-          const int xx = std::clamp(x + d, 0, screen - 1);
-          const bool b = in[size_t(y) * screen + size_t(xx)];
-          v = dilate ? (v || b) : (v && b);
+  // One pass of a square filter: along x, then along y (the square is separable).
+  auto pass = [&](std::vector<bool> in, bool dilate) {
+    for (const bool along_x : {true, false}) {
+      std::vector<bool> out(in.size());
+      for (int y = 0; y < screen; ++y)
+        for (int x = 0; x < screen; ++x) {
+          bool v = !dilate;
+          for (int d = -radius; d <= radius; ++d) {
+            const int xx = along_x ? std::clamp(x + d, 0, screen - 1) : x, yy = along_x ? y : std::clamp(y + d, 0, screen - 1);
+            const bool b = in[size_t(yy) * screen + size_t(xx)];
+            v = dilate ? (v || b) : (v && b);
+          }
+          out[size_t(y) * screen + size_t(x)] = v;
         }
-        rows[size_t(y) * screen + size_t(x)] = v;
-      }
-    for (int y = 0; y < screen; ++y)
-      for (int x = 0; x < screen; ++x) {
-        bool v = !dilate;
-        for (int d = -radius; d <= radius; ++d) {
-          const int yy = std::clamp(y + d, 0, screen - 1);
-          const bool b = rows[size_t(yy) * screen + size_t(x)];
-          v = dilate ? (v || b) : (v && b);
-        }
-        out[size_t(y) * screen + size_t(x)] = v;
-      }
-    return out;
+      in = std::move(out);
+    }
+    return in;
   };
   return pass(pass(m, true), false);
 }
