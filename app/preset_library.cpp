@@ -81,8 +81,16 @@ std::vector<preset_entry> scan_preset_folder(const std::string& dir, int thumbna
 bool preset_matches(const preset_entry& e, std::string_view query, const std::vector<std::string>& required_tags) {
   for (const std::string& t : required_tags)
     if (std::find(e.tags.begin(), e.tags.end(), t) == e.tags.end()) return false;
-  std::string text = lower(e.name) + "\n" + lower(e.description) + "\n" + lower(e.generator);
-  for (const std::string& t : e.tags) text += "\n" + lower(t);
+  // Appended piece by piece: `"\n" + std::string` here trips GCC 12's -Wrestrict false positive.
+  std::string text = lower(e.name);
+  for (const std::string* part : {&e.description, &e.generator}) {
+    text += '\n';
+    text += lower(*part);
+  }
+  for (const std::string& t : e.tags) {
+    text += '\n';
+    text += lower(t);
+  }
   const std::string q = lower(query);
   size_t i = 0;
   while (i < q.size()) {
