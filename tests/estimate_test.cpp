@@ -59,7 +59,7 @@ TEST(GrowthEstimate, ShippedPresetsAreWithinTheDefaultBudget) {
     if (e.exact) continue;
     tree_skeleton t = grow(p.spec, {});
     std::printf("%-40s estimate %9.0f  actual %9zu\n", entry.path().filename().c_str(), e.nodes, t.size());
-    if (t.size() < 300000) EXPECT_LT(e.nodes, 500000.0) << entry.path();
+    if (t.size() < 300000) { EXPECT_LT(e.nodes, 500000.0) << entry.path(); }
     ++checked;
   }
   std::printf("%d presets needed an extrapolation\n", checked);

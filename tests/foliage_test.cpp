@@ -80,7 +80,7 @@ TEST(Foliage, RetentionDecidesWhenLeavesFall) {
   t.died[6] = 6;
   t.died[7] = 6;
   for (const leaf& l : place_shoot_leaves(t, p, 1).leaves)
-    if (l.node >= 6) EXPECT_EQ(l.died, 6);
+    if (l.node >= 6) { EXPECT_EQ(l.died, 6); }
 }
 
 TEST(Foliage, OuterInternodesKeepLeavesNearTheTips) {

@@ -79,7 +79,7 @@ TEST(MemoryBound, RequestsStayUnderTheirBound) {
     EXPECT_GT(j["nodes"].get<double>(), 0) << c.name;
     EXPECT_LE(grow_mib, bound_mib) << c.name;
     std::printf("%-12s peak %7.1f MiB, bound %7.1f MiB\n", c.name, grow_mib, bound_mib);
-    if (std::string(c.name) == "so_runaway") EXPECT_NE(r.err.find("shadow grid memory cap reached"), std::string::npos) << r.err;
+    if (std::string(c.name) == "so_runaway") { EXPECT_NE(r.err.find("shadow grid memory cap reached"), std::string::npos) << r.err; }
   }
   std::error_code ec;
   std::filesystem::remove_all(dir, ec);

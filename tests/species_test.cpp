@@ -59,6 +59,6 @@ TEST(Species, WinterStripsTheBroadleavesAndSparesTheConifersAndPalm) {
     const bool deciduous = (s.deciduous_mask >> int(p.mesh.leaves.archetype)) & 1u;
     EXPECT_EQ(deciduous, !c.evergreen);
     // Autumn colours differ from the summer green for every broadleaf.
-    if (!c.evergreen) EXPECT_NE(p.render.autumn_color, p.render.leaf_color);
+    if (!c.evergreen) { EXPECT_NE(p.render.autumn_color, p.render.leaf_color); }
   }
 }
