@@ -6,6 +6,7 @@
 #include <climits>
 #include <cstring>
 #include <thread>
+#include <type_traits>
 
 #include "app/worker.h"
 #include "generators/keyframes.h"
@@ -47,7 +48,124 @@ TEST(Resume, FirstChangedStepComparesKeyframesStepByStep) {
   EXPECT_EQ(first_changed_step(a, b), 0);
   EXPECT_TRUE(can_resume(a));
   a.params = self_organizing_params{};
+  EXPECT_TRUE(can_resume(a));
+  a.params = guiding_vectors_params{};
   EXPECT_FALSE(can_resume(a));
+}
+
+void expect_same_debug(const growth_debug& a, const growth_debug& b) {
+  EXPECT_EQ(a.points.size(), b.points.size());
+  if (a.points.size() == b.points.size()) {
+    EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)), 0);
+  }
+  EXPECT_EQ(a.point_value, b.point_value);
+  EXPECT_EQ(a.point_kind, b.point_kind);
+  EXPECT_EQ(a.lines.size(), b.lines.size());
+  EXPECT_EQ(a.node_fate, b.node_fate);
+  EXPECT_EQ(a.node_flow, b.node_flow);
+}
+
+// A keyframe edit sequence on `first` (which holds a keyframe of `key` at `k1`): edit it, add one
+// of `key2` at `k2` > k1, edit that one, add one at `k0` < k1 (from scratch). Each resumed growth
+// equals the full regrow: skeleton, report and the growth_debug the editor draws.
+void check_edit_sequence(const tree_spec& first, const char* key2, int k0, int k2) {
+  growth_resume r;
+  grow_report rep0;
+  growth_debug dbg0;
+  const tree_skeleton t0 = grow_resumable(first, {}, tree_spec{}, r, &rep0, &dbg0);
+  EXPECT_EQ(r.resumed_at, 0);
+  expect_identical(t0, grow(first, {}));
+  EXPECT_TRUE(rep0.missed_cuts.empty());   // the cut found its branch
+  EXPECT_GT(std::count_if(t0.died.begin(), t0.died.end(), [](uint16_t d) { return d == 5; }), 0);
+  EXPECT_GT(t0.size(), 300u);
+  ASSERT_FALSE(first.keyframes.empty());
+  const int k1 = first.keyframes.back().step;
+  const std::string key1 = first.keyframes.back().key;
+  tree_spec recorded = first;
+  tree_skeleton before = t0;
+  struct edit { const char* what; const char* key; int step; float scale; int resumed; };
+  for (const edit& ed : {edit{"edit the keyframe", key1.c_str(), k1, 1.3f, k1}, edit{"add a later one", key2, k2, 0.7f, k1},
+                         edit{"edit the added one", key2, k2, 1.2f, k2}, edit{"add an earlier one", key2, k0, 0.8f, 0}}) {
+    SCOPED_TRACE(ed.what);
+    tree_spec next = recorded;
+    bool edited = false;
+    for (keyframe& k : next.keyframes)
+      if (k.step == ed.step && k.key == ed.key) k.value.x *= ed.scale, edited = true;
+    if (!edited) {
+      float base = 0;
+      std::visit([&](const auto& p) { visit_params(p, [&](const auto& v, const param_info& info) {
+                   if constexpr (std::is_arithmetic_v<std::decay_t<decltype(v)>>)
+                     if (std::string(info.key) == ed.key) base = float(v);
+                 }); }, next.params);
+      next.keyframes.push_back({ed.step, ed.key, glm::vec3(base * ed.scale, 0, 0)});
+      std::stable_sort(next.keyframes.begin(), next.keyframes.end(),
+                       [](const keyframe& a, const keyframe& b) { return a.step < b.step; });
+    }
+    grow_report rep_resumed, rep_full;
+    growth_debug dbg_resumed, dbg_full;
+    const tree_skeleton resumed = grow_resumable(next, {}, recorded, r, &rep_resumed, &dbg_resumed);
+    EXPECT_EQ(r.resumed_at, ed.resumed);
+    EXPECT_EQ(r.skipped, 0);
+    const tree_skeleton full = grow(next, {}, &rep_full, &dbg_full);
+    expect_identical(resumed, full);
+    EXPECT_EQ(resumed.leaves.size(), full.leaves.size());
+    EXPECT_EQ(rep_resumed.stop_reason, rep_full.stop_reason);
+    EXPECT_EQ(rep_resumed.message, rep_full.message);
+    EXPECT_EQ(rep_resumed.missed_cuts, rep_full.missed_cuts);
+    expect_same_debug(dbg_resumed, dbg_full);
+    if (first.wood.gravity == 0) expect_same_up_to(resumed, before, ed.resumed - 1, ed.what);
+    recorded = next;
+    before = resumed;
+  }
+}
+
+// A self-organizing tree with a cut (pruning) at step 5 on a branch the tree has then, and the
+// wood pass on, or not.
+tree_spec so_spec(bool markers, bool wood) {
+  tree_spec s = small_spec(0, markers);
+  auto& p = std::get<self_organizing_params>(s.params);
+  p.steps = markers ? 16 : 14;
+  const tree_skeleton plain = grow(s, {});
+  for (size_t i = 0; i < plain.size(); ++i)
+    if (plain.born[i] == 3 && plain.order[i] >= 1) {   // a lateral shoot of step 3
+      prune_cut c;
+      c.step = 5;
+      c.point = plain.position[i];
+      c.reach = 0.02f;
+      s.cuts.push_back(c);
+      break;
+    }
+  EXPECT_EQ(s.cuts.size(), 1u);
+  if (wood) s.wood.gravity = 1;
+  s.keyframes.push_back({8, "alpha", glm::vec3(p.alpha * 1.2f, 0, 0)});
+  return s;
+}
+
+TEST(Resume, SelfOrganizingShadowResumedEqualsAFullRegrow) {
+  check_edit_sequence(so_spec(false, false), "perception_angle", 3, 11);
+}
+
+TEST(Resume, SelfOrganizingShadowWithWoodResumedEqualsAFullRegrow) {
+  check_edit_sequence(so_spec(false, true), "sigma", 2, 12);
+}
+
+TEST(Resume, SelfOrganizingMarkersResumedEqualsAFullRegrow) {
+  check_edit_sequence(so_spec(true, false), "divergence", 4, 12);
+}
+
+// The snapshots are bounded: under a cap too small for any, none is recorded, nothing resumes, and
+// the tree is still the full regrow's.
+TEST(Resume, SelfOrganizingSnapshotsOverTheCapAreSkipped) {
+  const tree_spec first = so_spec(false, false);
+  growth_resume r;
+  r.byte_cap = 1000;
+  grow_resumable(first, {}, tree_spec{}, r);
+  EXPECT_EQ(r.skipped, 1);
+  tree_spec next = first;
+  next.keyframes.back().value.x *= 1.1f;
+  const tree_skeleton t = grow_resumable(next, {}, first, r);
+  EXPECT_EQ(r.resumed_at, 0);
+  expect_identical(t, grow(next, {}));
 }
 
 // Keyframes edited and added: each resumed growth is the full regrow's tree, bit for bit (bent by
