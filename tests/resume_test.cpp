@@ -254,5 +254,36 @@ TEST(Resume, TheWorkerResumesAKeyframeEdit) {
   stop_worker(w);
 }
 
+// The same for a self-organizing tree larger than the trial (the default, grown 29 steps), with
+// the report and the debug fields the editor shows.
+TEST(Resume, TheWorkerResumesASelfOrganizingKeyframeEdit) {
+  tree_spec spec;
+  self_organizing_params p;
+  p.steps = 29;
+  spec.params = p;
+  spec.keyframes.push_back({24, "lambda", glm::vec3(0.6f, 0, 0)});
+  mesh_params mesh;
+  mesh.leaves_enabled = false;
+  mesh.radial_segments = 3;
+  worker_state w;
+  start_worker(w);
+  auto r0 = wait_for(w, post_request(w, spec, mesh));
+  ASSERT_TRUE(r0 && r0->skeleton);
+  EXPECT_GT(r0->skeleton->size(), 20000u);
+  EXPECT_EQ(r0->resumed_at, 0);
+  spec.keyframes[0].value.x = 0.5f;
+  auto r1 = wait_for(w, post_request(w, spec, mesh));
+  ASSERT_TRUE(r1 && r1->skeleton);
+  EXPECT_EQ(r1->resumed_at, 24);
+  grow_report rep;
+  growth_debug dbg;
+  expect_identical(*r1->skeleton, grow(spec, {}, &rep, &dbg));
+  EXPECT_EQ(r1->report.message, rep.message);
+  EXPECT_EQ(r1->report.stop_reason, rep.stop_reason);
+  ASSERT_TRUE(r1->debug);
+  expect_same_debug(*r1->debug, dbg);
+  stop_worker(w);
+}
+
 }  // namespace
 }  // namespace sylva
