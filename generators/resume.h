@@ -36,6 +36,9 @@ struct growth_resume {
   int resumed_at = 0;                                      // out: the step growth started at (0: from scratch)
 };
 
+// The bytes held by the recorded self-organizing snapshots.
+size_t recorded_bytes(const growth_resume& r);
+
 // The first step whose keyframes differ between the two specs; INT_MAX when the specs are equal,
 // 0 when anything but the keyframes differs (the generator, params, seed, wood or cuts).
 int first_changed_step(const tree_spec& a, const tree_spec& b);

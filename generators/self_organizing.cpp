@@ -510,6 +510,13 @@ size_t snapshot_bytes(const tree_skeleton& t, const so_vars& v) {
 
 }  // namespace
 
+size_t recorded_bytes(const growth_resume& r) {
+  size_t n = 0;
+  for (const auto& x : r.self_organizing)
+    if (x) n += x->bytes;
+  return n;
+}
+
 tree_skeleton grow_self_organizing(const self_organizing_params& params, const grow_options& o, grow_report* report,
                                    growth_debug* debug) {
   grow_report local;
@@ -546,6 +553,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   float div = glm::radians(p.divergence);
   int step = 0;
   int first = 1;
+  bool resumed = false;
   std::vector<int32_t> roots;
   growth_resume* const resume = o.resume;
   std::vector<std::shared_ptr<const so_snapshot>>* const snaps = resume ? &resume->self_organizing : nullptr;
@@ -561,10 +569,11 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     first = resume->from_step;
     step = first - 1;
     resume->resumed_at = first;
+    resumed = true;
     for (int k = 0; k < t.tree_count; ++k) roots.push_back(k);   // the seedlings are the first nodes
   }
   const bool shadow = p.environment == so_environment::shadow;   // keyframes cannot change it
-  if (first == 1) {
+  if (!resumed) {
   std::string warning;
   const std::vector<glm::vec3> roots_at = place_trees(p, r, warning);
   if (!warning.empty()) rep.message = warning;
@@ -603,14 +612,15 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.markers.build();
     for (int32_t i : roots) st.remove_markers_near(t.position[i]);
   }
-  }  // first == 1
+  }  // !resumed
 
   std::vector<int32_t> grown;  // nodes made this step
   std::vector<float> last_flow;
-  if (resume && resume->record) snaps->resize(size_t(first));   // what is recorded from here on is replaced
+  // What is recorded from here on is replaced; the state resumed from stays (it is this state).
+  if (resume && resume->record) snaps->resize(size_t(first) + (resumed ? 1 : 0));
   for (int T = first; T <= steps; ++T) {
     if (o.cancelled()) { rep.cancelled = true; break; }
-    if (resume && resume->record) {
+    if (resume && resume->record && !(T == first && resumed)) {
       const std::vector<int>& only = resume->record_steps;
       snaps->resize(size_t(T) + 1);
       if (only.empty() || std::find(only.begin(), only.end(), T) != only.end()) {

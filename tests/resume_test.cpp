@@ -153,6 +153,26 @@ TEST(Resume, SelfOrganizingMarkersResumedEqualsAFullRegrow) {
   check_edit_sequence(so_spec(true, false), "divergence", 4, 12);
 }
 
+// A keyframe at step 1: the state recorded there is the seedling's, after its RNG draws; resuming
+// from it must not place the trees again.
+TEST(Resume, SelfOrganizingResumesAtStepOne) {
+  for (bool markers : {false, true}) {
+    SCOPED_TRACE(markers ? "markers" : "shadow");
+    tree_spec first = small_spec(0, markers);
+    first.keyframes.push_back({1, "alpha", glm::vec3(2.2f, 0, 0)});
+    growth_resume r;
+    grow_resumable(first, {}, tree_spec{}, r);
+    EXPECT_GT(recorded_bytes(r), 0u);
+    tree_spec next = first;
+    next.keyframes[0].value.x = 2.4f;
+    grow_report a, b;
+    const tree_skeleton t = grow_resumable(next, {}, first, r, &a);
+    EXPECT_EQ(r.resumed_at, 1);
+    expect_identical(t, grow(next, {}, &b));
+    EXPECT_EQ(a.message, b.message);
+  }
+}
+
 // The snapshots are bounded: under a cap too small for any, none is recorded, nothing resumes, and
 // the tree is still the full regrow's.
 TEST(Resume, SelfOrganizingSnapshotsOverTheCapAreSkipped) {
