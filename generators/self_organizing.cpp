@@ -510,8 +510,10 @@ size_t snapshot_bytes(const tree_skeleton& t, const so_vars& v) {
 
 }  // namespace
 
+size_t sc_recorded_bytes(const growth_resume& r);   // space_colonization.cpp
+
 size_t recorded_bytes(const growth_resume& r) {
-  size_t n = 0;
+  size_t n = sc_recorded_bytes(r);
   for (const auto& x : r.self_organizing)
     if (x) n += x->bytes;
   return n;

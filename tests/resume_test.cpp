@@ -49,6 +49,8 @@ TEST(Resume, FirstChangedStepComparesKeyframesStepByStep) {
   EXPECT_TRUE(can_resume(a));
   a.params = self_organizing_params{};
   EXPECT_TRUE(can_resume(a));
+  a.params = space_colonization_params{};
+  EXPECT_TRUE(can_resume(a));
   a.params = guiding_vectors_params{};
   EXPECT_FALSE(can_resume(a));
 }
@@ -76,7 +78,9 @@ void check_edit_sequence(const tree_spec& first, const char* key2, int k0, int k
   EXPECT_EQ(r.resumed_at, 0);
   expect_identical(t0, grow(first, {}));
   EXPECT_TRUE(rep0.missed_cuts.empty());   // the cut found its branch
-  EXPECT_GT(std::count_if(t0.died.begin(), t0.died.end(), [](uint16_t d) { return d == 5; }), 0);
+  ASSERT_EQ(first.cuts.size(), 1u);
+  const int cut_step = first.cuts[0].step;
+  EXPECT_GT(std::count_if(t0.died.begin(), t0.died.end(), [&](uint16_t d) { return d == cut_step; }), 0);
   EXPECT_GT(t0.size(), 300u);
   ASSERT_FALSE(first.keyframes.empty());
   const int k1 = first.keyframes.back().step;
@@ -97,7 +101,7 @@ void check_edit_sequence(const tree_spec& first, const char* key2, int k0, int k
                    if constexpr (std::is_arithmetic_v<std::decay_t<decltype(v)>>)
                      if (std::string(info.key) == ed.key) base = float(v);
                  }); }, next.params);
-      next.keyframes.push_back({ed.step, ed.key, glm::vec3(base * ed.scale, 0, 0)});
+      next.keyframes.push_back({ed.step, ed.key, glm::vec3((base != 0 ? base : 0.3f) * ed.scale, 0, 0)});
       std::stable_sort(next.keyframes.begin(), next.keyframes.end(),
                        [](const keyframe& a, const keyframe& b) { return a.step < b.step; });
     }
@@ -151,6 +155,36 @@ TEST(Resume, SelfOrganizingShadowWithWoodResumedEqualsAFullRegrow) {
 
 TEST(Resume, SelfOrganizingMarkersResumedEqualsAFullRegrow) {
   check_edit_sequence(so_spec(true, false), "divergence", 4, 12);
+}
+
+// Space colonization resumes from a crown step (the trunk's steps are not recorded): a cut at step
+// 18 on a branch of step 16, a keyframe of the segment length D at step 22.
+tree_spec sc_spec(bool wood) {
+  tree_spec s = small_spec(1);
+  auto& p = std::get<space_colonization_params>(s.params);
+  const tree_skeleton plain = grow(s, {});
+  EXPECT_GT(plain.steps, 30);
+  for (size_t i = 0; i < plain.size(); ++i)
+    if (plain.born[i] == 16 && plain.order[i] >= 1) {
+      prune_cut c;
+      c.step = 18;
+      c.point = plain.position[i];
+      c.reach = 0.02f;
+      s.cuts.push_back(c);
+      break;
+    }
+  EXPECT_EQ(s.cuts.size(), 1u);
+  if (wood) s.wood.gravity = 1;
+  s.keyframes.push_back({22, "segment_length", glm::vec3(p.segment_length * 0.8f, 0, 0)});
+  return s;
+}
+
+TEST(Resume, SpaceColonizationResumedEqualsAFullRegrow) {
+  check_edit_sequence(sc_spec(false), "tropism_weight", 17, 27);
+}
+
+TEST(Resume, SpaceColonizationWithWoodResumedEqualsAFullRegrow) {
+  check_edit_sequence(sc_spec(true), "segment_length", 19, 25);
 }
 
 // A keyframe at step 1: the state recorded there is the seedling's, after its RNG draws; resuming
