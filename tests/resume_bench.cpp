@@ -92,3 +92,38 @@ static void BM_SelfOrganizingKeyframeEditResumed(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SelfOrganizingKeyframeEditResumed)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// Space colonization (defaults but the point count; growth ends near step 50 when the points run
+// out): a keyframe of the tropism weight at step 36 edited, with 10,000 and 200,000 points.
+namespace {
+tree_spec sc_keyed(int points, float w) {
+  tree_spec s;
+  space_colonization_params p;
+  p.points = points;
+  s.params = p;
+  s.keyframes.push_back({36, "tropism_weight", glm::vec3(w, 0, 0)});
+  return s;
+}
+}  // namespace
+
+static void BM_SpaceColonizationKeyframeEditFullRegrow(benchmark::State& state) {
+  int i = 0;
+  size_t n = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(n = grow(sc_keyed(int(state.range(0)), 0.1f + 0.01f * float(i++ % 2)), {}).size());
+  state.counters["nodes"] = double(n);
+}
+BENCHMARK(BM_SpaceColonizationKeyframeEditFullRegrow)->Arg(10000)->Arg(200000)->Unit(benchmark::kMillisecond);
+
+static void BM_SpaceColonizationKeyframeEditResumed(benchmark::State& state) {
+  growth_resume r;
+  tree_spec recorded = sc_keyed(int(state.range(0)), 0.1f);
+  grow_resumable(recorded, {}, tree_spec{}, r);
+  int i = 0;
+  for (auto _ : state) {
+    const tree_spec next = sc_keyed(int(state.range(0)), 0.11f + 0.01f * float(i++ % 2));
+    benchmark::DoNotOptimize(grow_resumable(next, {}, recorded, r).size());
+    if (r.resumed_at != 36) state.SkipWithError("did not resume at 36");
+    recorded = next;
+  }
+}
+BENCHMARK(BM_SpaceColonizationKeyframeEditResumed)->Arg(10000)->Arg(200000)->Unit(benchmark::kMillisecond);
