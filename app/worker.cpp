@@ -52,8 +52,8 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
 
 void run_worker(worker_state& w) {
   std::shared_ptr<const grow_result> last;   // the worker's own previous result, for skeleton reuse
-  // Honda's states at the top of each derivation of the last full growth (generators/resume.h): an
-  // edit of keyframes from step k on resumes at k.
+  // The states recorded at the keyframe steps of the last growth (Honda, self-organizing, space
+  // colonization; generators/resume.h): an edit of keyframes from step k on resumes at k.
   growth_resume resume;
   tree_spec resume_spec;
   bool have_resume = false;

@@ -11,6 +11,7 @@
 
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
+#include "generators/resume.h"
 #include "generators/self_organizing_grid.h"
 #include "generators/vec_util.h"
 
@@ -139,10 +140,9 @@ struct marker_state {
   }
 };
 
-struct so_state {
-  const self_organizing_params& p;
-  tree_skeleton& t;
-  rng& r;
+// What the step loop carries from one step to the next besides the tree, the RNG and the working
+// params: a resumed growth (generators/resume.h) restores exactly this.
+struct so_vars {
   shadow_grid grid;
   marker_state markers;
   // Per node (generator state, not part of the skeleton).
@@ -154,13 +154,20 @@ struct so_state {
   std::vector<int32_t> buds;         // living buds supported
   std::vector<glm::vec3> opt;        // markers only, 2 per node: direction towards the bud's markers
   std::vector<glm::ivec3> voxel;     // shadow only: each node's voxel, found once (nodes never move)
+  float cos_theta = 0;               // perception cone (keyframes change it)
+};
+
+struct so_state : so_vars {
+  const self_organizing_params& p;
+  tree_skeleton& t;
+  rng& r;
   std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
   std::vector<glm::vec3> cone_offset; // the same in metres
   std::vector<float> cone_x, cone_y, cone_z;   // cone_offset by component, for the vectorised cone test
   std::vector<uint8_t> in_cone;               // scratch: which offsets pass the cone test
   int cone_radius = 0;
   std::vector<const float*> near_chunks;
-  float cos_theta = 0, reach = 0;    // perception cone, reach in metres
+  float reach = 0;                   // perception reach in metres
   float l = 0.1f;
   // k^e for whole k, filled on first use: tip counts and bud ages repeat every step, and std::pow
   // per node and step was ~7% of a default tree's growth. Same calls, so the same bits.
@@ -471,6 +478,47 @@ std::vector<glm::vec3> place_trees(const self_organizing_params& p, rng& r, std:
 
 }  // namespace
 
+// Everything the step loop reads, at the top of step k (before its keyframes and cuts): resuming
+// from it grows what a full regrow grows from there (generators/resume.h). The cone offsets, reach
+// and internode length follow from the base params, which a resume requires to be unchanged.
+struct so_snapshot {
+  tree_skeleton t;
+  rng r;
+  self_organizing_params p;   // the working params, keyframes up to k − 1 applied
+  so_vars v;
+  float div = 0;
+  grow_report rep;
+  size_t bytes = 0;
+};
+
+namespace {
+
+template <class T>
+size_t vec_bytes(const std::vector<T>& v) { return v.size() * sizeof(T); }
+
+// What a snapshot of this state holds, in bytes (the vectors' contents; the memo tables are left
+// out: they are rebuilt on use and give the same bits).
+size_t snapshot_bytes(const tree_skeleton& t, const so_vars& v) {
+  const marker_state& m = v.markers;
+  return sizeof(so_snapshot) + vec_bytes(t.position) + vec_bytes(t.parent) + vec_bytes(t.radius) + vec_bytes(t.born) +
+         vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(t.leaves) + vec_bytes(v.grid.keys) +
+         vec_bytes(v.grid.chunk_of) + vec_bytes(v.grid.cells) + vec_bytes(v.grid.chunk_pos) + vec_bytes(v.grid.scratch) +
+         vec_bytes(m.pos) + vec_bytes(m.alive) + vec_bytes(m.best_bud) + vec_bytes(m.best_d2) + vec_bytes(m.cell_key) +
+         vec_bytes(m.cell_start) + vec_bytes(m.order) + vec_bytes(v.side) + vec_bytes(v.main) + vec_bytes(v.lat) +
+         vec_bytes(v.q) + vec_bytes(v.flow) + vec_bytes(v.tips) + vec_bytes(v.buds) + vec_bytes(v.opt) + vec_bytes(v.voxel);
+}
+
+}  // namespace
+
+size_t sc_recorded_bytes(const growth_resume& r);   // space_colonization.cpp
+
+size_t recorded_bytes(const growth_resume& r) {
+  size_t n = sc_recorded_bytes(r);
+  for (const auto& x : r.self_organizing)
+    if (x) n += x->bytes;
+  return n;
+}
+
 tree_skeleton grow_self_organizing(const self_organizing_params& params, const grow_options& o, grow_report* report,
                                    growth_debug* debug) {
   grow_report local;
@@ -504,10 +552,33 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.cone_radius = R;
   }
 
+  float div = glm::radians(p.divergence);
+  int step = 0;
+  int first = 1;
+  bool resumed = false;
+  std::vector<int32_t> roots;
+  growth_resume* const resume = o.resume;
+  std::vector<std::shared_ptr<const so_snapshot>>* const snaps = resume ? &resume->self_organizing : nullptr;
+  if (resume && resume->from_step >= 1 && resume->from_step <= steps && size_t(resume->from_step) < snaps->size() &&
+      (*snaps)[size_t(resume->from_step)]) {
+    const so_snapshot& s = *(*snaps)[size_t(resume->from_step)];
+    t = s.t;
+    r = s.r;
+    p = s.p;
+    static_cast<so_vars&>(st) = s.v;
+    div = s.div;
+    rep = s.rep;
+    first = resume->from_step;
+    step = first - 1;
+    resume->resumed_at = first;
+    resumed = true;
+    for (int k = 0; k < t.tree_count; ++k) roots.push_back(k);   // the seedlings are the first nodes
+  }
+  const bool shadow = p.environment == so_environment::shadow;   // keyframes cannot change it
+  if (!resumed) {
   std::string warning;
   const std::vector<glm::vec3> roots_at = place_trees(p, r, warning);
   if (!warning.empty()) rep.message = warning;
-  std::vector<int32_t> roots;
   for (const glm::vec3& at : roots_at) {
     if (int64_t(t.size()) >= p.node_cap) break;
     // A random start for the phyllotactic spiral: otherwise every tree turns its first branch the same way.
@@ -516,8 +587,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.lat.back() = no_bud;  // the seedling has only its apical bud
   }
   t.tree_count = int(roots.size());
-  const bool shadow = p.environment == so_environment::shadow;
-  if (shadow) {
+  if (p.environment == so_environment::shadow) {
     for (int32_t i : roots) add_shadow_pyramid(st.grid, st.voxel[i], p.shadow_a, p.shadow_b, p.q_max);
   } else {
     // Markers fill an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1).
@@ -544,13 +614,30 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.markers.build();
     for (int32_t i : roots) st.remove_markers_near(t.position[i]);
   }
+  }  // !resumed
 
-  float div = glm::radians(p.divergence);
   std::vector<int32_t> grown;  // nodes made this step
   std::vector<float> last_flow;
-  int step = 0;
-  for (int T = 1; T <= steps; ++T) {
+  // What is recorded from here on is replaced; the state resumed from stays (it is this state).
+  if (resume && resume->record) snaps->resize(size_t(first) + (resumed ? 1 : 0));
+  for (int T = first; T <= steps; ++T) {
     if (o.cancelled()) { rep.cancelled = true; break; }
+    if (resume && resume->record && !(T == first && resumed)) {
+      const std::vector<int>& only = resume->record_steps;
+      snaps->resize(size_t(T) + 1);
+      if (only.empty() || std::find(only.begin(), only.end(), T) != only.end()) {
+        // Bounded: a snapshot is a deep copy, so one that would take the recorded total past the
+        // cap is skipped (and counted); an edit there resumes from an earlier one or regrows.
+        const size_t bytes = snapshot_bytes(t, st);
+        size_t held = 0;
+        for (const auto& x : *snaps)
+          if (x) held += x->bytes;
+        if (held + bytes <= resume->byte_cap)
+          (*snaps)[size_t(T)] = std::make_shared<const so_snapshot>(so_snapshot{t, r, p, st, div, rep, bytes});
+        else
+          ++resume->skipped;
+      }
+    }
     // Growth phases: new values from this step on; what the state derives from them follows.
     if (apply_keyframes(p, o.keyframes, T)) {
       clamp_all_params(p);

@@ -10,6 +10,7 @@
 
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
+#include "generators/resume.h"
 
 namespace sylva {
 namespace {
@@ -238,6 +239,33 @@ glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous,
   return dl > 1e-5f ? d / dl : n;
 }
 
+// Everything the crown loop reads at the top of step k, after its stop checks and before its
+// keyframes and cuts (generators/resume.h). The points are not in it: they are sampled again from
+// the unchanged base params and seed. acc, acc_count and stuck are zero at the top of a step.
+struct sc_snapshot {
+  tree_skeleton t;
+  std::vector<uint8_t> has_child;
+  std::vector<int32_t> last_count;
+  colonization_state s;
+  space_colonization_params p;   // the working params, keyframes up to k − 1 applied
+  float D = 0;
+  int32_t tip = 0;
+  grow_report rep;
+  size_t bytes = 0;
+};
+
+namespace {
+template <class T>
+size_t vec_bytes(const std::vector<T>& v) { return v.size() * sizeof(T); }
+}  // namespace
+
+size_t sc_recorded_bytes(const growth_resume& r) {
+  size_t n = 0;
+  for (const auto& x : r.space_colonization)
+    if (x) n += x->bytes;
+  return n;
+}
+
 tree_skeleton grow_colonization_from_points(const space_colonization_params& p_in, const std::vector<glm::vec3>& pts,
                                             const grow_options& o, grow_report* report, growth_debug* debug) {
   grow_report local;
@@ -309,7 +337,31 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       if (t.died[j] == never_died) visit_new_node(s, t.position[j], int32_t(j), k);
     while (t.died[size_t(tip)] != never_died) tip = t.parent[size_t(tip)];   // a cut trunk regrows from below
   };
-  for (int k = 0; stop.empty(); ++k) {
+  // Resuming (generators/resume.h): the crown loop starts at the recorded step.
+  growth_resume* const resume = o.resume;
+  std::vector<std::shared_ptr<const sc_snapshot>>* const snaps = resume ? &resume->space_colonization : nullptr;
+  bool resumed = false;
+  if (resume && resume->from_step >= 1 && resume->from_step <= steps && size_t(resume->from_step) < snaps->size() &&
+      (*snaps)[size_t(resume->from_step)]) {
+    const sc_snapshot& x = *(*snaps)[size_t(resume->from_step)];
+    t = x.t;
+    has_child = x.has_child;
+    last_count = x.last_count;
+    acc_count.assign(t.size(), 0);
+    acc.assign(t.size(), glm::vec3(0));
+    s = x.s;
+    s.pts = &pts;
+    p = x.p;
+    D = x.D;
+    tip = x.tip;
+    rep = x.rep;
+    step = resume->from_step - 1;
+    resume->resumed_at = resume->from_step;
+    resumed = true;
+  }
+  // What is recorded from here on is replaced; the state resumed from stays (it is this state).
+  if (resume && resume->record) snaps->resize(resumed ? size_t(step) + 2 : 1);
+  for (int k = 0; stop.empty() && !resumed; ++k) {
     compact_active(s);
     const bool reached = !s.active.empty();
     if (s.alive == 0 && k >= trunk_min) stop = "no attraction points left";
@@ -348,6 +400,23 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     if (s.active.empty()) { stop = "no node influenced"; break; }
     if (step >= steps) { stop = "step limit"; break; }
     if (o.cancelled()) { rep.cancelled = true; stop = "cancelled"; break; }
+    if (resume && resume->record && !(resumed && step + 1 == resume->resumed_at)) {
+      const int k = step + 1;
+      const std::vector<int>& only = resume->record_steps;
+      snaps->resize(size_t(k) + 1);
+      if (only.empty() || std::find(only.begin(), only.end(), k) != only.end()) {
+        // Bounded as the self-organizing snapshots are (growth_resume::byte_cap).
+        const size_t bytes = sizeof(sc_snapshot) + vec_bytes(t.position) + vec_bytes(t.parent) + vec_bytes(t.radius) +
+                             vec_bytes(t.born) + vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(has_child) +
+                             vec_bytes(last_count) + vec_bytes(s.cell_begin) + vec_bytes(s.cell_alive) +
+                             vec_bytes(s.slots) + vec_bytes(s.slot_of) + vec_bytes(s.cell_of) + vec_bytes(s.slot_pos) +
+                             vec_bytes(s.nearest) + vec_bytes(s.nearest_d2) + vec_bytes(s.killed) + vec_bytes(s.active);
+        if (recorded_bytes(*resume) + bytes <= resume->byte_cap)
+          (*snaps)[size_t(k)] = std::make_shared<const sc_snapshot>(sc_snapshot{t, has_child, last_count, s, p, D, tip, rep, bytes});
+        else
+          ++resume->skipped;
+      }
+    }
     ++step;
     key_step(step);
     if (debug) debug->lines.clear(), debug->line_color.clear(), debug->line_kind.clear();

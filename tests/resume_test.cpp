@@ -6,6 +6,7 @@
 #include <climits>
 #include <cstring>
 #include <thread>
+#include <type_traits>
 
 #include "app/worker.h"
 #include "generators/keyframes.h"
@@ -47,7 +48,178 @@ TEST(Resume, FirstChangedStepComparesKeyframesStepByStep) {
   EXPECT_EQ(first_changed_step(a, b), 0);
   EXPECT_TRUE(can_resume(a));
   a.params = self_organizing_params{};
+  EXPECT_TRUE(can_resume(a));
+  a.params = space_colonization_params{};
+  EXPECT_TRUE(can_resume(a));
+  a.params = guiding_vectors_params{};
   EXPECT_FALSE(can_resume(a));
+}
+
+void expect_same_debug(const growth_debug& a, const growth_debug& b) {
+  EXPECT_EQ(a.points.size(), b.points.size());
+  if (a.points.size() == b.points.size()) {
+    EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)), 0);
+  }
+  EXPECT_EQ(a.point_value, b.point_value);
+  EXPECT_EQ(a.point_kind, b.point_kind);
+  EXPECT_EQ(a.lines.size(), b.lines.size());
+  EXPECT_EQ(a.node_fate, b.node_fate);
+  EXPECT_EQ(a.node_flow, b.node_flow);
+}
+
+// A keyframe edit sequence on `first` (which holds a keyframe of `key` at `k1`): edit it, add one
+// of `key2` at `k2` > k1, edit that one, add one at `k0` < k1 (from scratch). Each resumed growth
+// equals the full regrow: skeleton, report and the growth_debug the editor draws.
+void check_edit_sequence(const tree_spec& first, const char* key2, int k0, int k2) {
+  growth_resume r;
+  grow_report rep0;
+  growth_debug dbg0;
+  const tree_skeleton t0 = grow_resumable(first, {}, tree_spec{}, r, &rep0, &dbg0);
+  EXPECT_EQ(r.resumed_at, 0);
+  expect_identical(t0, grow(first, {}));
+  EXPECT_TRUE(rep0.missed_cuts.empty());   // the cut found its branch
+  ASSERT_EQ(first.cuts.size(), 1u);
+  const int cut_step = first.cuts[0].step;
+  EXPECT_GT(std::count_if(t0.died.begin(), t0.died.end(), [&](uint16_t d) { return d == cut_step; }), 0);
+  EXPECT_GT(t0.size(), 300u);
+  ASSERT_FALSE(first.keyframes.empty());
+  const int k1 = first.keyframes.back().step;
+  const std::string key1 = first.keyframes.back().key;
+  tree_spec recorded = first;
+  tree_skeleton before = t0;
+  struct edit { const char* what; const char* key; int step; float scale; int resumed; };
+  for (const edit& ed : {edit{"edit the keyframe", key1.c_str(), k1, 1.3f, k1}, edit{"add a later one", key2, k2, 0.7f, k1},
+                         edit{"edit the added one", key2, k2, 1.2f, k2}, edit{"add an earlier one", key2, k0, 0.8f, 0}}) {
+    SCOPED_TRACE(ed.what);
+    tree_spec next = recorded;
+    bool edited = false;
+    for (keyframe& k : next.keyframes)
+      if (k.step == ed.step && k.key == ed.key) k.value.x *= ed.scale, edited = true;
+    if (!edited) {
+      float base = 0;
+      std::visit([&](const auto& p) { visit_params(p, [&](const auto& v, const param_info& info) {
+                   if constexpr (std::is_arithmetic_v<std::decay_t<decltype(v)>>)
+                     if (std::string(info.key) == ed.key) base = float(v);
+                 }); }, next.params);
+      next.keyframes.push_back({ed.step, ed.key, glm::vec3((base != 0 ? base : 0.3f) * ed.scale, 0, 0)});
+      std::stable_sort(next.keyframes.begin(), next.keyframes.end(),
+                       [](const keyframe& a, const keyframe& b) { return a.step < b.step; });
+    }
+    grow_report rep_resumed, rep_full;
+    growth_debug dbg_resumed, dbg_full;
+    const tree_skeleton resumed = grow_resumable(next, {}, recorded, r, &rep_resumed, &dbg_resumed);
+    EXPECT_EQ(r.resumed_at, ed.resumed);
+    EXPECT_EQ(r.skipped, 0);
+    const tree_skeleton full = grow(next, {}, &rep_full, &dbg_full);
+    expect_identical(resumed, full);
+    EXPECT_EQ(resumed.leaves.size(), full.leaves.size());
+    EXPECT_EQ(rep_resumed.stop_reason, rep_full.stop_reason);
+    EXPECT_EQ(rep_resumed.message, rep_full.message);
+    EXPECT_EQ(rep_resumed.missed_cuts, rep_full.missed_cuts);
+    expect_same_debug(dbg_resumed, dbg_full);
+    if (first.wood.gravity == 0) expect_same_up_to(resumed, before, ed.resumed - 1, ed.what);
+    recorded = next;
+    before = resumed;
+  }
+}
+
+// A self-organizing tree with a cut (pruning) at step 5 on a branch the tree has then, and the
+// wood pass on, or not.
+tree_spec so_spec(bool markers, bool wood) {
+  tree_spec s = small_spec(0, markers);
+  auto& p = std::get<self_organizing_params>(s.params);
+  p.steps = markers ? 16 : 14;
+  const tree_skeleton plain = grow(s, {});
+  for (size_t i = 0; i < plain.size(); ++i)
+    if (plain.born[i] == 3 && plain.order[i] >= 1) {   // a lateral shoot of step 3
+      prune_cut c;
+      c.step = 5;
+      c.point = plain.position[i];
+      c.reach = 0.02f;
+      s.cuts.push_back(c);
+      break;
+    }
+  EXPECT_EQ(s.cuts.size(), 1u);
+  if (wood) s.wood.gravity = 1;
+  s.keyframes.push_back({8, "alpha", glm::vec3(p.alpha * 1.2f, 0, 0)});
+  return s;
+}
+
+TEST(Resume, SelfOrganizingShadowResumedEqualsAFullRegrow) {
+  check_edit_sequence(so_spec(false, false), "perception_angle", 3, 11);
+}
+
+TEST(Resume, SelfOrganizingShadowWithWoodResumedEqualsAFullRegrow) {
+  check_edit_sequence(so_spec(false, true), "sigma", 2, 12);
+}
+
+TEST(Resume, SelfOrganizingMarkersResumedEqualsAFullRegrow) {
+  check_edit_sequence(so_spec(true, false), "divergence", 4, 12);
+}
+
+// Space colonization resumes from a crown step (the trunk's steps are not recorded): a cut at step
+// 18 on a branch of step 16, a keyframe of the segment length D at step 22.
+tree_spec sc_spec(bool wood) {
+  tree_spec s = small_spec(1);
+  auto& p = std::get<space_colonization_params>(s.params);
+  const tree_skeleton plain = grow(s, {});
+  EXPECT_GT(plain.steps, 30);
+  for (size_t i = 0; i < plain.size(); ++i)
+    if (plain.born[i] == 16 && plain.order[i] >= 1) {
+      prune_cut c;
+      c.step = 18;
+      c.point = plain.position[i];
+      c.reach = 0.02f;
+      s.cuts.push_back(c);
+      break;
+    }
+  EXPECT_EQ(s.cuts.size(), 1u);
+  if (wood) s.wood.gravity = 1;
+  s.keyframes.push_back({22, "segment_length", glm::vec3(p.segment_length * 0.8f, 0, 0)});
+  return s;
+}
+
+TEST(Resume, SpaceColonizationResumedEqualsAFullRegrow) {
+  check_edit_sequence(sc_spec(false), "tropism_weight", 17, 27);
+}
+
+TEST(Resume, SpaceColonizationWithWoodResumedEqualsAFullRegrow) {
+  check_edit_sequence(sc_spec(true), "segment_length", 19, 25);
+}
+
+// A keyframe at step 1: the state recorded there is the seedling's, after its RNG draws; resuming
+// from it must not place the trees again.
+TEST(Resume, SelfOrganizingResumesAtStepOne) {
+  for (bool markers : {false, true}) {
+    SCOPED_TRACE(markers ? "markers" : "shadow");
+    tree_spec first = small_spec(0, markers);
+    first.keyframes.push_back({1, "alpha", glm::vec3(2.2f, 0, 0)});
+    growth_resume r;
+    grow_resumable(first, {}, tree_spec{}, r);
+    EXPECT_GT(recorded_bytes(r), 0u);
+    tree_spec next = first;
+    next.keyframes[0].value.x = 2.4f;
+    grow_report a, b;
+    const tree_skeleton t = grow_resumable(next, {}, first, r, &a);
+    EXPECT_EQ(r.resumed_at, 1);
+    expect_identical(t, grow(next, {}, &b));
+    EXPECT_EQ(a.message, b.message);
+  }
+}
+
+// The snapshots are bounded: under a cap too small for any, none is recorded, nothing resumes, and
+// the tree is still the full regrow's.
+TEST(Resume, SelfOrganizingSnapshotsOverTheCapAreSkipped) {
+  const tree_spec first = so_spec(false, false);
+  growth_resume r;
+  r.byte_cap = 1000;
+  grow_resumable(first, {}, tree_spec{}, r);
+  EXPECT_EQ(r.skipped, 1);
+  tree_spec next = first;
+  next.keyframes.back().value.x *= 1.1f;
+  const tree_skeleton t = grow_resumable(next, {}, first, r);
+  EXPECT_EQ(r.resumed_at, 0);
+  expect_identical(t, grow(next, {}));
 }
 
 // Keyframes edited and added: each resumed growth is the full regrow's tree, bit for bit (bent by
@@ -133,6 +305,37 @@ TEST(Resume, TheWorkerResumesAKeyframeEdit) {
   auto r2 = wait_for(w, post_request(w, spec, mesh));
   ASSERT_TRUE(r2 && r2->skeleton);
   EXPECT_EQ(r2->resumed_at, 0);
+  stop_worker(w);
+}
+
+// The same for a self-organizing tree larger than the trial (the default, grown 29 steps), with
+// the report and the debug fields the editor shows.
+TEST(Resume, TheWorkerResumesASelfOrganizingKeyframeEdit) {
+  tree_spec spec;
+  self_organizing_params p;
+  p.steps = 29;
+  spec.params = p;
+  spec.keyframes.push_back({24, "lambda", glm::vec3(0.6f, 0, 0)});
+  mesh_params mesh;
+  mesh.leaves_enabled = false;
+  mesh.radial_segments = 3;
+  worker_state w;
+  start_worker(w);
+  auto r0 = wait_for(w, post_request(w, spec, mesh));
+  ASSERT_TRUE(r0 && r0->skeleton);
+  EXPECT_GT(r0->skeleton->size(), 20000u);
+  EXPECT_EQ(r0->resumed_at, 0);
+  spec.keyframes[0].value.x = 0.5f;
+  auto r1 = wait_for(w, post_request(w, spec, mesh));
+  ASSERT_TRUE(r1 && r1->skeleton);
+  EXPECT_EQ(r1->resumed_at, 24);
+  grow_report rep;
+  growth_debug dbg;
+  expect_identical(*r1->skeleton, grow(spec, {}, &rep, &dbg));
+  EXPECT_EQ(r1->report.message, rep.message);
+  EXPECT_EQ(r1->report.stop_reason, rep.stop_reason);
+  ASSERT_TRUE(r1->debug);
+  expect_same_debug(*r1->debug, dbg);
   stop_worker(w);
 }
 
