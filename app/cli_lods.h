@@ -25,7 +25,10 @@ std::vector<std::string> prepare_lod_export(const tree_skeleton& t, const tree_m
                                             export_options& o, lod_export_data& d);
 
 // Renders the impostor atlas of `m` in a hidden GL context ("" or why not).
-std::string make_impostor(const tree_mesh& m, const tree_skeleton& t, const preset& p, impostor_atlas& out);
+// With `worst_frame_ms`, also builds it again a view per frame as the editor does (impostor_build
+// from LOD0's own copy, then the leaf layers) and stores the longest of those steps.
+std::string make_impostor(const tree_mesh& m, const tree_skeleton& t, const preset& p, impostor_atlas& out,
+                          double* worst_frame_ms = nullptr);
 
 // `sylva bench --lods`: per preset, LOD0..3 triangles against their budgets, the median time to
 // build the levels and to render the impostor atlas. 0 when every preset was measured.

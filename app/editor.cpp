@@ -1542,7 +1542,7 @@ std::string slot_label(const preset& p) {
 //   expect_other_state STATE   until the unselected A/B slot's growth state is STATE (as expect_state)
 //   expect_recovery_b 0|1      whether slot B's autosaved recovery file exists (waits for it)
 //   wait_growing S             until the growth in progress has run S seconds (fails if it ends first)
-//   frame_median N             prints the median time of the next N frames
+//   frame_median N             prints the median (and the longest) time of the next N frames
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
@@ -1676,9 +1676,11 @@ bool run_script(editor_state& e, script_state& sc) {
         std::vector<double> ms;
         for (size_t i = 1; i < sc.frame_times.size(); ++i)
           ms.push_back(std::chrono::duration<double, std::milli>(sc.frame_times[i] - sc.frame_times[i - 1]).count());
+        const double worst = *std::max_element(ms.begin(), ms.end());   // the impostor atlas's hitch (issue 17)
         std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
         std::printf("sylva script: frame median %.2f ms over %zu frames (A/B %s)\n", ms[ms.size() / 2], ms.size(),
                     ab_showing(e.ab) ? ab_mode_label(e.ab.mode) : "off");
+        std::printf("sylva script: frame max %.2f ms\n", worst);
         std::fflush(stdout);
         sc.frame_times.clear();
       }

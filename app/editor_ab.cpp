@@ -43,7 +43,7 @@ std::string ab_start_view(ab_view& v, const std::shared_ptr<const grow_result>& 
 void ab_stop_view(ab_view& v) {
   if (v.worker) stop_worker(*v.worker);
   v.worker.reset();
-  if (v.renderer.ok) destroy_renderer(v.renderer);
+  if (v.renderer.ok) impostor_cancel(v.lod.build), destroy_renderer(v.renderer);   // a half-built impostor atlas too
   v.renderer = renderer_gpu{};
   v.shown.reset();
   v.lod = editor_lod{};

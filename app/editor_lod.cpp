@@ -2,6 +2,7 @@
 #include "app/editor_lod.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -10,14 +11,56 @@
 #include "generators/timing.h"
 
 namespace sylva {
+namespace {
+
+// Forgets the impostor and any atlas in progress.
+void drop_impostor(editor_lod& s) {
+  impostor_cancel(s.build);
+  s.build_read = false;
+  s.impostor.reset();
+  s.impostor_error.clear();
+}
+
+// One frame's share of the atlas: begin, one view, the read-back, or the layers; all that is left
+// when `force` ("Show LOD" 4 wants it now).
+void advance_impostor(editor_lod& s, renderer_gpu& r, const tree_mesh& m, const render_params& rp, bool force) {
+  using st = impostor_build::state;
+  do {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (s.build_read) {
+      s.atlas = std::move(s.build.atlas);
+      s.impostor = impostor_layers(s.atlas);
+      s.atlas.color.clear(), s.atlas.color.shrink_to_fit(), s.atlas.normal.clear(), s.atlas.normal.shrink_to_fit();
+      s.build = impostor_build{};
+      s.build_read = false;
+    } else if (s.build.st == st::idle) {
+      s.impostor_params = rp;
+      s.atlas_frames = 0;
+      s.atlas_worst_ms = 0;
+      impostor_begin(s.build, r, rp, rp.lod.impostor_views, rp.lod.impostor_size, &m);
+    } else {
+      impostor_step(s.build, r);
+    }
+    if (s.build.st == st::complete) s.build_read = true;
+    ++s.atlas_frames;
+    s.atlas_worst_ms = std::max(s.atlas_worst_ms, ms_since(t0));
+    if (s.build.st == st::failed) {
+      s.impostor_error = s.build.atlas.error.empty() ? "impostor atlas failed" : s.build.atlas.error;
+      impostor_cancel(s.build);
+      s.build_read = false;
+      return;
+    }
+  } while (force && !s.impostor);
+}
+
+}  // namespace
 
 void editor_lod_new_tree(editor_lod& s) {
   s.chain.reset();
   s.built_for = nullptr;
   s.uploaded = 0;
   s.wanted = 0;
-  s.impostor.reset();
-  s.impostor_error.clear();
+  drop_impostor(s);
   s.tree_time = std::chrono::steady_clock::now();
 }
 
@@ -34,46 +77,43 @@ void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, c
     s.built_for = &m;
     s.built_params = p;
     if (s.uploaded != 0) s.uploaded = -1;   // the uploaded level is stale: upload again
-    s.impostor.reset();
-    s.impostor_error.clear();
+    drop_impostor(s);
   }
   // The bounding sphere's size on screen picks the level; scrubbing the growth shows LOD0.
   const glm::vec3 half = 0.5f * (m.bounds_max - m.bounds_min);
   const glm::vec3 centre = 0.5f * (m.bounds_max + m.bounds_min);
   const float distance = glm::length(camera_eye(cam) - centre);
   const float coverage = screen_coverage(glm::length(half), distance, cam.fov);
-  s.wanted = p.show >= 0 ? std::min(p.show, lod_levels) : pick_lod(*s.chain, coverage, p.bias);
+  const int pick = pick_lod(*s.chain, coverage, p.bias);
+  s.wanted = p.show >= 0 ? std::min(p.show, lod_levels) : pick;
   int level = step < t.steps ? 0 : s.wanted;
   const glm::vec3 eye = camera_eye(cam) - centre;
   const float azimuth = glm::degrees(std::atan2(eye.x, eye.z));   // from +Z toward +X, as the atlas's views
-  // A new atlas when what it was rendered with changes (its views, size, tints or cut-off).
+  const float sun = impostor_sun_azimuth(rp);
+  // A new atlas when what it was (or is being) rendered with changes (its views, size, tints or cut-off).
   const render_params& ip = s.impostor_params;
-  if (s.impostor && (ip.lod.impostor_views != p.impostor_views || ip.lod.impostor_size != p.impostor_size ||
-                     ip.leaf_color != rp.leaf_color || ip.bark_color != rp.bark_color || ip.alpha_cutoff != rp.alpha_cutoff)) {
-    s.impostor.reset();
-    s.impostor_error.clear();
+  const bool atlas_started = s.impostor || s.build.st != impostor_build::state::idle;
+  if (atlas_started && (ip.lod.impostor_views != p.impostor_views || ip.lod.impostor_size != p.impostor_size ||
+                        ip.leaf_color != rp.leaf_color || ip.bark_color != rp.bark_color || ip.alpha_cutoff != rp.alpha_cutoff)) {
+    drop_impostor(s);
     if (s.uploaded == lod_levels) s.uploaded = -1;
   }
-  if (level == lod_levels && !s.impostor && s.impostor_error.empty()) {
-    // Rendered once per chain from LOD0, then kept as leaf layers.
-    upload_tree(r, m);
-    set_tree_step(r, t, mp.min_radius, t.steps);
-    s.atlas = render_impostor(r, rp, p.impostor_views, p.impostor_size);
-    s.impostor_params = rp;
-    s.uploaded = 0;
-    if (s.atlas.error.empty()) s.impostor = impostor_layers(s.atlas);
-    else s.impostor_error = s.atlas.error;
-    s.atlas.color.clear(), s.atlas.color.shrink_to_fit(), s.atlas.normal.clear(), s.atlas.normal.shrink_to_fit();
-  }
+  // The atlas is built a view per frame from LOD2's distance on (coverage below LOD2's takeover), so
+  // it is usually complete before LOD3 hands over; "Show LOD" 4 finishes it at once.
+  const bool want_atlas = step >= t.steps && ((p.show < 0 && pick >= lod_levels - 2) || p.show == lod_levels);
+  if (want_atlas && !s.impostor && s.impostor_error.empty())
+    advance_impostor(s, r, m, rp, level == lod_levels && p.show == lod_levels);
   // No impostor, or the user's own leaf texture replacing every leaf layer (the atlas views too):
   // LOD3 stands in.
   if (level == lod_levels && (!s.impostor || r.user_leaf)) level = lod_levels - 1;
   if (level == lod_levels) {
-    // The card turns with the camera; a new upload only when it has turned by a degree.
-    if (s.uploaded == level && std::abs(azimuth - s.impostor_azimuth) < 1.0f) return;
-    upload_tree(r, impostor_mesh(s.atlas, s.impostor, m, azimuth));
+    // The card turns with the camera, its shadow card with the sun; a new upload only when either
+    // has turned by a degree.
+    if (s.uploaded == level && std::abs(azimuth - s.impostor_azimuth) < 1.0f && std::abs(sun - s.impostor_sun) < 1.0f) return;
+    upload_tree(r, impostor_mesh(s.atlas, s.impostor, m, azimuth, sun));
     set_tree_step(r, t, mp.min_radius, step);
     s.impostor_azimuth = azimuth;
+    s.impostor_sun = sun;
     s.uploaded = level;
     return;
   }
@@ -95,6 +135,8 @@ std::string editor_lod_status(const editor_lod& s) {
   // Clamped budgets or a tree too small to reduce (build_lods says which).
   std::string out(buf);
   if (!s.impostor_error.empty()) out += "   (impostor: " + s.impostor_error + ")";
+  if (s.build.st == impostor_build::state::rendering)
+    out += "   (impostor atlas: " + std::to_string(s.build.next) + " of " + std::to_string(s.build.atlas.views) + " views)";
   return s.chain->message.empty() ? out : out + "   (" + s.chain->message + ")";
 }
 

@@ -18,10 +18,16 @@ struct editor_lod {
   lod_params built_params;
   int uploaded = 0;                   // the level in the renderer (0: the tree's own mesh; lod_levels: impostor)
   int wanted = 0;                     // the pick, lod_levels meaning the impostor
-  // The impostor (render/gl/impostor.h), rendered from LOD0 the first time it is wanted for this chain.
+  // The impostor (render/gl/impostor.h), rendered from LOD0 a view per frame once the tree is seen
+  // from LOD2's distance or farther (or "Show LOD" 4 asks for it); LOD3 shows until it is complete.
+  impostor_build build;               // the atlas in progress (state idle once made or dropped)
+  bool build_read = false;            // the atlas is read back; its layers are made the next frame
   impostor_atlas atlas;               // pixels dropped once the layers are made; geometry kept
   std::shared_ptr<const baked_card_textures> impostor;   // the atlas views as leaf layers
   float impostor_azimuth = 1e9f;      // the camera azimuth the uploaded card faces (degrees)
+  float impostor_sun = 1e9f;          // the sun azimuth its shadow card faces (degrees)
+  int atlas_frames = 0;               // frames the last atlas took (begin, views, read-back, layers)
+  double atlas_worst_ms = 0;          // the longest of those frames' atlas work
   std::string impostor_error;         // why the impostor could not be made (LOD3 shows instead)
   render_params impostor_params;      // what the atlas was rendered with (views, size, tints, cut-off)
   double build_ms = 0;
@@ -31,7 +37,8 @@ struct editor_lod {
 };
 inline constexpr double editor_lod_settle_ms = 300;
 
-// Call after upload_tree of a new tree: the renderer now holds LOD0 and the chain is stale.
+// Call after upload_tree of a new tree: the renderer now holds LOD0 and the chain is stale. A
+// half-built atlas is dropped (needs the GL context current).
 void editor_lod_new_tree(editor_lod& s);
 // Once a frame before drawing. Levels apply at the final step only (scrubbing shows LOD0).
 void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, const tree_mesh& m,

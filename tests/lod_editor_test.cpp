@@ -31,15 +31,25 @@ TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
   cam.target = 0.5f * (m.bounds_min + m.bounds_max);
   cam.distance = 1000;   // far below LOD3's coverage
   cam.yaw = 10;
-  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
-  ASSERT_NE(s.chain, nullptr);
+  // The atlas is built over frames (begin, a view each, the read-back, the layers); LOD3 shows meanwhile.
+  int frames = 0;
+  for (; frames < 20 && !s.impostor; ++frames) {
+    editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+    ASSERT_NE(s.chain, nullptr);
+    ASSERT_EQ(s.impostor_error, "");
+    if (!s.impostor) {
+      EXPECT_EQ(s.uploaded, lod_levels - 1) << "frame " << frames;
+      EXPECT_EQ(s.impostor, nullptr);
+    }
+  }
+  EXPECT_EQ(frames, 8 + 3);
+  EXPECT_EQ(s.atlas_frames, 8 + 3);
   EXPECT_EQ(s.wanted, lod_levels);
-  ASSERT_EQ(s.impostor_error, "");
   ASSERT_EQ(s.uploaded, lod_levels);
   ASSERT_NE(s.impostor, nullptr);
   EXPECT_EQ(s.impostor->sets.size(), size_t(8));
   EXPECT_EQ(r.cards, s.impostor);
-  EXPECT_EQ(r.leaf_end.back(), 1u);                    // one card
+  EXPECT_EQ(r.leaf_end.back(), 2u);                    // the camera's card and the sun's
   EXPECT_EQ(r.index_end.back(), 0u);                   // no bark
   draw_frame(r, rp, cam, 64, 64);                      // leaf layers are updated by the next frame
   EXPECT_EQ(r.leaf_layers, leaf_archetype_count + 8);   // the views after the archetypes
@@ -51,10 +61,19 @@ TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
   cam.yaw = 10 + 45;
   editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
   EXPECT_GT(r.uploads_total, uploads);
-  // A new leaf colour renders the atlas again.
+  // The sun turning by a degree re-uploads the cards (the shadow card faces the sun).
+  const uint64_t still = r.uploads_total;
+  rp.sun_azimuth += 2;
+  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_GT(r.uploads_total, still);
+  // A new leaf colour renders the atlas again, over frames: LOD3 until it is complete.
   const auto before = s.impostor;
   rp.leaf_color = glm::vec3(0.8f, 0.2f, 0.1f);
   editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_EQ(s.impostor, nullptr);
+  EXPECT_EQ(s.uploaded, lod_levels - 1);
+  for (int k = 0; k < 20 && !s.impostor; ++k) editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_NE(s.impostor, nullptr);
   EXPECT_NE(s.impostor, before);
   EXPECT_EQ(s.uploaded, lod_levels);
   // Near the tree LOD0 returns; "Show LOD" 4 brings the impostor back at any distance.
@@ -67,4 +86,56 @@ TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
   // Scrubbing the growth shows LOD0.
   editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps - 1);
   EXPECT_EQ(s.uploaded, 0);
+}
+
+// The atlas's state machine: complete only after every view; a new tree drops a half-built atlas and
+// starts again; "Show LOD" 4 finishes a build in progress at once; near the tree nothing is built.
+TEST_F(LodEditor, AtlasIsBuiltOverFramesRestartsForANewTreeAndShowLod4ForcesIt) {
+  preset p;
+  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_cedar.json", p).ok);
+  const tree_skeleton t = grow(p.spec, grow_options{});
+  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+  upload_tree(r, m);
+  set_tree_step(r, t, p.mesh.min_radius, t.steps);
+  render_params rp = p.render;
+  rp.lod.impostor_size = 64;
+  editor_lod s;
+  orbit_camera cam;
+  cam.target = 0.5f * (m.bounds_min + m.bounds_max);
+  // Near: LOD0, no atlas work.
+  cam.distance = 2 * glm::length(m.bounds_max - m.bounds_min);
+  for (int k = 0; k < 3; ++k) editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_EQ(s.build.st, impostor_build::state::idle);
+  EXPECT_EQ(s.impostor, nullptr);
+  // Far: begin, then one view per frame.
+  cam.distance = 1000;
+  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_EQ(s.build.st, impostor_build::state::rendering);
+  EXPECT_EQ(s.build.next, 0);
+  for (int k = 1; k <= 5; ++k) {
+    editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+    EXPECT_EQ(s.build.next, k);
+    EXPECT_EQ(s.impostor, nullptr);
+    EXPECT_EQ(s.uploaded, lod_levels - 1);
+  }
+  EXPECT_NE(editor_lod_status(s).find("impostor atlas: 5 of 8 views"), std::string::npos) << editor_lod_status(s);
+  // A new tree drops the half-built atlas; once settled the build starts from view 0.
+  editor_lod_new_tree(s);
+  EXPECT_EQ(s.build.st, impostor_build::state::idle);
+  EXPECT_EQ(s.build.next, 0);
+  EXPECT_EQ(s.impostor, nullptr);
+  s.tree_time = {};   // skip the settling time
+  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_EQ(s.build.st, impostor_build::state::rendering);
+  EXPECT_EQ(s.build.next, 0);
+  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_EQ(s.build.next, 1);
+  // "Show LOD" 4 completes it in the same frame and shows it.
+  rp.lod.show = 4;
+  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  ASSERT_NE(s.impostor, nullptr);
+  EXPECT_EQ(s.impostor->sets.size(), size_t(8));
+  EXPECT_EQ(s.build.st, impostor_build::state::idle);
+  EXPECT_EQ(s.uploaded, lod_levels);
+  EXPECT_EQ(r.leaf_end.back(), 2u);
 }

@@ -237,8 +237,8 @@ TEST_F(LodRender, ImpostorCardKeepsLod0SilhouetteWhereItTakesOver) {
   mask_render view(r, m, c.coverage[3]);
   const glm::vec3 eye = camera_eye(view.cam) - view.cam.target;
   const float azimuth = glm::degrees(std::atan2(eye.x, eye.z));
-  const tree_mesh card = impostor_mesh(a, layers, m, azimuth);
-  ASSERT_EQ(card.leaves.size(), size_t(1));
+  const tree_mesh card = impostor_mesh(a, layers, m, azimuth, impostor_sun_azimuth(p.render));
+  ASSERT_EQ(card.leaves.size(), size_t(2));   // the camera's card, then the sun's (shadow pass only)
   EXPECT_EQ(card.leaves[0].texture, impostor_texture_base + leaf_archetype_count + impostor_view(a, azimuth));
   const std::vector<bool> full = view.mask(m, t), imp = view.mask(card, t);
   const double score = iou(full, imp);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 
 #include <glm/geometric.hpp>
 
@@ -14,6 +15,9 @@
 #include "render/textures.h"
 
 namespace sylva {
+
+static_assert(leaf_archetype_count + 16 < impostor_sun_card, "impostor layers fit below the sun-card flag");
+
 namespace {
 
 const char* bark_vs = R"(#version 330 core
@@ -68,71 +72,150 @@ void main() {
 
 }  // namespace
 
-impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int views, int cell) {
-  impostor_atlas a;
+namespace {
+
+void free_build(impostor_build& b) {
+  delete_gl(b.bark), delete_gl(b.leaf), delete_gl(b.color), delete_gl(b.normal), delete_gl(b.depth), delete_gl(b.fbo);
+  for (gl_vertex_array* v : {&b.bark_vao, &b.leaf_vao}) delete_gl(*v);
+  for (gl_buffer* u : {&b.position, &b.normal_buf, &b.uv, &b.index, &b.corner, &b.instances}) delete_gl(*u);
+}
+
+// The build's own copy of a mesh's bark positions, normals, uvs and leaf instances, laid out as the
+// impostor shaders read them (the renderer's leaf attribute locations 0-5).
+void upload_source(impostor_build& b, const tree_mesh& m) {
+  glGenVertexArrays(1, &b.bark_vao.id);
+  glGenVertexArrays(1, &b.leaf_vao.id);
+  for (gl_buffer* u : {&b.position, &b.normal_buf, &b.uv, &b.index, &b.corner, &b.instances}) glGenBuffers(1, &u->id);
+  glBindVertexArray(b.bark_vao.id);
+  auto attribute = [](GLuint buffer, int location, int size, const void* data, size_t bytes) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(GLuint(location));
+    glVertexAttribPointer(GLuint(location), size, GL_FLOAT, GL_FALSE, 0, nullptr);
+  };
+  attribute(b.position.id, 0, 3, m.position.data(), m.position.size() * sizeof(glm::vec3));
+  attribute(b.normal_buf.id, 1, 3, m.normal.data(), m.normal.size() * sizeof(glm::vec3));
+  attribute(b.uv.id, 2, 2, m.uv.data(), m.uv.size() * sizeof(glm::vec2));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.index.id);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(m.index.size() * sizeof(uint32_t)), m.index.data(), GL_STATIC_DRAW);
+  glBindVertexArray(b.leaf_vao.id);
+  const float corners[8] = {-0.5f, 0, 0.5f, 0, -0.5f, 1, 0.5f, 1};
+  attribute(b.corner.id, 0, 2, corners, sizeof corners);
+  glBindBuffer(GL_ARRAY_BUFFER, b.instances.id);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m.leaves.size() * sizeof(leaf_instance)), m.leaves.data(), GL_STATIC_DRAW);
+  const GLsizei stride = sizeof(leaf_instance);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, position));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, orientation));
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, size));
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
+  glEnableVertexAttribArray(5);
+  glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
+  for (GLuint i = 1; i <= 5; ++i) glVertexAttribDivisor(i, 1);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  b.bark_count = uint32_t(m.index.size());
+  b.leaf_count = uint32_t(m.leaves.size());
+  b.steps = m.steps;
+}
+
+}  // namespace
+
+std::string impostor_begin(impostor_build& b, renderer_gpu& r, const render_params& rp, int views, int cell, const tree_mesh* m) {
+  impostor_cancel(b);
   const auto start = std::chrono::steady_clock::now();
+  impostor_atlas& a = b.atlas;
+  a = impostor_atlas{};
   a.views = views > 12 ? 16 : 8;
   a.columns = 4;
   a.rows = a.views / a.columns;
   a.cell = std::clamp(cell, 16, 2048);
   a.width = a.columns * a.cell;
   a.height = a.rows * a.cell;
-  if (!r.ok) { a.error = "renderer not initialised"; return a; }
-  if (!r.has_tree) { a.error = "no tree to render"; return a; }
-
-  gl_program bark = compile_program("impostor bark", bark_vs, bark_fs);
-  gl_program leaf = compile_program("impostor leaf", leaf_vs, leaf_fs);
-  gl_texture color, normal;
-  gl_renderbuffer depth;
-  gl_framebuffer fbo;
-  auto cleanup = [&] {
-    delete_gl(bark), delete_gl(leaf), delete_gl(color), delete_gl(normal), delete_gl(depth), delete_gl(fbo);
+  b.rp = rp;
+  b.next = 0;
+  b.worst_step_ms = 0;
+  b.st = impostor_build::state::failed;
+  auto fail = [&](std::string why) {
+    a.error = std::move(why);
+    free_build(b);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return a.error;
   };
-  if (bark.failed || leaf.failed) { a.error = "impostor shaders: " + gl_last_message(); cleanup(); return a; }
-  for (gl_texture* t : {&color, &normal}) {
+  if (!r.ok) return fail("renderer not initialised");
+  const bool has_tree = m ? !m->index.empty() || !m->leaves.empty() : r.has_tree;
+  if (!has_tree) return fail("no tree to render");
+  b.bark = compile_program("impostor bark", bark_vs, bark_fs);
+  b.leaf = compile_program("impostor leaf", leaf_vs, leaf_fs);
+  if (b.bark.failed || b.leaf.failed) return fail("impostor shaders: " + gl_last_message());
+  for (gl_texture* t : {&b.color, &b.normal}) {
     glGenTextures(1, &t->id);
     glBindTexture(GL_TEXTURE_2D, t->id);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, a.width, a.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
-  glGenRenderbuffers(1, &depth.id);
-  glBindRenderbuffer(GL_RENDERBUFFER, depth.id);
+  glGenRenderbuffers(1, &b.depth.id);
+  glBindRenderbuffer(GL_RENDERBUFFER, b.depth.id);
   glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, a.width, a.height);
-  glGenFramebuffers(1, &fbo.id);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal.id, 0);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id);
+  glGenFramebuffers(1, &b.fbo.id);
+  glBindFramebuffer(GL_FRAMEBUFFER, b.fbo.id);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, b.color.id, 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, b.normal.id, 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, b.depth.id);
   const GLenum targets[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glDrawBuffers(2, targets);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    a.error = "impostor framebuffer incomplete";
-    cleanup();
-    return a;
-  }
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return fail("impostor framebuffer incomplete");
   glViewport(0, 0, a.width, a.height);
   glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_BLEND);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glClearColor(0, 0, 0, 0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // The source: the mesh given, copied into the build's own buffers (the renderer may show another
+  // level meanwhile), or the renderer's uploaded tree (which then must stay uploaded).
+  b.own_mesh = m != nullptr;
+  if (m) {
+    upload_source(b, *m);
+  } else {
+    b.bark_count = r.index_end.empty() ? 0 : r.index_end.back();
+    b.leaf_count = r.leaf_end.empty() ? 0 : r.leaf_end.back();
+    b.steps = r.steps;
+  }
   // One square cell fits the tree from every azimuth: the box's horizontal radius about its centre
   // line and its half height.
-  const glm::vec3 lo = r.bounds_min, hi = r.bounds_max;
+  const glm::vec3 lo = m ? m->bounds_min : r.bounds_min, hi = m ? m->bounds_max : r.bounds_max;
   a.centre = 0.5f * (lo + hi);
   const float half = 1.02f * std::max(0.5f * glm::length(glm::vec2(hi.x - lo.x, hi.z - lo.z)), 0.5f * (hi.y - lo.y));
   a.cell_metres = 2 * half;
-  const float far = 4 * half + 1;
-  const uint32_t bark_count = r.index_end.empty() ? 0 : r.index_end.back();
-  const uint32_t leaf_count = r.leaf_end.empty() ? 0 : r.leaf_end.back();
-  const glm::vec3 bark_tint = rp.bark_color, leaf_tint = rp.leaf_color;
-  for (int k = 0; k < a.views; ++k) {
+  if (check_gl("impostor begin")) return fail("GL error while preparing the impostor atlas: " + gl_last_message());
+  b.st = impostor_build::state::rendering;
+  const double ms = ms_since(start);
+  b.ms = ms;
+  b.worst_step_ms = ms;
+  return "";
+}
+
+bool impostor_step(impostor_build& b, renderer_gpu& r) {
+  using st = impostor_build::state;
+  if (b.st != st::rendering) return b.st != st::idle;
+  const auto start = std::chrono::steady_clock::now();
+  impostor_atlas& a = b.atlas;
+  glBindFramebuffer(GL_FRAMEBUFFER, b.fbo.id);
+  const GLenum targets[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(2, targets);
+  if (b.next < a.views) {
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    const int k = b.next++;
+    const float half = 0.5f * a.cell_metres, far = 4 * half + 1;
     const float az = 6.2831853f * float(k) / float(a.views);
     const glm::vec3 dir(std::sin(az), 0, std::cos(az));   // toward the camera
     const glm::mat4 view = glm::lookAt(a.centre + dir * (2 * half + 0.5f), a.centre, glm::vec3(0, 1, 0));
@@ -140,42 +223,65 @@ impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int vie
     const glm::mat4 vp = proj * view;
     const int col = k % a.columns, row = k / a.columns;
     glViewport(col * a.cell, (a.rows - 1 - row) * a.cell, a.cell, a.cell);   // row 0 at the image's top
-    if (bark_count) {
-      glUseProgram(bark.id);
-      set_uniform(bark, "u_viewproj", vp);
-      set_uniform(bark, "u_bark", 0);
-      set_uniform(bark, "u_tint", bark_tint);
+    if (b.bark_count) {
+      glUseProgram(b.bark.id);
+      set_uniform(b.bark, "u_viewproj", vp);
+      set_uniform(b.bark, "u_bark", 0);
+      set_uniform(b.bark, "u_tint", b.rp.bark_color);
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
-      glBindVertexArray(r.bark_vao.id);
-      glDrawElements(GL_TRIANGLES, GLsizei(bark_count), GL_UNSIGNED_INT, nullptr);
+      glBindVertexArray(b.own_mesh ? b.bark_vao.id : r.bark_vao.id);
+      glDrawElements(GL_TRIANGLES, GLsizei(b.bark_count), GL_UNSIGNED_INT, nullptr);
     }
-    if (leaf_count) {
-      glUseProgram(leaf.id);
-      set_uniform(leaf, "u_viewproj", vp);
-      set_uniform(leaf, "u_leaf", 1);
-      set_uniform(leaf, "u_tint", leaf_tint);
-      set_uniform(leaf, "u_cutoff", rp.alpha_cutoff);
-      set_uniform(leaf, "u_step", r.steps);
-      set_uniform(leaf, "u_layers", std::max(r.leaf_layers, 1));
+    if (b.leaf_count) {
+      glUseProgram(b.leaf.id);
+      set_uniform(b.leaf, "u_viewproj", vp);
+      set_uniform(b.leaf, "u_leaf", 1);
+      set_uniform(b.leaf, "u_tint", b.rp.leaf_color);
+      set_uniform(b.leaf, "u_cutoff", b.rp.alpha_cutoff);
+      set_uniform(b.leaf, "u_step", b.steps);
+      set_uniform(b.leaf, "u_layers", std::max(r.leaf_layers, 1));
       glActiveTexture(GL_TEXTURE1);
       glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_tex.id);
-      glBindVertexArray(r.leaf_vao.id);
-      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(leaf_count));
+      glBindVertexArray(b.own_mesh ? b.leaf_vao.id : r.leaf_vao.id);
+      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(b.leaf_count));
     }
+    glBindVertexArray(0);
+    glActiveTexture(GL_TEXTURE0);
+    glFinish();   // the view's work lands in this step, not in the next frame's
+  } else {
+    // Read back, flipping GL's bottom-up rows.
+    auto read = [&](GLenum attachment, std::vector<unsigned char>& out) {
+      glReadBuffer(attachment);
+      out = read_back_rgba(0, 0, a.width, a.height).pixels;
+    };
+    read(GL_COLOR_ATTACHMENT0, a.color);
+    read(GL_COLOR_ATTACHMENT1, a.normal);
+    if (check_gl("impostor atlas")) a.error = "GL error while rendering the impostor atlas: " + gl_last_message();
+    free_build(b);
+    b.st = a.error.empty() ? st::complete : st::failed;
   }
-  glBindVertexArray(0);
-  glActiveTexture(GL_TEXTURE0);
-  // Read back, flipping GL's bottom-up rows.
-  auto read = [&](GLenum attachment, std::vector<unsigned char>& out) {
-    glReadBuffer(attachment);
-    out = read_back_rgba(0, 0, a.width, a.height).pixels;
-  };
-  read(GL_COLOR_ATTACHMENT0, a.color);
-  read(GL_COLOR_ATTACHMENT1, a.normal);
-  if (check_gl("impostor atlas")) a.error = "GL error while rendering the impostor atlas: " + gl_last_message();
-  cleanup();
-  a.ms = ms_since(start);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const double ms = ms_since(start);
+  b.ms += ms;
+  b.worst_step_ms = std::max(b.worst_step_ms, ms);
+  a.ms = b.ms;
+  return b.st != st::rendering;
+}
+
+void impostor_cancel(impostor_build& b) {
+  free_build(b);
+  b.st = impostor_build::state::idle;
+  b.next = 0;
+}
+
+impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int views, int cell) {
+  impostor_build b;
+  if (impostor_begin(b, r, rp, views, cell, nullptr).empty())
+    while (!impostor_step(b, r)) {
+    }
+  impostor_atlas a = std::move(b.atlas);
+  impostor_cancel(b);
   return a;
 }
 
@@ -228,7 +334,7 @@ int impostor_view(const impostor_atlas& a, float azimuth_deg) {
 }
 
 tree_mesh impostor_mesh(const impostor_atlas& a, std::shared_ptr<const baked_card_textures> layers, const tree_mesh& like,
-                        float azimuth_deg) {
+                        float azimuth_deg, float sun_azimuth_deg) {
   tree_mesh m;
   m.steps = like.steps;
   m.radial_segments = like.radial_segments;
@@ -238,21 +344,29 @@ tree_mesh impostor_mesh(const impostor_atlas& a, std::shared_ptr<const baked_car
   m.index_end.assign(size_t(std::max(like.steps, 0)) + 1, 0);
   m.leaf_end.assign(size_t(std::max(like.steps, 0)) + 1, 0);
   if (a.views <= 0 || !layers || layers->sets.size() != size_t(a.views)) return m;
-  const float half = 0.5f * glm::radians(std::isfinite(azimuth_deg) ? azimuth_deg : 0.0f);
-  leaf_instance l{};
-  l.orientation = glm::vec4(0, std::sin(half), 0, std::cos(half));   // about +Y: the card's +Z to the azimuth
-  l.size = a.cell_metres;
-  l.position = a.centre - glm::vec3(0, 0.5f * a.cell_metres, 0);   // the petiole point: the bottom edge's centre
-  l.born = 0;
-  l.died = 0xffff;
-  l.node = 0;
-  l.texture = uint8_t(impostor_texture_base + leaf_archetype_count + impostor_view(a, azimuth_deg));
-  l.occlusion = 255;
-  m.leaves.push_back(l);
-  m.leaf_end.back() = 1;
-  for (uint32_t& e : m.leaf_end) e = 1;
+  auto card = [&](float az, int flag) {
+    const float half = 0.5f * glm::radians(std::isfinite(az) ? az : 0.0f);
+    leaf_instance l{};
+    l.orientation = glm::vec4(0, std::sin(half), 0, std::cos(half));   // about +Y: the card's +Z to the azimuth
+    l.size = a.cell_metres;
+    l.position = a.centre - glm::vec3(0, 0.5f * a.cell_metres, 0);   // the petiole point: the bottom edge's centre
+    l.born = 0;
+    l.died = 0xffff;
+    l.node = 0;
+    l.texture = uint8_t(impostor_texture_base + flag + leaf_archetype_count + impostor_view(a, az));
+    l.occlusion = 255;
+    m.leaves.push_back(l);
+  };
+  card(azimuth_deg, 0);
+  card(sun_azimuth_deg, impostor_sun_card);
+  for (uint32_t& e : m.leaf_end) e = 2;
   m.cards = std::move(layers);
   return m;
+}
+
+float impostor_sun_azimuth(const render_params& rp) {
+  const glm::vec3 s = sun_direction(rp);
+  return glm::degrees(std::atan2(s.x, s.z));
 }
 
 }  // namespace sylva

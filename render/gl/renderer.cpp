@@ -571,6 +571,7 @@ void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setu
     set_uniform(r.leaf_depth, "u_leaf", 3);
     set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
+    set_uniform(r.leaf_depth, "u_shadow_pass", 1);   // the impostor's sun card casts (render/gl/impostor.h)
     set_wind_uniforms(r, r.leaf_depth, rp);
     set_season_uniforms(r.leaf_depth, season);
     draw_leaves(r);

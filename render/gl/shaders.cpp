@@ -111,11 +111,12 @@ layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
 layout(location = 7) in uint i_node;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
+uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (render/gl/impostor.h) instead of its camera card
 // The season (render/season.h season_look): deciduous archetypes' colour range, share kept, size.
 uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uint u_deciduous;
 uniform float u_keep; uniform float u_season_scale;
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
-flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color;
+flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color; flat out float v_plain;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
 float leaf_random(uint i, uint salt) {   // season_leaf_random (render/season.cpp), line for line
@@ -144,10 +145,13 @@ void main() {
   // An impostor card (texture >= 128, render/gl/impostor.h) carries final colours and does not flutter.
   v_world = wind_sway_frame(v_world, int(i_node), v_normal, v_tangent, v_bitangent);
   bool plain = i_texture >= 128u;
+  // Texture + 64 marks the impostor's sun card: shadow pass only; its camera card: lit pass only.
+  if (plain && (i_texture >= 192u) != (u_shadow_pass != 0)) alive = false;
+  v_plain = plain ? 1.0 : 0.0;
   if (!plain)
     v_world = wind_flutter_frame(v_world, v_normal, v_bitangent, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
-  v_layer = float(int(i_texture & 127u) % u_layers);
+  v_layer = float(int(plain ? i_texture & 63u : i_texture) % u_layers);
   v_ao = i_ao;
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
@@ -158,7 +162,7 @@ void main() {
 
 const char* const leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
-flat in vec3 v_tint; flat in float v_ao; flat in vec3 v_color;
+flat in vec3 v_tint; flat in float v_ao; flat in vec3 v_color; flat in float v_plain;
 uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
 uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
@@ -173,7 +177,9 @@ void main() {
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
   // tinted_texture's formula (render/textures.h), then the per-leaf variation.
   vec3 albedo = min(vec3(1.0), TINT_GAIN * v_color * t.rgb) * v_tint;
-  float sh = shadow_at(v_world, ndl0 >= 0.0 ? n0 : -n0);
+  // The impostor's camera card crosses its sun card, which would shade half of it: its atlas
+  // normals shade it instead.
+  float sh = v_plain > 0.5 ? 1.0 : shadow_at(v_world, ndl0 >= 0.0 ? n0 : -n0);
   // Transmission: sunlight arriving on the far side glows through the blade, tinted by it, more
   // where the blade is thin (thickness map: white = thin) than through veins and stems.
   float thin = texture(u_leaf_thickness, uvl).r;
