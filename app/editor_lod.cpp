@@ -25,8 +25,9 @@ void drop_impostor(editor_lod& s) {
 // when `force` ("Show LOD" 4 wants it now).
 void advance_impostor(editor_lod& s, renderer_gpu& r, const tree_mesh& m, const render_params& rp, bool force) {
   using st = impostor_build::state;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool fresh = s.build.st == st::idle && !s.build_read;
   do {
-    const auto t0 = std::chrono::steady_clock::now();
     if (s.build_read) {
       s.atlas = std::move(s.build.atlas);
       s.impostor = impostor_layers(s.atlas);
@@ -35,15 +36,11 @@ void advance_impostor(editor_lod& s, renderer_gpu& r, const tree_mesh& m, const 
       s.build_read = false;
     } else if (s.build.st == st::idle) {
       s.impostor_params = rp;
-      s.atlas_frames = 0;
-      s.atlas_worst_ms = 0;
       impostor_begin(s.build, r, rp, rp.lod.impostor_views, rp.lod.impostor_size, &m);
     } else {
       impostor_step(s.build, r);
     }
     if (s.build.st == st::complete) s.build_read = true;
-    ++s.atlas_frames;
-    s.atlas_worst_ms = std::max(s.atlas_worst_ms, ms_since(t0));
     if (s.build.st == st::failed) {
       s.impostor_error = s.build.atlas.error.empty() ? "impostor atlas failed" : s.build.atlas.error;
       impostor_cancel(s.build);
@@ -51,6 +48,10 @@ void advance_impostor(editor_lod& s, renderer_gpu& r, const tree_mesh& m, const 
       return;
     }
   } while (force && !s.impostor);
+  // This frame's share of the atlas work (the status bar shows the frames and the longest).
+  if (fresh) s.atlas_frames = 0, s.atlas_worst_ms = 0;
+  ++s.atlas_frames;
+  s.atlas_worst_ms = std::max(s.atlas_worst_ms, ms_since(t0));
 }
 
 }  // namespace
@@ -135,6 +136,11 @@ std::string editor_lod_status(const editor_lod& s) {
   // Clamped budgets or a tree too small to reduce (build_lods says which).
   std::string out(buf);
   if (!s.impostor_error.empty()) out += "   (impostor: " + s.impostor_error + ")";
+  if (s.impostor && s.atlas_frames > 0) {
+    char a[96];
+    std::snprintf(a, sizeof a, "   (impostor atlas: %d frames, longest %.0f ms)", s.atlas_frames, s.atlas_worst_ms);
+    out += a;
+  }
   if (s.build.st == impostor_build::state::rendering)
     out += "   (impostor atlas: " + std::to_string(s.build.next) + " of " + std::to_string(s.build.atlas.views) + " views)";
   return s.chain->message.empty() ? out : out + "   (" + s.chain->message + ")";

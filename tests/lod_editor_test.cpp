@@ -136,6 +136,7 @@ TEST_F(LodEditor, AtlasIsBuiltOverFramesRestartsForANewTreeAndShowLod4ForcesIt) 
   ASSERT_NE(s.impostor, nullptr);
   EXPECT_EQ(s.impostor->sets.size(), size_t(8));
   EXPECT_EQ(s.build.st, impostor_build::state::idle);
+  EXPECT_EQ(s.atlas_frames, 3);   // begin, one view, then the rest at once
   EXPECT_EQ(s.uploaded, lod_levels);
   EXPECT_EQ(r.leaf_end.back(), 2u);
 }
