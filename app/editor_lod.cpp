@@ -138,7 +138,8 @@ std::string editor_lod_status(const editor_lod& s) {
   if (!s.impostor_error.empty()) out += "   (impostor: " + s.impostor_error + ")";
   if (s.impostor && s.atlas_frames > 0) {
     char a[96];
-    std::snprintf(a, sizeof a, "   (impostor atlas: %d frames, longest %.0f ms)", s.atlas_frames, s.atlas_worst_ms);
+    std::snprintf(a, sizeof a, "   (impostor atlas: %d frame%s, longest %.0f ms)", s.atlas_frames, s.atlas_frames == 1 ? "" : "s",
+                  s.atlas_worst_ms);
     out += a;
   }
   if (s.build.st == impostor_build::state::rendering)
