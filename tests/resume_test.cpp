@@ -123,17 +123,14 @@ void check_edit_sequence(const tree_spec& first, const char* key2, int k0, int k
   }
 }
 
-// A self-organizing tree with a cut (pruning) at step 5 on a branch the tree has then, and the
-// wood pass on, or not.
-tree_spec so_spec(bool markers, bool wood) {
-  tree_spec s = small_spec(0, markers);
-  auto& p = std::get<self_organizing_params>(s.params);
-  p.steps = markers ? 16 : 14;
+// Adds a cut at `cut_step` on the first lateral shoot born at `born_step` of the spec's own tree
+// (so that resuming has a cut to replay), and switches the wood pass on when asked.
+void add_cut_and_wood(tree_spec& s, int born_step, int cut_step, bool wood) {
   const tree_skeleton plain = grow(s, {});
   for (size_t i = 0; i < plain.size(); ++i)
-    if (plain.born[i] == 3 && plain.order[i] >= 1) {   // a lateral shoot of step 3
+    if (plain.born[i] == born_step && plain.order[i] >= 1) {
       prune_cut c;
-      c.step = 5;
+      c.step = cut_step;
       c.point = plain.position[i];
       c.reach = 0.02f;
       s.cuts.push_back(c);
@@ -141,6 +138,15 @@ tree_spec so_spec(bool markers, bool wood) {
     }
   EXPECT_EQ(s.cuts.size(), 1u);
   if (wood) s.wood.gravity = 1;
+}
+
+// A self-organizing tree with a cut (pruning) at step 5 on a branch the tree has then, and the
+// wood pass on, or not.
+tree_spec so_spec(bool markers, bool wood) {
+  tree_spec s = small_spec(0, markers);
+  auto& p = std::get<self_organizing_params>(s.params);
+  p.steps = markers ? 16 : 14;
+  add_cut_and_wood(s, 3, 5, wood);   // a lateral shoot of step 3, cut at step 5
   s.keyframes.push_back({8, "alpha", glm::vec3(p.alpha * 1.2f, 0, 0)});
   return s;
 }
@@ -162,19 +168,8 @@ TEST(Resume, SelfOrganizingMarkersResumedEqualsAFullRegrow) {
 tree_spec sc_spec(bool wood) {
   tree_spec s = small_spec(1);
   auto& p = std::get<space_colonization_params>(s.params);
-  const tree_skeleton plain = grow(s, {});
-  EXPECT_GT(plain.steps, 30);
-  for (size_t i = 0; i < plain.size(); ++i)
-    if (plain.born[i] == 16 && plain.order[i] >= 1) {
-      prune_cut c;
-      c.step = 18;
-      c.point = plain.position[i];
-      c.reach = 0.02f;
-      s.cuts.push_back(c);
-      break;
-    }
-  EXPECT_EQ(s.cuts.size(), 1u);
-  if (wood) s.wood.gravity = 1;
+  EXPECT_GT(grow(s, {}).steps, 30);
+  add_cut_and_wood(s, 16, 18, wood);
   s.keyframes.push_back({22, "segment_length", glm::vec3(p.segment_length * 0.8f, 0, 0)});
   return s;
 }
