@@ -4,6 +4,7 @@
 #include <chrono>
 #include <memory>
 #include <cstdlib>
+#include <string>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -13,6 +14,9 @@
 #include <gtest/gtest.h>
 
 #include "app/headless.h"
+#include "generators/tree_spec.h"
+#include "render/mesh.h"
+#include "render/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva_test {
@@ -49,6 +53,21 @@ class renderer_test : public ::testing::Test {
   }
   void TearDown() override {
     if (ready) sylva::destroy_renderer(r);   // before the context goes
+  }
+  // A shipped preset grown, meshed and shown on `r` at its last step.
+  struct shown_tree {
+    sylva::preset p;
+    sylva::tree_skeleton t;
+    sylva::tree_mesh m;
+  };
+  shown_tree show_preset(const std::string& name) {
+    shown_tree s;
+    EXPECT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", s.p).ok) << name;
+    s.t = sylva::grow(s.p.spec, sylva::grow_options{});
+    s.m = sylva::mesh_tree(s.t, s.p.mesh, s.p.spec.seed);
+    sylva::upload_tree(r, s.m);
+    sylva::set_tree_step(r, s.t, s.p.mesh.min_radius, s.t.steps);
+    return s;
   }
   std::unique_ptr<gl_context> ctx;
   sylva::renderer_gpu r;

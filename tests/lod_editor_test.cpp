@@ -18,12 +18,7 @@ class LodEditor : public sylva_test::renderer_test {};
 }  // namespace
 
 TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
-  preset p;
-  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_cedar.json", p).ok);
-  const tree_skeleton t = grow(p.spec, grow_options{});
-  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
-  upload_tree(r, m);
-  set_tree_step(r, t, p.mesh.min_radius, t.steps);
+  auto [p, t, m] = show_preset("species_cedar");
   render_params rp = p.render;
   rp.lod.impostor_size = 128;
   editor_lod s;   // no editor_lod_new_tree: the chain is built on the first update
@@ -91,12 +86,7 @@ TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
 // The atlas's state machine: complete only after every view; a new tree drops a half-built atlas and
 // starts again; "Show LOD" 4 finishes a build in progress at once; near the tree nothing is built.
 TEST_F(LodEditor, AtlasIsBuiltOverFramesRestartsForANewTreeAndShowLod4ForcesIt) {
-  preset p;
-  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_cedar.json", p).ok);
-  const tree_skeleton t = grow(p.spec, grow_options{});
-  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
-  upload_tree(r, m);
-  set_tree_step(r, t, p.mesh.min_radius, t.steps);
+  auto [p, t, m] = show_preset("species_cedar");
   render_params rp = p.render;
   rp.lod.impostor_size = 64;
   editor_lod s;

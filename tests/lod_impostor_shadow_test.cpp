@@ -73,12 +73,7 @@ size_t count_outside(const std::vector<bool>& s, const std::vector<bool>& a, con
 
 TEST_F(LodImpostorShadow, SunCardShadowMatchesLod0AndIgnoresTheCamera) {
   ASSERT_EQ(create_color_target(size, size, color, fbo), "");
-  preset p;
-  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_oak.json", p).ok);
-  const tree_skeleton t = grow(p.spec, grow_options{});
-  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
-  upload_tree(r, m);
-  set_tree_step(r, t, p.mesh.min_radius, t.steps);
+  auto [p, t, m] = show_preset("species_oak");
   const impostor_atlas a = render_impostor(r, p.render, 8, 256);
   ASSERT_EQ(a.error, "");
   const auto layers = impostor_layers(a);

@@ -177,12 +177,7 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
 }
 
 TEST_F(LodRender, ImpostorAtlasHasEveryViewWithAlphaAndNormals) {
-  preset p;
-  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_oak.json", p).ok);
-  const tree_skeleton t = grow(p.spec, grow_options{});
-  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
-  upload_tree(r, m);
-  set_tree_step(r, t, p.mesh.min_radius, t.steps);
+  auto [p, t, m] = show_preset("species_oak");
   const impostor_atlas a = render_impostor(r, p.render, 8, 128);
   ASSERT_EQ(a.error, "");
   EXPECT_EQ(a.width, 512);
