@@ -103,18 +103,7 @@ void upload_source(impostor_build& b, const tree_mesh& m) {
   attribute(b.corner.id, 0, 2, corners, sizeof corners);
   glBindBuffer(GL_ARRAY_BUFFER, b.instances.id);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m.leaves.size() * sizeof(leaf_instance)), m.leaves.data(), GL_STATIC_DRAW);
-  const GLsizei stride = sizeof(leaf_instance);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, position));
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, orientation));
-  glEnableVertexAttribArray(3);
-  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, size));
-  glEnableVertexAttribArray(4);
-  glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
-  glEnableVertexAttribArray(5);
-  glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
-  for (GLuint i = 1; i <= 5; ++i) glVertexAttribDivisor(i, 1);
+  leaf_instance_attributes();   // the renderer's layout; the atlas shaders read 1-5
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   b.bark_count = uint32_t(m.index.size());

@@ -892,6 +892,29 @@ glm::vec3 sun_direction(const render_params& p) {
 
 // ---------------------------------------------------------------- lifetime
 
+// The per-instance attributes 1-7 of a leaf card, from the bound GL_ARRAY_BUFFER of leaf_instance
+// records (one per instance); attribute 0 is the card's corner. Shared by the renderer and the
+// impostor's atlas pass.
+void leaf_instance_attributes() {
+  const GLsizei stride = sizeof(leaf_instance);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, position));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, orientation));
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, size));
+  static_assert(offsetof(leaf_instance, died) == offsetof(leaf_instance, born) + 2, "born/died read as a pair");
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
+  glEnableVertexAttribArray(5);
+  glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(6, 1, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void*)offsetof(leaf_instance, occlusion));
+  glEnableVertexAttribArray(7);
+  glVertexAttribIPointer(7, 1, GL_UNSIGNED_INT, stride, (void*)offsetof(leaf_instance, node));
+  for (int i = 1; i <= 7; ++i) glVertexAttribDivisor(i, 1);
+}
+
 bool init_renderer(renderer_gpu& r) {
   const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
                     ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
@@ -950,23 +973,7 @@ bool init_renderer(renderer_gpu& r) {
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_instances.id);
-  const GLsizei stride = sizeof(leaf_instance);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, position));
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, orientation));
-  glEnableVertexAttribArray(3);
-  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride, (void*)offsetof(leaf_instance, size));
-  static_assert(offsetof(leaf_instance, died) == offsetof(leaf_instance, born) + 2, "born/died read as a pair");
-  glEnableVertexAttribArray(4);
-  glVertexAttribIPointer(4, 2, GL_UNSIGNED_SHORT, stride, (void*)offsetof(leaf_instance, born));
-  glEnableVertexAttribArray(5);
-  glVertexAttribIPointer(5, 1, GL_UNSIGNED_BYTE, stride, (void*)offsetof(leaf_instance, texture));
-  glEnableVertexAttribArray(6);
-  glVertexAttribPointer(6, 1, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void*)offsetof(leaf_instance, occlusion));
-  glEnableVertexAttribArray(7);
-  glVertexAttribIPointer(7, 1, GL_UNSIGNED_INT, stride, (void*)offsetof(leaf_instance, node));
-  for (int i = 1; i <= 7; ++i) glVertexAttribDivisor(i, 1);
+  leaf_instance_attributes();
 
   glBindVertexArray(0);
 

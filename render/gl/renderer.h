@@ -102,6 +102,10 @@ void destroy_renderer(renderer_gpu& r);
 
 // Uploads a meshed tree; the scrub position is then set with set_tree_step.
 void upload_tree(renderer_gpu& r, const tree_mesh& m);
+
+// Points attributes 1-7 (position, orientation, size, born/died, texture, occlusion, node; one per
+// instance) at the bound GL_ARRAY_BUFFER of leaf_instance records, in the bound vertex array.
+void leaf_instance_attributes();
 // Shows the tree as it stood at `step`: draw counts plus one small per-node upload (radius and, for
 // a bent tree, the bend of that step replayed by positions_at_step).
 void set_tree_step(renderer_gpu& r, const tree_skeleton& t, float min_radius, int step);
