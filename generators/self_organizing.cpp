@@ -493,9 +493,6 @@ struct so_snapshot {
 
 namespace {
 
-template <class T>
-size_t vec_bytes(const std::vector<T>& v) { return v.size() * sizeof(T); }
-
 // What a snapshot of this state holds, in bytes (the vectors' contents; the memo tables are left
 // out: they are rebuilt on use and give the same bits).
 size_t snapshot_bytes(const tree_skeleton& t, const so_vars& v) {

@@ -11,6 +11,7 @@
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
+#include "generators/vec_util.h"
 
 namespace sylva {
 namespace {
@@ -253,11 +254,6 @@ struct sc_snapshot {
   grow_report rep;
   size_t bytes = 0;
 };
-
-namespace {
-template <class T>
-size_t vec_bytes(const std::vector<T>& v) { return v.size() * sizeof(T); }
-}  // namespace
 
 size_t sc_recorded_bytes(const growth_resume& r) {
   size_t n = 0;

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -13,6 +15,12 @@ namespace sylva {
 inline glm::vec3 any_perpendicular(const glm::vec3& t) {
   const glm::vec3 a = std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
   return glm::normalize(glm::cross(glm::cross(t, a), t));
+}
+
+// The bytes a vector's contents take (what a copy of it allocates), for memory accounting.
+template <class T>
+size_t vec_bytes(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
 }
 
 }  // namespace sylva
