@@ -278,29 +278,38 @@ std::shared_ptr<const grow_result> wait_for(worker_state& w, uint32_t g) {
   return nullptr;
 }
 
+// A running worker with quick meshing (no leaves, three-sided bark); result_of() posts a spec and waits
+// for its tree.
+struct test_worker {
+  worker_state w;
+  mesh_params mesh;
+  test_worker() {
+    mesh.leaves_enabled = false;
+    mesh.radial_segments = 3;
+    start_worker(w);
+  }
+  ~test_worker() { stop_worker(w); }
+  std::shared_ptr<const grow_result> result_of(const tree_spec& spec) { return wait_for(w, post_request(w, spec, mesh)); }
+};
+
 // The editor's worker resumes a keyframe edit of a tree larger than the estimate's trial (whose
 // growth it records): the result says where it resumed and is the full regrow's tree.
 TEST(Resume, TheWorkerResumesAKeyframeEdit) {
   tree_spec spec = honda(16);   // 65,535 nodes: grown after the trial, so recorded
   spec.keyframes.push_back({12, "alpha1", glm::vec3(20, 0, 0)});
-  mesh_params mesh;
-  mesh.leaves_enabled = false;
-  mesh.radial_segments = 3;
-  worker_state w;
-  start_worker(w);
-  auto r0 = wait_for(w, post_request(w, spec, mesh));
+  test_worker w;
+  auto r0 = w.result_of(spec);
   ASSERT_TRUE(r0 && r0->skeleton);
   EXPECT_EQ(r0->resumed_at, 0);
   spec.keyframes[0].value.x = 30;
-  auto r1 = wait_for(w, post_request(w, spec, mesh));
+  auto r1 = w.result_of(spec);
   ASSERT_TRUE(r1 && r1->skeleton);
   EXPECT_EQ(r1->resumed_at, 12);
   expect_identical(*r1->skeleton, grow(spec, {}));
   std::get<lsystem_params>(spec.params).r1 *= 0.95f;   // a base parameter: a full regrow
-  auto r2 = wait_for(w, post_request(w, spec, mesh));
+  auto r2 = w.result_of(spec);
   ASSERT_TRUE(r2 && r2->skeleton);
   EXPECT_EQ(r2->resumed_at, 0);
-  stop_worker(w);
 }
 
 // The same for a self-organizing tree larger than the trial (the default, grown 29 steps), with
@@ -311,17 +320,13 @@ TEST(Resume, TheWorkerResumesASelfOrganizingKeyframeEdit) {
   p.steps = 29;
   spec.params = p;
   spec.keyframes.push_back({24, "lambda", glm::vec3(0.6f, 0, 0)});
-  mesh_params mesh;
-  mesh.leaves_enabled = false;
-  mesh.radial_segments = 3;
-  worker_state w;
-  start_worker(w);
-  auto r0 = wait_for(w, post_request(w, spec, mesh));
+  test_worker w;
+  auto r0 = w.result_of(spec);
   ASSERT_TRUE(r0 && r0->skeleton);
   EXPECT_GT(r0->skeleton->size(), 20000u);
   EXPECT_EQ(r0->resumed_at, 0);
   spec.keyframes[0].value.x = 0.5f;
-  auto r1 = wait_for(w, post_request(w, spec, mesh));
+  auto r1 = w.result_of(spec);
   ASSERT_TRUE(r1 && r1->skeleton);
   EXPECT_EQ(r1->resumed_at, 24);
   grow_report rep;
@@ -331,7 +336,6 @@ TEST(Resume, TheWorkerResumesASelfOrganizingKeyframeEdit) {
   EXPECT_EQ(r1->report.stop_reason, rep.stop_reason);
   ASSERT_TRUE(r1->debug);
   expect_same_debug(*r1->debug, dbg);
-  stop_worker(w);
 }
 
 }  // namespace
