@@ -1,0 +1,26 @@
+// The renderer's GPU resources: the procedural leaf and bark archetypes and the user's own PNGs
+// (leaf cards with alpha-coverage-preserving mipmaps), and the render targets of the passes.
+#pragma once
+
+#include "render/gl/renderer.h"
+#include "render/render_params.h"
+
+namespace sylva {
+
+// The leaf archetypes' (or a LOD level's baked cards') colour, normal and thickness arrays.
+void upload_procedural_leaves(renderer_gpu& r);
+// The procedural bark archetype's colour, normal and roughness maps.
+void upload_procedural_bark(renderer_gpu& r, bark_archetype a);
+// Loads the user's bark and leaf PNGs when their paths change (a file that cannot be used is
+// reported and the procedural texture stays); re-uploads the archetypes as needed.
+void update_user_textures(renderer_gpu& r, const render_params& rp);
+
+// Render targets: a colour texture, a framebuffer of colour + depth, a depth texture (with
+// comparison for the shadow map); the frame's targets at a size and sample count; the shadow map.
+gl_texture make_color_target(int w, int h, GLenum internal_format);
+gl_framebuffer make_framebuffer(const gl_texture& color, const gl_texture& depth);
+gl_texture make_depth_texture(int w, int h, bool compare);
+void resize_targets(renderer_gpu& r, int w, int h, int samples);
+void resize_shadow(renderer_gpu& r, int size);
+
+}  // namespace sylva
