@@ -70,6 +70,7 @@ void apply_render_params(export_options& o, const render_params& rp) {
   o.season = season_leaf_look(rp);
   o.leaf_color = o.season.evergreen_color;
   o.alpha_cutoff = rp.alpha_cutoff;
+  o.leaf_normal_blend = rp.leaf_normal_blend;
   o.bark_texture = rp.bark_texture;
   o.leaf_texture = rp.leaf_texture;
   o.leaf_opacity = rp.leaf_opacity;

@@ -51,6 +51,7 @@ struct export_options {
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
   float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
+  float leaf_normal_blend = 0.6f;       // leaf normals bent toward the crown (render/leaf_shading.h)
   // The season (render/season.h): deciduous archetypes' materials take the middle of its colour
   // range, and its fallen leaves are left out. The default changes nothing (leaf_color is used).
   season_look season;

@@ -191,7 +191,7 @@ struct gltf_materials {
 std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v, int step, bool instanced,
                            const std::string& prefix, size_t& triangles, std::vector<int>& out, int skin = -1) {
   const bool one = mats.src.one_leaf_material();
-  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one);
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one, mats.src.leaf_normal_blend());
   for (size_t k = 0; k < parts.size(); ++k) {
     const tree_part& part = parts[k];
     json tree = {{"name", prefix + (parts.size() > 1 ? "tree_" + std::to_string(k + 1) : "tree")}};
@@ -226,7 +226,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
   }
   if (instanced) {
     // EXT_mesh_gpu_instancing: one leaf card per material, one instance per leaf alive at `step`.
-    std::array<std::vector<glm::vec3>, leaf_slots> tr, sc;
+    std::array<std::vector<glm::vec3>, leaf_slots> tr, sc, grey;
     std::array<std::vector<glm::vec4>, leaf_slots> rot;
     for (const leaf_instance& l : v.mesh->leaves) {
       if (!(l.born <= step && step < l.died)) continue;
@@ -234,6 +234,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
       tr[slot].push_back(l.position);
       rot[slot].push_back(l.orientation / std::max(glm::length(l.orientation), 1e-12f));
       sc[slot].push_back(glm::vec3(std::max(l.size, 1e-6f)));
+      grey[slot].push_back(glm::vec3(float(l.occlusion) / 255.0f));   // crown occlusion per instance
     }
     for (int slot = 0; slot < leaf_slots; ++slot) {
       const size_t s = size_t(slot);
@@ -242,11 +243,15 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
         const int mat = mats.leaf_material(slot);
         if (mat < 0) return mats.src.error;
         geometry quad;
-        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0});
+        // Unbent: an instance's crown direction would need a normal per instance.
+        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, {});
         mats.quad_mesh[s] = d.add_mesh(mats.src.leaf_name(slot), json::array({d.add_primitive(quad, mat, mats.leaf_normal[s])}));
       }
       json attrs = {{"TRANSLATION", d.add_vectors(tr[s], "VEC3", 0)}, {"ROTATION", d.add_vectors(rot[s], "VEC4", 0)},
-                    {"SCALE", d.add_vectors(sc[s], "VEC3", 0)}};
+                    {"SCALE", d.add_vectors(sc[s], "VEC3", 0)},
+                    // Application-specific (EXT_mesh_gpu_instancing allows "_" names); three.js
+                    // reads _COLOR_0 as the instance colour, which multiplies the card's colour.
+                    {"_COLOR_0", d.add_vectors(grey[s], "VEC3", 0)}};
       out.push_back(d.add_node({{"name", prefix + mats.src.leaf_name(slot)}, {"mesh", mats.quad_mesh[s]},
                                 {"extensions", {{"EXT_mesh_gpu_instancing", {{"attributes", attrs}}}}}}));
       d.j["extensionsUsed"] = json::array({"EXT_mesh_gpu_instancing"});

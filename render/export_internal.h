@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/export.h"
+#include "render/leaf_shading.h"
 #include "render/lod_cards.h"
 #include "render/textures.h"
 
@@ -73,15 +74,23 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material);
 
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
-// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner).
-void bake_leaf(geometry& g, const leaf_instance& l);
+// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). With a
+// crown, the face is turned to look out of it and its normal bent toward the crown's outward
+// direction by normal_blend (render/leaf_shading.h); without, the card's own +Z.
+struct leaf_bake {
+  const crown_ellipsoid* crown = nullptr;
+  float normal_blend = 0;
+};
+void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b);
 
 bool has_shed(const tree_skeleton& t, int s);
 
 // Splits a mesh into one part per tree (a forest is one glTF node per tree); leaves alive at
 // `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
-// they are left to the caller.
-std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material);
+// they are left to the caller. Baked leaves face out of their tree's crown, bent toward it by
+// normal_blend (render/leaf_shading.h).
+std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
+                                   float normal_blend);
 
 void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mesh_params& p, int step);
 
@@ -161,6 +170,7 @@ class material_source {
     return std::string("leaves_") + leaf_archetype_names[std::clamp(slot, 0, leaf_archetype_count - 1)];
   }
   float alpha_cutoff() const { return std::clamp(o_.alpha_cutoff, 0.0f, 1.0f); }
+  float leaf_normal_blend() const { return o_.leaf_normal_blend; }
 
   // The PNGs of a material, made on first use; nullptr after an encoding failure (see error).
   const material_pngs* bark() {

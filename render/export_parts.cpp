@@ -44,8 +44,10 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material) {
 
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
-// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner).
-void bake_leaf(geometry& g, const leaf_instance& l) {
+// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). The face
+// is turned to look out of the crown and its normal bent toward the crown's outward direction by
+// b.normal_blend (render/leaf_shading.h), so a viewer outside the crown meets its lit side.
+void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
   const glm::quat q(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z);
   const float h = l.size, w = l.size * 0.5f;
   const glm::vec3 corner[4] = {{-w, 0, 0}, {w, 0, 0}, {w, h, 0}, {-w, h, 0}};
@@ -55,18 +57,27 @@ void bake_leaf(geometry& g, const leaf_instance& l) {
     return len > 1e-6f ? v / len : fallback;
   };
   const glm::vec3 n = unit(q * glm::vec3(0, 0, 1), glm::vec3(0, 0, 1));
-  // Tangent along +u (local +X); the bitangent n x t = local +Y runs up the image, so w = +1.
-  const glm::vec4 t(unit(q * glm::vec3(1, 0, 0), glm::vec3(1, 0, 0)), 1.0f);
+  const glm::vec3 across = unit(q * glm::vec3(1, 0, 0), glm::vec3(1, 0, 0));
+  const glm::vec3 out = b.crown ? crown_outward(*b.crown, l.position) : n;
+  const float side = glm::dot(n, out) < 0 ? -1.0f : 1.0f;
+  const glm::vec3 nf = blend_leaf_normal(side * n, out, b.normal_blend);
+  // Tangent along +u (local +X), made orthogonal to the bent normal. The bitangent normal x
+  // tangent runs up the image (local +Y) on the front, so w = +1; a card turned over keeps its
+  // image upright with w = -1.
+  const glm::vec4 t(unit(across - nf * glm::dot(nf, across), across), side);
+  const glm::vec3 occlusion(float(l.occlusion) / 255.0f);
   const uint32_t base = uint32_t(g.position.size());
   for (int k = 0; k < 4; ++k) {
     g.position.push_back(l.position + q * corner[k]);
-    g.normal.push_back(n);
+    g.normal.push_back(nf);
     g.uv.push_back(uv[k]);
     g.tangent.push_back(t);
-    g.color.push_back(glm::vec3(float(l.occlusion) / 255.0f));
+    g.color.push_back(occlusion);
     g.node.push_back(l.node);
   }
-  for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
+  // Counter-clockwise seen from the side the face looks to.
+  if (side > 0) for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
+  else for (uint32_t k : {0u, 2u, 1u, 0u, 3u, 2u}) g.index.push_back(base + k);
 }
 
 bool has_shed(const tree_skeleton& t, int s) {
@@ -78,7 +89,8 @@ bool has_shed(const tree_skeleton& t, int s) {
 // Splits a mesh into one part per tree (a forest is one glTF node per tree); leaves alive at
 // `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
 // they are left to the caller.
-std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material) {
+std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
+                                   float normal_blend) {
   std::vector<int32_t> tree_of(t.size(), 0);
   int trees = 0;
   for (size_t i = 0; i < t.size(); ++i) {
@@ -125,10 +137,19 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
     }
     g.index.push_back(local[v]);
   }
-  if (bake)
+  if (bake) {
+    // Each tree of a forest bends its leaves toward its own crown: the box of its leaves alive now.
+    auto part_of = [&](const leaf_instance& l) { return size_t(l.node < tree_of.size() ? tree_of[l.node] : 0); };
+    std::vector<crown_box> crowns(parts.size());
+    for (const leaf_instance& l : m.leaves)
+      if (l.born <= step && step < l.died) crowns[part_of(l)].add(l.position);
+    std::vector<leaf_bake> look(parts.size());
+    std::vector<crown_ellipsoid> shape(parts.size());
+    for (size_t k = 0; k < parts.size(); ++k) shape[k] = crowns[k].ellipsoid(), look[k] = {&shape[k], normal_blend};
     for (const leaf_instance& l : m.leaves)
       if (l.born <= step && step < l.died)
-        bake_leaf(parts[l.node < tree_of.size() ? tree_of[l.node] : 0].leaves[size_t(leaf_slot(l, one_leaf_material))], l);
+        bake_leaf(parts[part_of(l)].leaves[size_t(leaf_slot(l, one_leaf_material))], l, look[part_of(l)]);
+  }
   return parts;
 }
 

@@ -54,6 +54,7 @@ struct render_params {
   glm::vec3 ground_color{0.16f, 0.20f, 0.09f};
   // Leaves (seed 001 names opaque leaves its main flaw: light passes through these).
   float leaf_translucency = 0.6f;
+  float leaf_normal_blend = 0.6f;   // leaf normals bent toward the crown (render/leaf_shading.h)
   float alpha_cutoff = 0.5f;
   float leaf_color_variation = 0.15f;
   // Season (render/season.h): the autumn colour runs from autumn_color to autumn_color_2 per leaf.
@@ -111,6 +112,7 @@ void visit_params(P& p, V&& v) {
   v(p.ground_color, param_info{"ground_color", "Ground colour", "", 0, 1, "Ground albedo (linear RGB)"});
   v(p.msaa, param_info{"msaa", "MSAA samples", "", 0, 8, "Multisample anti-aliasing of the lit pass (0 or 1: off)", param_on_release});
   v(p.leaf_translucency, param_info{"leaf_translucency", "Leaf translucency", "", 0, 1, "Share of sunlight that glows through a leaf lit from behind"});
+  v(p.leaf_normal_blend, param_info{"leaf_normal_blend", "Crown normals", "", 0, 1, "Leaves are lit as a volume: each card's normal bends toward the crown's outward direction by this share (0: flat cards, 1: the crown's shape alone), in the viewport and in exports"});
   v(p.alpha_cutoff, param_info{"alpha_cutoff", "Leaf alpha cutoff", "", 0.05f, 0.95f, "Leaf texels below this opacity are cut away"});
   v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Random per-leaf variation of the tint"});
   v(p.season, param_info{"season", "Season", "", 0, 3, "Spring: fresh light green, smaller leaves still unfolding; summer: the leaf colour; autumn: the autumn colours, some leaves fallen; winter: deciduous trees bare (conifers and palms keep theirs). Only the leaves change: no regrow", 0, "Season", leaf_season_names});

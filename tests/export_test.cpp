@@ -233,7 +233,11 @@ TEST(Export, InstancedLeavesAreOneCardMeshPerArchetype) {
     for (const auto& node : model.nodes)
       if (node.name == name) {
         const auto& ext = node.extensions.at("EXT_mesh_gpu_instancing");
-        instances += model.accessors[size_t(ext.Get("attributes").Get("TRANSLATION").GetNumberAsInt())].count;
+        const size_t n = model.accessors[size_t(ext.Get("attributes").Get("TRANSLATION").GetNumberAsInt())].count;
+        instances += n;
+        // The crown occlusion per instance, one grey per instance.
+        ASSERT_TRUE(ext.Get("attributes").Has("_COLOR_0"));
+        EXPECT_EQ(model.accessors[size_t(ext.Get("attributes").Get("_COLOR_0").GetNumberAsInt())].count, n);
       }
   }
   EXPECT_EQ(instances, leaves_alive(h.m, 5));
@@ -613,6 +617,7 @@ TEST(Export, ApplyRenderParamsCopiesEveryMaterialSetting) {
   rp.bark_color = {0.1f, 0.2f, 0.3f};
   rp.leaf_color = {0.4f, 0.5f, 0.6f};
   rp.alpha_cutoff = 0.7f;
+  rp.leaf_normal_blend = 0.25f;
   rp.bark_texture = "b.png", rp.leaf_texture = "l.png", rp.leaf_opacity = "o.png";
   export_options o;
   apply_render_params(o, rp);
@@ -620,6 +625,7 @@ TEST(Export, ApplyRenderParamsCopiesEveryMaterialSetting) {
   EXPECT_EQ(o.bark_color, rp.bark_color);
   EXPECT_EQ(o.leaf_color, rp.leaf_color);
   EXPECT_EQ(o.alpha_cutoff, 0.7f);
+  EXPECT_EQ(o.leaf_normal_blend, 0.25f);
   EXPECT_EQ(o.bark_texture, "b.png");
   EXPECT_EQ(o.leaf_texture, "l.png");
   EXPECT_EQ(o.leaf_opacity, "o.png");

@@ -341,6 +341,9 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
       set_season_uniforms(r.leaf, season);
       set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
       set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
+      set_uniform(r.leaf, "u_crown_centre", r.crown_centre);
+      set_uniform(r.leaf, "u_crown_radii", r.crown_radii);
+      set_uniform(r.leaf, "u_normal_blend", rp.leaf_normal_blend);
       set_wind_uniforms(r, r.leaf, rp);
       draw_leaves(r);
     } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree

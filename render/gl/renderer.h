@@ -73,6 +73,7 @@ struct renderer_gpu {
   std::vector<float> radius_upload;   // reused scratch: (bend offset xyz, shown - built radius) per node
   int steps = 0, step = 0, node_count = 0;
   glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
+  glm::vec3 crown_centre{0, 1, 0}, crown_radii{1};   // the leaves' ellipsoid (render/leaf_shading.h)
   bool has_tree = false;
   glm::vec3 root{0};                  // centre of the trunk's base ring, and its radius (ground contact)
   float root_radius = 0.1f;

@@ -1,5 +1,6 @@
 // The renderer's lifetime (programs, buffers, textures) and the tree upload (render/gl/renderer.h).
 #include "render/gl/renderer_resources.h"
+#include "render/leaf_shading.h"
 #include "render/gl/renderer.h"
 #include "render/gl/shaders.h"
 #include "render/gl/renderer_resources.h"
@@ -204,6 +205,8 @@ void upload_tree(renderer_gpu& r, const tree_mesh& m) {
   r.has_tree = !m.index.empty() || !m.leaves.empty();
   if (r.has_tree) {
     r.bounds_min = m.bounds_min;
+    const crown_ellipsoid crown = leaf_crown(m);
+    r.crown_centre = crown.centre, r.crown_radii = crown.radii;
     r.bounds_max = m.bounds_max;
     // The trunk's base: the first ring of the bark (the root node's), where the ground meets it.
     const size_t ring = size_t(std::max(m.radial_segments, 1)) + 1;

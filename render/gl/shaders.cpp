@@ -115,8 +115,9 @@ uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (r
 // The season (render/season.h season_look): deciduous archetypes' colour range, share kept, size.
 uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uint u_deciduous;
 uniform float u_keep; uniform float u_season_scale;
+uniform vec3 u_crown_centre; uniform vec3 u_crown_radii;   // the leaves' ellipsoid (render/leaf_shading.h)
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
-flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color; flat out float v_plain;
+flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color; flat out float v_plain; flat out vec3 v_outward;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
 float leaf_random(uint i, uint salt) {   // season_leaf_random (render/season.cpp), line for line
@@ -153,6 +154,9 @@ void main() {
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(plain ? i_texture & 63u : i_texture) % u_layers);
   v_ao = i_ao;
+  // crown_outward (render/leaf_shading.cpp): the gradient of the ellipsoid through the leaf.
+  vec3 g = (i_position - u_crown_centre) / (u_crown_radii * u_crown_radii);
+  v_outward = length(g) > 1e-6 ? normalize(g) : vec3(0.0, 1.0, 0.0);
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
   if (plain) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/textures.h)
@@ -162,7 +166,8 @@ void main() {
 
 const char* const leaf_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec3 v_tangent; in vec3 v_bitangent; in vec2 v_uv; flat in float v_layer;
-flat in vec3 v_tint; flat in float v_ao; flat in vec3 v_color; flat in float v_plain;
+flat in vec3 v_tint; flat in float v_ao; flat in vec3 v_color; flat in float v_plain; flat in vec3 v_outward;
+uniform float u_normal_blend;
 uniform sampler2DArray u_leaf; uniform sampler2DArray u_leaf_normal; uniform sampler2DArray u_leaf_thickness;
 uniform float u_cutoff; uniform float u_translucency;
 out vec4 o_color;
@@ -174,6 +179,12 @@ void main() {
   vec3 n0 = normalize(v_normal);
   vec3 n = normalize(mat3(normalize(v_tangent), normalize(v_bitangent), n0) * m);
   if (!gl_FrontFacing) { n = -n; n0 = -n0; }   // two-sided: light the side we see
+  // Lit as a volume (blend_leaf_normal, render/leaf_shading.cpp): the side we see, bent toward
+  // the crown's outward direction. The impostor's card keeps its atlas normals.
+  if (v_plain < 0.5) {
+    vec3 bent = mix(n, v_outward, clamp(u_normal_blend, 0.0, 1.0));
+    if (length(bent) > 1e-4) n = normalize(bent);
+  }
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
   // tinted_texture's formula (render/textures.h), then the per-leaf variation.
   vec3 albedo = min(vec3(1.0), TINT_GAIN * v_color * t.rgb) * v_tint;
