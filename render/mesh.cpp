@@ -228,6 +228,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   const float collar = std::isfinite(p.collar) ? std::clamp(p.collar, 0.0f, 4.0f) : 0.0f;
   const float collar_length = std::isfinite(p.collar_length) ? std::clamp(p.collar_length, 0.0f, 100.0f) : 0.0f;
   const float collar_min = std::isfinite(p.collar_min_radius) ? p.collar_min_radius : 0.0f;
+  const float root_depth = std::isfinite(p.root_depth) ? std::clamp(p.root_depth, 0.0f, 10.0f) : 0.0f;
 
   // Sized by a guess and grown as rings come: this loop is the mesher's hot path.
   const size_t guess = (n + n / 2 + 8) * size_t(stride);
@@ -395,10 +396,15 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     off[i] = uint32_t(chain.size());
     if (par < 0) {
       frame[i] = any_perpendicular(tangent[i]);
-      ring_start[i] = emit_ring(q[i], tangent[i], frame[i], m.final_radius[i], 0.0f, uint32_t(i), trunk_h[i],
-                                flare_h[i], flare_phase[i]);
+      // An upright trunk stands in the ground: its foot ring is sunk root_depth below the root, at
+      // the flare's full spread (h = 0), so the lobes run into the ground instead of ending in a cut.
+      const bool upright = cont[i] >= 0 && glm::dot(tangent[i], up_axis) > 0.999f;
+      const float sink = upright ? root_depth : 0.0f;
+      const glm::vec3 foot = q[i] - up_axis * sink;
+      ring_start[i] = emit_ring(foot, tangent[i], frame[i], m.final_radius[i], -sink * uv_repeat, uint32_t(i),
+                                trunk_h[i], flare_h[i], flare_phase[i]);
       if (p.caps && cont[i] >= 0)  // the trunk's foot, flat, facing down
-        cap_apex[i] = emit_apex(q[i], -tangent[i], 0.0f, uint32_t(i));
+        cap_apex[i] = emit_apex(foot, -tangent[i], -sink * uv_repeat, uint32_t(i));
       continue;
     }
     const bool lateral = cont[par] != int32_t(i);
@@ -447,7 +453,10 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     // collar_length lateral radii beyond where the swollen tube leaves the parent's bark (a
     // cylinder of radius ra round tangent[par]), or within the first 90% of the internode.
     float u2 = -1;
-    const float swell = collared[i] ? std::min(ri * (1 + collar), std::max(ri, 0.98f * ra)) : ri;
+    // A lateral's base: its pipe-model radius where it leaves the parent, wider than its tip by the
+    // disused-pipe taper (skeleton.h) and still thinner than the parent there; the collar swells it.
+    const float rb = lateral ? std::max(ri, std::min(ri * pipe_taper_factor(t, i), 0.98f * ra)) : ri;
+    const float swell = collared[i] ? std::min(rb * (1 + collar), std::max(rb, 0.98f * ra)) : rb;
     if (collared[i]) {
       const float sin_t = glm::length(glm::cross(dirn, tangent[par])), cos_t = std::abs(glm::dot(dirn, tangent[par]));
       const float d_exit = (ra + swell * cos_t) / std::max(sin_t, 0.25f);
@@ -457,9 +466,10 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     std::sort(us.begin(), us.end());
     auto radius_at = [&](float u) {
       if (!lateral) return ra + (ri - ra) * u;
-      if (u2 < 0 || u >= u2) return ri;
+      const float lin = rb + (ri - rb) * u;   // the lateral's own taper
+      if (u2 < 0 || u >= u2) return lin;
       const float x = u / u2, fade = 1 - x * x * (3 - 2 * x);  // smoothstep from the swell down
-      return ri + (swell - ri) * fade;
+      return lin + (swell - rb) * fade;
     };
 
     glm::vec3 from_t = t_start, from_n, prev_c = a;

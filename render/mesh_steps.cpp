@@ -98,6 +98,7 @@ tree_skeleton skeleton_at_step(const tree_skeleton& t, int step) {
   }
   out.pipe_exponent = t.pipe_exponent;
   out.pipe_tip_radius = t.pipe_tip_radius;
+  out.pipe_taper = t.pipe_taper;
   out.steps = step;
   out.tree_count = 0;
   for (int32_t par : out.parent) out.tree_count += par < 0;
