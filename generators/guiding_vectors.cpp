@@ -438,7 +438,7 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
   const int steps = o.steps >= 0 ? o.steps : p.steps;
   tree_skeleton t;
   auto finish = [&](tree_skeleton& tree) -> tree_skeleton& {
-    apply_pipe_radii(tree, std::max(p.pipe_exponent, 0.1f), std::max(p.tip_radius, 0.0f));
+    apply_pipe_radii(tree, std::max(p.pipe_exponent, 0.1f), std::max(p.tip_radius, 0.0f), p.pipe_taper);
     if (rep.stop_reason.empty()) {
       rep.stop = rep.hit_node_cap ? grow_stop::node_cap : rep.cancelled ? grow_stop::cancelled : grow_stop::finished;
       rep.stop_reason = rep.hit_node_cap ? "node cap" : rep.cancelled ? "cancelled" : "steps done";

@@ -36,6 +36,7 @@ constexpr refusal so_refusals[] = {
     {"envelope_bottom", "the markers are scattered once, before the first step"},
     {"envelope_top", "the markers are scattered once, before the first step"},
     {"pipe_exponent", whole},
+    {"pipe_taper", whole},
     {"tip_radius", whole},
     {"tree_count", once},
     {"placement", once},
@@ -56,6 +57,7 @@ constexpr refusal sc_refusals[] = {
     {"steps", "the step count itself cannot change during growth"},
     {"node_cap", cap},
     {"pipe_exponent", whole},
+    {"pipe_taper", whole},
     {"min_width", whole},
     {"max_width", whole},
     {"leaves_min", whole},
@@ -79,6 +81,7 @@ constexpr refusal gv_refusals[] = {
     {"volume_outer", "only step 1 samples the endpoint volume; later steps use the border set"},
     {"volume_inner", "only step 1 samples the endpoint volume; later steps use the border set"},
     {"pipe_exponent", whole},
+    {"pipe_taper", whole},
     {"tip_radius", whole},
     {"node_cap", cap},
 };
@@ -94,6 +97,7 @@ constexpr refusal honda_refusals[] = {
     {"turtle_leaf_size", whole},
     {"widths", whole},
     {"pipe_exponent", whole},
+    {"pipe_taper", whole},
     {"tip_radius", whole},
     {"module_cap", cap},
 };

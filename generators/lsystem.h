@@ -38,6 +38,7 @@ struct lsystem_params {
   // by what it carries, which is what makes them read as plants.
   lsystem_widths widths = lsystem_widths::turtle;
   float pipe_exponent = 2.0f, tip_radius = 0.004f;
+  float pipe_taper = 0.0f;   // disused pipes per metre (skeleton.h), pipe widths only
   int node_cap = 2000000;
   int module_cap = 4000000;
   bool operator==(const lsystem_params&) const = default;
@@ -66,6 +67,7 @@ void visit_params(P& p, V&& v) {
   v(p.widths, param_info{"widths", "Widths", "", 0, 1, "turtle: widths from !(w) and #width; pipe: the pipe model r^n = Σ r_i^n from thin tips (Shinozaki 1964)", 0, nullptr, lsystem_widths_names});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model exponent (pipe widths): 2 keeps the cross-section area, larger gives thinner trunks"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of the youngest segments in metres (pipe widths)", param_log});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (pipe widths; per metre)"});
   v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
 }
 
@@ -75,7 +77,8 @@ inline bool param_relevant(const lsystem_params& p, const void* field, const par
                           field == &p.alpha2 || field == &p.phi1 || field == &p.phi2 || field == &p.r1 ||
                           field == &p.r2 || field == &p.q || field == &p.e;
   const bool text_only = field == &p.source || field == &p.leaf_size || field == &p.module_cap ||
-                         field == &p.widths || field == &p.pipe_exponent || field == &p.tip_radius;
+                         field == &p.widths || field == &p.pipe_exponent || field == &p.tip_radius ||
+                         field == &p.pipe_taper;
   if (honda_only) return p.mode == lsystem_mode::honda;
   if (text_only) return p.mode == lsystem_mode::text;
   return true;

@@ -198,7 +198,7 @@ tree_skeleton grow_lsystem_text(const lsystem_params& p, const grow_options& o, 
   lsystem_derive_report dr;
   const lsystem_string s = derive_lsystem(prog, steps, o.seed, p.module_cap, o, dr);
   tree_skeleton t = interpret_lsystem(prog, s, p, dr.derivations, rep, &o);
-  if (p.widths == lsystem_widths::pipe) apply_pipe_radii(t, p.pipe_exponent, p.tip_radius);
+  if (p.widths == lsystem_widths::pipe) apply_pipe_radii(t, p.pipe_exponent, p.tip_radius, p.pipe_taper);
   rep.cancelled = rep.cancelled || dr.cancelled;
   if (dr.error || dr.hit_module_cap) {
     rep.error = dr.error;

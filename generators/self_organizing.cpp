@@ -701,7 +701,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     if (rep.hit_node_cap || rep.cancelled || st.grid.full) break;
   }
   t.steps = step;
-  apply_pipe_radii(t, p.pipe_exponent, p.tip_radius);
+  apply_pipe_radii(t, p.pipe_exponent, p.tip_radius, p.pipe_taper);
 
   if (rep.hit_node_cap)
     rep.message = "node cap reached (" + std::to_string(p.node_cap) + " nodes) in step " + std::to_string(step) +

@@ -67,6 +67,7 @@ struct self_organizing_params {
   so_phyllotaxis phyllotaxis = so_phyllotaxis::spiral;
   // Radii.
   float pipe_exponent = 2, tip_radius = 0.003f;
+  float pipe_taper = 0;   // disused pipes per metre (skeleton.h), applied to the final radii
   // Forest.
   int tree_count = 1;
   so_placement placement = so_placement::grid;
@@ -116,6 +117,7 @@ void visit_params(P& p, V&& v) {
   v(p.phyllotaxis, param_info{"phyllotaxis", "Phyllotaxis", "", 0, 1, "spiral: lateral buds turn by φ; planar: seed 000's ±β in one plane (flat trees)", 0, nullptr, so_phyllotaxis_names});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1.5f, 4, "Pipe model r^n = Σ r_i^n", 0, "Radii"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of a branch tip in metres", param_log});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
   v(p.tree_count, param_info{"tree_count", "Trees", "", 1, 400, "Trees growing together in one environment", param_on_release, "Forest"});
   v(p.placement, param_info{"placement", "Placement", "", 0, 2, "grid, random in a square, or the explicit positions", 0, nullptr, so_placement_names});
   v(p.spacing, param_info{"spacing", "Spacing", "", 0.1f, 100, "Distance between grid neighbours; random placement uses a square of side spacing·√count"});

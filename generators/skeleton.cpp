@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 namespace sylva {
 
 int32_t tree_skeleton::add_node(const glm::vec3& p, int32_t par, float r, uint16_t born_step, uint8_t ord) {
@@ -58,9 +60,10 @@ std::string validate_skeleton(const tree_skeleton& s) {
 
 void compute_pipe_radii(const std::vector<int32_t>& parent, const std::vector<uint16_t>& born,
                         const std::vector<uint16_t>& died, int step, float exponent, float r_tip,
-                        std::vector<float>& radius) {
+                        std::vector<float>& radius, const std::vector<glm::vec3>* position, float taper) {
   const size_t n = parent.size();
   radius.assign(n, 0.0f);
+  const bool tapered = position && position->size() == n && std::isfinite(taper) && taper > 0;
   // Accumulate r^n sums bottom-up (children have larger indices than their parents).
   std::vector<float> sum(n, 0.0f);
   const float rt = std::pow(r_tip, exponent);
@@ -71,20 +74,38 @@ void compute_pipe_radii(const std::vector<int32_t>& parent, const std::vector<ui
     const float s = sum[k] > 0 ? sum[k] : rt;
     radius[k] = std::pow(s, 1.0f / exponent);
     assert(parent[k] < int32_t(k) && "compute_pipe_radii: one reverse sweep needs parent[i] < i");
-    if (parent[k] >= 0) sum[parent[k]] += s;
+    if (parent[k] < 0) continue;
+    if (tapered) {
+      // Disused pipes: the internode's base is (1 + τ·ℓ) times its tip (see skeleton.h).
+      const float len = glm::length((*position)[k] - (*position)[size_t(parent[k])]);
+      const float f = 1.0f + taper * (std::isfinite(len) ? len : 0.0f);
+      sum[parent[k]] += s * std::pow(f, exponent);
+    } else {
+      sum[parent[k]] += s;
+    }
   }
 }
 
-void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip) {
+float pipe_taper_factor(const tree_skeleton& s, size_t i) {
+  if (!(s.pipe_exponent > 0) || !(s.pipe_taper > 0) || !std::isfinite(s.pipe_taper) || i >= s.size()) return 1.0f;
+  const int32_t par = s.parent[i];
+  if (par < 0) return 1.0f;
+  const float len = glm::length(s.position[i] - s.position[size_t(par)]);
+  return std::isfinite(len) ? 1.0f + s.pipe_taper * len : 1.0f;
+}
+
+void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip, float taper) {
   s.pipe_exponent = exponent;
   s.pipe_tip_radius = r_tip;
-  compute_pipe_radii(s.parent, s.born, s.died, s.steps, exponent, r_tip, s.radius);
+  s.pipe_taper = std::isfinite(taper) && taper > 0 ? taper : 0.0f;
+  compute_pipe_radii(s.parent, s.born, s.died, s.steps, exponent, r_tip, s.radius, &s.position, s.pipe_taper);
 }
 
 std::vector<float> radii_at_step(const tree_skeleton& s, int step) {
   std::vector<float> r;
   if (s.pipe_exponent > 0) {
-    compute_pipe_radii(s.parent, s.born, s.died, step, s.pipe_exponent, s.pipe_tip_radius, r);
+    compute_pipe_radii(s.parent, s.born, s.died, step, s.pipe_exponent, s.pipe_tip_radius, r, &s.position,
+                       s.pipe_taper);
     return r;
   }
   r = s.radius;

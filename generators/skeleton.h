@@ -41,6 +41,7 @@ struct tree_skeleton {               // node i is the tip of the internode from 
   // When 0, each node keeps `radius` from birth to death.
   float pipe_exponent = 0;
   float pipe_tip_radius = 0;
+  float pipe_taper = 0;              // disused pipes per metre (compute_pipe_radii), 0: none
   int steps = 0;                     // number of growth steps taken
   int tree_count = 1;                // forests: roots are the nodes with parent -1, one per tree
   // Set by the wood pass: what positions_at_step (generators/wood.h) replays to show the bend of
@@ -60,12 +61,19 @@ std::string validate_skeleton(const tree_skeleton& s);
 // Pipe model (Shinozaki et al. 1964; Macdonald 1983): r^n = Σ r_i^n over the children, with
 // terminal nodes at r_tip. Writes radius for the nodes alive at `step` (every node when step < 0);
 // the others get 0. Relies on parent[i] < i, so one reverse sweep suffices.
+// Taper (disused pipes): Shinozaki's stem keeps the pipes of the shoots it once carried, so an axis
+// thickens downward even where nothing branches off. With `taper` τ > 0 and the node positions,
+// each internode of length ℓ is (1 + τ·ℓ) times wider at its base than at its tip, and passes
+// (r_i·(1 + τ·ℓ_i))^n down to its parent; τ = 0 (or no positions) is the plain pipe model.
 void compute_pipe_radii(const std::vector<int32_t>& parent, const std::vector<uint16_t>& born,
                         const std::vector<uint16_t>& died, int step, float exponent, float r_tip,
-                        std::vector<float>& radius);
-// Sets s.radius to the pipe radii of the final tree (step s.steps) and records the exponent so
-// that radii_at_step recomputes earlier steps.
-void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip);
+                        std::vector<float>& radius, const std::vector<glm::vec3>* position = nullptr,
+                        float taper = 0);
+// The factor (1 + τ·ℓ) by which internode i (parent -> i) is wider at its base than at node i.
+float pipe_taper_factor(const tree_skeleton& s, size_t i);
+// Sets s.radius to the pipe radii of the final tree (step s.steps) and records the exponent (and
+// taper) so that radii_at_step recomputes earlier steps.
+void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip, float taper = 0);
 
 // Radii of the tree as it stood at `step` (same node indices; nodes not alive at step get 0).
 std::vector<float> radii_at_step(const tree_skeleton& s, int step);

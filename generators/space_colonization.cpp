@@ -252,6 +252,7 @@ struct sc_snapshot {
   float D = 0;
   int32_t tip = 0;
   grow_report rep;
+  std::vector<uint8_t> forked;
   size_t bytes = 0;
 };
 
@@ -275,6 +276,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
 
   tree_skeleton t;
   std::vector<uint8_t> has_child;
+  std::vector<uint8_t> forked;      // 1: the node's apex forked sympodially (it grows no more)
   std::vector<int32_t> last_count;  // influence count when the node last grew, -1 never
   std::vector<int32_t> acc_count;
   std::vector<glm::vec3> acc;
@@ -286,6 +288,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
     t.add_node(pos, par, 0.0f, uint16_t(step), ord);
     has_child.push_back(0);
+    forked.push_back(0);
     last_count.push_back(-1);
     acc_count.push_back(0);
     acc.push_back(glm::vec3(0));
@@ -342,6 +345,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     const sc_snapshot& x = *(*snaps)[size_t(resume->from_step)];
     t = x.t;
     has_child = x.has_child;
+    forked = x.forked;
     last_count = x.last_count;
     acc_count.assign(t.size(), 0);
     acc.assign(t.size(), glm::vec3(0));
@@ -386,6 +390,36 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
   }
 
+  // Sympodial forking (issue 23): the length an apex's axis has grown since its last fork (or the
+  // root), walked down at most fork_length / D nodes; and the fork itself, where the apex stops and
+  // two shoots fork_angle apart, in a seeded plane through its course, take over, each turned off
+  // course by up to `crook` (Hallé, Oldeman & Tomlinson 1978: sympodial growth, the leader's
+  // apex ends and laterals continue the axis).
+  auto axis_since_fork = [&](int32_t v) {
+    float len = 0;
+    const int most = int(p.fork_length / D) + 2;
+    for (int k = 0; k < most && v > 0 && !forked[size_t(t.parent[size_t(v)])]; ++k) {
+      len += glm::length(t.position[size_t(v)] - t.position[size_t(t.parent[size_t(v)])]);
+      v = t.parent[size_t(v)];
+    }
+    return len;
+  };
+  auto fork_apex = [&](int32_t v, const glm::vec3& dir, int k) {
+    rng r(o.seed * 0x9E3779B97F4A7C15ull ^ (uint64_t(v) * 0xD1B54A32D192ED03ull + 0x666f726bull));
+    const glm::vec3 side = rotate_by(any_perpendicular(dir), dir * r.uniform(0.0f, 6.2831853f));
+    const float half = 0.5f * glm::radians(p.fork_angle), crook = glm::radians(p.crook);
+    forked[size_t(v)] = 1;
+    for (float sgn : {1.0f, -1.0f}) {
+      if (!room()) return;
+      glm::vec3 d = rotate_by(dir, side * (sgn * half));
+      if (crook > 0) {
+        const glm::vec3 across = rotate_by(any_perpendicular(d), d * r.uniform(0.0f, 6.2831853f));
+        d = rotate_by(d, across * (crook * r.uniform(-1.0f, 1.0f)));
+      }
+      add(t.position[size_t(v)] + D * glm::normalize(d), v, k);
+    }
+  };
+
   // Crown: Runions 2007 §3, one iteration per growth step.
   std::vector<int32_t> touched;
   std::vector<uint8_t> stuck;
@@ -403,12 +437,12 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       if (only.empty() || std::find(only.begin(), only.end(), k) != only.end()) {
         // Bounded as the self-organizing snapshots are (growth_resume::byte_cap).
         const size_t bytes = sizeof(sc_snapshot) + vec_bytes(t.position) + vec_bytes(t.parent) + vec_bytes(t.radius) +
-                             vec_bytes(t.born) + vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(has_child) +
+                             vec_bytes(t.born) + vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(has_child) + vec_bytes(forked) +
                              vec_bytes(last_count) + vec_bytes(s.cell_begin) + vec_bytes(s.cell_alive) +
                              vec_bytes(s.slots) + vec_bytes(s.slot_of) + vec_bytes(s.cell_of) + vec_bytes(s.slot_pos) +
                              vec_bytes(s.nearest) + vec_bytes(s.nearest_d2) + vec_bytes(s.killed) + vec_bytes(s.active);
         if (recorded_bytes(*resume) + bytes <= resume->byte_cap)
-          (*snaps)[size_t(k)] = std::make_shared<const sc_snapshot>(sc_snapshot{t, has_child, last_count, s, p, D, tip, rep, bytes});
+          (*snaps)[size_t(k)] = std::make_shared<const sc_snapshot>(sc_snapshot{t, has_child, last_count, s, p, D, tip, rep, forked, bytes});
         else
           ++resume->skipped;
       }
@@ -437,11 +471,23 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
         any_stuck = true;
         continue;
       }
+      // Apical control: a forked apex grows no more, and old wood sprouts no laterals; the points
+      // only they are nearest to are dropped like a stuck node's (other nodes may take them first).
+      const bool apex = !has_child[size_t(v)];
+      if (forked[size_t(v)] || (!apex && p.bud_life > 0 && step - int(t.born[size_t(v)]) > p.bud_life)) {
+        stuck[size_t(v)] = 1;
+        any_stuck = true;
+        continue;
+      }
       if (!stop.empty() || !room()) continue;
       const int32_t par = t.parent[size_t(v)];
       const glm::vec3 prev = par >= 0 ? glm::normalize(t.position[size_t(v)] - t.position[size_t(par)]) : up;
       const glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, p.tropism_weight);
       last_count[size_t(v)] = acc_count[size_t(v)];
+      if (apex && p.fork_length > 0 && axis_since_fork(v) + D >= p.fork_length) {
+        fork_apex(v, dir, step);
+        continue;
+      }
       add(t.position[size_t(v)] + D * dir, v, step);  // Runions 2007 §3: v' = v + D·n̂
     }
     if (any_stuck)
@@ -470,12 +516,13 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // max_width·W. While the cap does not bind, the radii stay time-varying pipe radii
   // (radii_at_step thickens the trunk as the tree grows); when it binds the capped final radii are
   // stored (pipe_exponent = 0), since radii_at_step cannot apply the cap.
-  compute_pipe_radii(t.parent, t.born, t.died, t.steps, p.pipe_exponent, p.min_width, t.radius);
+  compute_pipe_radii(t.parent, t.born, t.died, t.steps, p.pipe_exponent, p.min_width, t.radius, &t.position,
+                     p.pipe_taper);
   const float rmax = p.max_width * p.min_width;
   bool capped = false;
   for (float& r : t.radius)
     if (r > rmax) r = rmax, capped = true;
-  if (!capped) t.pipe_exponent = p.pipe_exponent, t.pipe_tip_radius = p.min_width;
+  if (!capped) t.pipe_exponent = p.pipe_exponent, t.pipe_tip_radius = p.min_width, t.pipe_taper = p.pipe_taper;
 
   place_spiral_leaves(t, has_child, p, o.seed);
 

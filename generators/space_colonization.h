@@ -35,10 +35,16 @@ struct space_colonization_params {
   int max_branches = 100000;
   int steps = 400;
   int node_cap = 2000000;
+  // Branching habit (issue 23): bud life, sympodial forks and crooks; all off by default (Runions 2007).
+  int bud_life = 0;            // steps a node may sprout laterals after its birth (0: always)
+  float fork_length = 0.0f;    // metres an axis grows before its apex forks sympodially (0: never)
+  float fork_angle = 50.0f;    // degrees between the two shoots of a fork
+  float crook = 0.0f;          // degrees of seeded turn off course for each shoot of a fork
   // Widths: pipe model (seed 003's "Da Vinci" rule).
   float pipe_exponent = 2.0f;
   float min_width = 0.01f;
   float max_width = 50.0f;
+  float pipe_taper = 0.0f;   // disused pipes per metre (skeleton.h)
   // Leaves on terminal branches along a logarithmic spiral (seed 003).
   int leaves_min = 3;
   int leaves_max = 6;
@@ -68,9 +74,14 @@ void visit_params(P& p, V&& v) {
   v(p.max_branches, param_info{"max_branches", "Max branches", "", 1, 10000000, "Growth stops cleanly at this many internodes (seed 003's -b)", param_log | param_on_release});
   v(p.steps, param_info{"steps", "Growth steps", "", 0, 20000, "Iterations; each one is a scrubbable growth step (trunk internodes included)", param_on_release});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
+  v(p.bud_life, param_info{"bud_life", "Bud life", "", 0, 400, "Apical control: a node can sprout a lateral only this many growth steps after it appears; older wood stays bare and drops the points only it could reach, so limbs branch near their tips instead of as spokes from the trunk (0: always, as in Runions 2007)", param_on_release, "Branching habit"});
+  v(p.fork_length, param_info{"fork_length", "Fork length", "", 0, 20, "Sympodial forking: once an axis has grown this far (metres) since its last fork, its apex stops and two shoots a fork angle apart take over, as in oak limbs (0: monopodial axes)", param_on_release});
+  v(p.fork_angle, param_info{"fork_angle", "Fork angle", "", 0, 150, "Angle between the two shoots that take over at a sympodial fork", param_degrees | param_on_release});
+  v(p.crook, param_info{"crook", "Crook", "", 0, 60, "Each shoot of a fork turns off its course by up to this seeded angle, so limbs zig-zag at their forks (crooked oak limbs)", param_degrees | param_on_release});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (seed 003's Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
   v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
   v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment (used when the leaf mode is generator)", 0, "Own leaves (leaf mode: generator)"});
   v(p.leaves_max, param_info{"leaves_max", "Leaves per segment (max)", "", 0, 64, "Most leaves on a terminal segment; 0 for a bare tree"});
   v(p.leaf_size_min, param_info{"leaf_size_min", "Leaf size (min)", "", 0.001f, 2, "Smallest leaf blade length in metres", param_log});

@@ -17,6 +17,15 @@ inline glm::vec3 any_perpendicular(const glm::vec3& t) {
   return glm::normalize(glm::cross(glm::cross(t, a), t));
 }
 
+// Rodrigues' rotation of v by the rotation vector rv (axis * angle).
+inline glm::vec3 rotate_by(const glm::vec3& v, const glm::vec3& rv) {
+  const float a = glm::length(rv);
+  if (!(a > 1e-12f)) return v;
+  const glm::vec3 k = rv / a;
+  const float c = std::cos(a), s = std::sin(a);
+  return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
+}
+
 // The bytes a vector's contents take (what a copy of it allocates), for memory accounting.
 template <class T>
 size_t vec_bytes(const std::vector<T>& v) {

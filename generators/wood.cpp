@@ -290,6 +290,7 @@ struct engine {
       rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
       two_over_e = 2.0f / t.pipe_exponent;
     }
+    const float taper_n = pipe && t.pipe_taper > 0 ? t.pipe_exponent : 0.0f;
     const glm::vec3 g(0, -standard_gravity * p.gravity, 0);
     const float leaf_kg_per_m = p.leaf_mass * 1e-3f * p.leaves_per_metre;
     for (size_t k = end; k-- > 0;) {
@@ -326,7 +327,8 @@ struct engine {
       load& up = acc[size_t(par)];
       up.m += a.m + m;
       up.s += a.s + m * c;
-      up.pipe += sum;
+      // Disused pipes (skeleton.h): a tapered internode passes (r·(1 + τ·ℓ))^n down.
+      up.pipe += taper_n > 0 ? sum * std::pow(1.0f + t.pipe_taper * len, taper_n) : sum;
     }
   }
 

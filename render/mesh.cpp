@@ -87,14 +87,6 @@ uint64_t position_hash(const glm::vec3& p, uint64_t salt) {
   return r.next();
 }
 
-// Rodrigues' rotation of v by the rotation vector rv (axis * angle).
-glm::vec3 rotate_by(const glm::vec3& v, const glm::vec3& rv) {
-  const float a = glm::length(rv);
-  if (!(a > 1e-12f)) return v;
-  const glm::vec3 k = rv / a;
-  const float c = std::cos(a), s = std::sin(a);
-  return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
-}
 
 }  // namespace
 
@@ -143,9 +135,6 @@ glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& ro
   const glm::vec3 d = at - t.position[par];
   return t.position[par] + disp[par] + rotate_by(d, rot[k]);
 }
-
-namespace {
-}  // namespace
 
 tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed) {
   tree_mesh m;
@@ -239,6 +228,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   const float collar = std::isfinite(p.collar) ? std::clamp(p.collar, 0.0f, 4.0f) : 0.0f;
   const float collar_length = std::isfinite(p.collar_length) ? std::clamp(p.collar_length, 0.0f, 100.0f) : 0.0f;
   const float collar_min = std::isfinite(p.collar_min_radius) ? p.collar_min_radius : 0.0f;
+  const float root_depth = std::isfinite(p.root_depth) ? std::clamp(p.root_depth, 0.0f, 10.0f) : 0.0f;
 
   // Sized by a guess and grown as rings come: this loop is the mesher's hot path.
   const size_t guess = (n + n / 2 + 8) * size_t(stride);
@@ -406,10 +396,15 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     off[i] = uint32_t(chain.size());
     if (par < 0) {
       frame[i] = any_perpendicular(tangent[i]);
-      ring_start[i] = emit_ring(q[i], tangent[i], frame[i], m.final_radius[i], 0.0f, uint32_t(i), trunk_h[i],
-                                flare_h[i], flare_phase[i]);
+      // An upright trunk stands in the ground: its foot ring is sunk root_depth below the root, at
+      // the flare's full spread (h = 0), so the lobes run into the ground instead of ending in a cut.
+      const bool upright = cont[i] >= 0 && glm::dot(tangent[i], up_axis) > 0.999f;
+      const float sink = upright ? root_depth : 0.0f;
+      const glm::vec3 foot = q[i] - up_axis * sink;
+      ring_start[i] = emit_ring(foot, tangent[i], frame[i], m.final_radius[i], -sink * uv_repeat, uint32_t(i),
+                                trunk_h[i], flare_h[i], flare_phase[i]);
       if (p.caps && cont[i] >= 0)  // the trunk's foot, flat, facing down
-        cap_apex[i] = emit_apex(q[i], -tangent[i], 0.0f, uint32_t(i));
+        cap_apex[i] = emit_apex(foot, -tangent[i], -sink * uv_repeat, uint32_t(i));
       continue;
     }
     const bool lateral = cont[par] != int32_t(i);
@@ -458,7 +453,10 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     // collar_length lateral radii beyond where the swollen tube leaves the parent's bark (a
     // cylinder of radius ra round tangent[par]), or within the first 90% of the internode.
     float u2 = -1;
-    const float swell = collared[i] ? std::min(ri * (1 + collar), std::max(ri, 0.98f * ra)) : ri;
+    // A lateral's base: its pipe-model radius where it leaves the parent, wider than its tip by the
+    // disused-pipe taper (skeleton.h) and still thinner than the parent there; the collar swells it.
+    const float rb = lateral ? std::max(ri, std::min(ri * pipe_taper_factor(t, i), 0.98f * ra)) : ri;
+    const float swell = collared[i] ? std::min(rb * (1 + collar), std::max(rb, 0.98f * ra)) : rb;
     if (collared[i]) {
       const float sin_t = glm::length(glm::cross(dirn, tangent[par])), cos_t = std::abs(glm::dot(dirn, tangent[par]));
       const float d_exit = (ra + swell * cos_t) / std::max(sin_t, 0.25f);
@@ -468,9 +466,10 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     std::sort(us.begin(), us.end());
     auto radius_at = [&](float u) {
       if (!lateral) return ra + (ri - ra) * u;
-      if (u2 < 0 || u >= u2) return ri;
+      const float lin = rb + (ri - rb) * u;   // the lateral's own taper
+      if (u2 < 0 || u >= u2) return lin;
       const float x = u / u2, fade = 1 - x * x * (3 - 2 * x);  // smoothstep from the swell down
-      return ri + (swell - ri) * fade;
+      return lin + (swell - rb) * fade;
     };
 
     glm::vec3 from_t = t_start, from_n, prev_c = a;
@@ -600,120 +599,6 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     m.bounds_max = hi;
   }
   bake_crown_occlusion(m);
-  return m;
-}
-
-void bake_crown_occlusion(tree_mesh& m) {
-  m.occlusion.assign(m.position.size(), 1.0f);
-  if (m.leaves.empty()) return;   // no crown: nothing shades the sky
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const leaf_instance& l : m.leaves) { lo = glm::min(lo, l.position); hi = glm::max(hi, l.position); }
-  const glm::vec3 c = 0.5f * (lo + hi), inv = 1.0f / glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
-  auto visibility = [&](const glm::vec3& p) {
-    const float d = glm::length((p - c) * inv);
-    return std::isfinite(d) ? 0.35f + 0.65f * std::min(d, 1.0f) : 1.0f;
-  };
-  for (size_t i = 0; i < m.position.size(); ++i) m.occlusion[i] = visibility(m.position[i]);
-  for (leaf_instance& l : m.leaves) l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
-}
-
-std::string validate_mesh(const tree_mesh& m) {
-  const size_t nv = m.position.size();
-  if (m.normal.size() != nv || m.uv.size() != nv || m.node.size() != nv) return "vertex arrays differ in size";
-  if (m.index.size() % 3) return "index count is not a multiple of 3";
-  for (size_t k = 0; k < m.index.size(); ++k)
-    if (m.index[k] >= nv) return "index " + std::to_string(k) + " is out of range";
-  for (size_t v = 0; v < nv; ++v) {
-    if (!finite3(m.position[v]) || !finite3(m.normal[v]) || !std::isfinite(m.uv[v].x) || !std::isfinite(m.uv[v].y))
-      return "vertex " + std::to_string(v) + " is not finite";
-    if (m.node[v] >= m.final_radius.size()) return "vertex " + std::to_string(v) + " names no node";
-  }
-  const size_t table = size_t(std::max(m.steps, 0)) + 1;
-  if (m.index_end.size() != table || m.leaf_end.size() != table) return "step tables are not steps+1 long";
-  for (size_t s = 1; s < table; ++s)
-    if (m.index_end[s] < m.index_end[s - 1] || m.leaf_end[s] < m.leaf_end[s - 1]) return "step tables are not monotone";
-  if (m.index_end.back() != m.index.size()) return "index_end does not end at the index count";
-  if (m.leaf_end.back() != m.leaves.size()) return "leaf_end does not end at the leaf count";
-  for (size_t k = 0; k < m.leaves.size(); ++k) {
-    const leaf_instance& l = m.leaves[k];
-    if (!finite3(l.position) || !std::isfinite(l.size)) return "leaf " + std::to_string(k) + " is not finite";
-    const size_t s = std::min<size_t>(l.born, table - 1);
-    if (k >= m.leaf_end[s] || (s > 0 && k < m.leaf_end[s - 1])) return "leaves are not sorted by born";
-  }
-  return "";
-}
-
-namespace {
-// Old index -> new index for the nodes alive at `step`, -1 for the others.
-std::vector<int32_t> alive_remap(const tree_skeleton& t, int step, size_t& count) {
-  std::vector<int32_t> remap(t.size(), -1);
-  count = 0;
-  for (size_t i = 0; i < t.size(); ++i)
-    if (t.alive(i, step) && (t.parent[i] < 0 || remap[t.parent[i]] >= 0)) remap[i] = int32_t(count++);
-  return remap;
-}
-}  // namespace
-
-tree_skeleton skeleton_at_step(const tree_skeleton& t, int step) {
-  tree_skeleton out;
-  if (!structurally_sound(t)) return out;
-  step = std::clamp(step, 0, std::max(t.steps, 0));
-  size_t count = 0;
-  const std::vector<int32_t> remap = alive_remap(t, step, count);
-  const std::vector<float> r = radii_at_step(t, step);
-  const std::vector<glm::vec3> x = positions_at_step(t, step);   // the bend of that step (wood.h)
-  out.reserve(count);
-  for (size_t i = 0; i < t.size(); ++i) {
-    if (remap[i] < 0) continue;
-    out.add_node(x[i], t.parent[i] < 0 ? -1 : remap[t.parent[i]], r[i], t.born[i], t.order[i]);
-    out.died.back() = t.died[i];
-  }
-  for (const leaf& l : t.leaves) {
-    if (l.node < 0 || size_t(l.node) >= t.size() || remap[l.node] < 0) continue;
-    if (!(l.born <= step && step < l.died)) continue;
-    leaf c = l;
-    c.node = remap[l.node];
-    c.position += x[size_t(l.node)] - t.position[size_t(l.node)];
-    out.leaves.push_back(c);
-  }
-  out.pipe_exponent = t.pipe_exponent;
-  out.pipe_tip_radius = t.pipe_tip_radius;
-  out.steps = step;
-  out.tree_count = 0;
-  for (int32_t par : out.parent) out.tree_count += par < 0;
-  return out;
-}
-
-tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const mesh_params& p, int step) {
-  if (!structurally_sound(t)) return full;
-  step = std::clamp(step < 0 ? t.steps : step, 0, std::max(t.steps, 0));
-  tree_skeleton s = skeleton_at_step(t, step);
-  s.leaves.clear();
-  mesh_params bark_only = p;
-  bark_only.leaves_enabled = false;
-  tree_mesh m = mesh_tree(s, bark_only);
-  size_t count = 0;
-  const std::vector<int32_t> remap = alive_remap(t, step, count);
-  // Leaves were placed on the final bend: they follow their node to its place at `step`.
-  const std::vector<glm::vec3> x = t.wood ? positions_at_step(t, step) : std::vector<glm::vec3>();
-  // The full mesh's leaves moved with the full tree's gnarl; move them to this step's instead.
-  const std::vector<glm::vec3> rot_full = gnarl_rotations(t, p), rot_step = gnarl_rotations(s, p);
-  const std::vector<glm::vec3> disp_full = gnarl_offsets(t, rot_full), disp_step = gnarl_offsets(s, rot_step);
-  for (const leaf_instance& l : full.leaves) {  // already sorted by born, so the filter stays sorted
-    if (!(l.born <= step && step < l.died) || l.node >= remap.size() || remap[l.node] < 0) continue;
-    leaf_instance c = l;
-    c.node = uint32_t(remap[l.node]);
-    // Undo the full tree's turn of the leaf's internode, then apply this step's.
-    const int32_t par = t.parent[l.node];
-    glm::vec3 at = l.position - disp_full[l.node];
-    if (par >= 0) at = t.position[par] + rotate_by(l.position - t.position[par] - disp_full[par], -rot_full[l.node]);
-    if (!x.empty()) at += x[l.node] - t.position[l.node];   // the wood pass's bend at this step
-    c.position = gnarled_point(s, rot_step, disp_step, c.node, at);
-    m.leaves.push_back(c);
-    ++m.leaf_end[std::min<int>(l.born, step)];
-  }
-  for (int k = 1; k <= step; ++k) m.leaf_end[k] += m.leaf_end[k - 1];
-  bake_crown_occlusion(m);   // from the crown of this step's leaves
   return m;
 }
 

@@ -32,6 +32,7 @@ struct mesh_params {
   int flare_lobes = 5;          // buttress lobes at the trunk's base
   float flare_height = 1.0f;    // metres of trunk the flare spans (at most 6 trunk radii)
   float flare_strength = 0.5f;  // extra radius at the ground, as a fraction of the trunk's (0: off)
+  float root_depth = 0.1f;      // metres an upright trunk's foot reaches below the ground (y of its root)
   bool caps = true;             // close every tube end
   bool leaves_enabled = true;
   leaf_params leaves;           // used when the generator places no leaves itself
@@ -55,6 +56,7 @@ void visit_params(P& p, V&& v) {
   v(p.flare_lobes, param_info{"flare_lobes", "Flare lobes", "", 3, 6, "Buttress lobes at the trunk's base (up to half the radial segments show)"});
   v(p.flare_height, param_info{"flare_height", "Flare height", "", 0.05f, 3, "Metres of trunk the root flare spans (at most 6 trunk radii)"});
   v(p.flare_strength, param_info{"flare_strength", "Flare strength", "", 0, 2, "Extra radius of the lobes at the ground, as a fraction of the trunk's (0: no flare)"});
+  v(p.root_depth, param_info{"root_depth", "Root depth", "", 0, 2, "An upright trunk's foot reaches this far below the ground (metres), at the flare's full spread, so the tree stands in the ground with no flat cut showing (0: the foot lies on the ground)"});
   v(p.caps, param_info{"caps", "Tip caps", "", 0, 1, "Close every tube end with a cap"});
   v(p.leaves_enabled, param_info{"leaves", "Leaves", "", 0, 1, "Show and export leaves", 0, "Leaves"});
   v(p.leaf_scale, param_info{"leaf_scale", "Leaf scale", "", 0.05f, 10, "Multiplies every leaf's size", param_log});
@@ -84,7 +86,8 @@ struct baked_card_textures;   // render/lod_cards.h
 struct tree_mesh {
   // Bark: rings of radial_segments+1 vertices (the seam is duplicated for UVs): one per node, a
   // base ring per lateral, rings inserted where a branch curves, collars and the root flare, and
-  // a cap's apex ring (all its vertices at the apex) per tube end. Every ring belongs to the node
+  // a cap's apex ring (all its vertices at the apex) per tube end. An upright trunk's root ring (and
+  // foot cap) lies root_depth below its root node, in the ground. Every ring belongs to the node
   // that ends its internode, so per-node radii and visibility apply to it.
   std::vector<glm::vec3> position;   // metres
   std::vector<glm::vec3> normal;     // unit, radial for tube vertices

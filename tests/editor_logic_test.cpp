@@ -24,7 +24,7 @@ TEST(EditorLogic, LsystemHondaModeHidesTextSettings) {
   lsystem_params p;
   p.mode = lsystem_mode::honda;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"source", "turtle_leaf_size", "widths", "pipe_exponent",
-                                                      "tip_radius", "module_cap"}));
+                                                      "tip_radius", "pipe_taper", "module_cap"}));
 }
 
 TEST(EditorLogic, LsystemTextModeHidesHondaSliders) {

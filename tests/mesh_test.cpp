@@ -36,6 +36,7 @@ mesh_params plain() {
   p.collar = 0;
   p.flare_strength = 0;
   p.caps = false;
+  p.root_depth = 0;   // (issue 23) the foot ring at its node, on the ground
   return p;
 }
 
@@ -540,6 +541,17 @@ TEST(MeshShape, RootFlareHasLobesAndMeetsTheGround) {
   EXPECT_EQ(peaks, 5);
   EXPECT_NEAR(hi, 0.3f * 1.6f, 0.01f);
   EXPECT_GT(lo, 0.3f * 1.1f);   // a fifth of the swell all round
+  {
+    // With a root depth (issue 23) the same lobed ring sits that far below the ground.
+    mesh_params deep = p;
+    deep.root_depth = 0.1f;
+    const tree_mesh sunk = mesh_tree(t, deep);
+    for (int k = 0; k < 24; ++k) {
+      EXPECT_NEAR(sunk.position[size_t(k)].y, -0.1f, 1e-6f);
+      EXPECT_NEAR(std::hypot(sunk.position[size_t(k)].x, sunk.position[size_t(k)].z),
+                  std::hypot(m.position[size_t(k)].x, m.position[size_t(k)].z), 1e-5f);
+    }
+  }
   // Rings above the flare's height are round again, at their node's radius.
   for (size_t v = 0; v < m.position.size(); ++v)
     if (m.position[v].y > 1.01f) {
