@@ -463,6 +463,15 @@ tree_skeleton grow_guiding_vectors(const guiding_vectors_params& p_in, const gro
     }
     return finish(t);
   }
+  // Sylva's ground rule: drop the vertices under a cone opening upward from the base, so paths
+  // from the root rise at least at slope ground_rise (the root itself is the first point).
+  if (p.ground_rise > 0 && pts.size() > 1) {
+    const float rise = p.ground_rise, base = std::max(p.ground_base, 0.0f);
+    std::erase_if(pts, [&](const glm::vec3& q) {
+      const float rho = std::sqrt(q.x * q.x + q.z * q.z);
+      return glm::dot(q, q) > 0 && q.y < rise * (rho - base);
+    });
+  }
   gv_graph g = make_gv_graph(std::move(pts), p.spacing);
   const size_t n = g.point.size();
   int32_t root = 0;

@@ -41,6 +41,8 @@ struct guiding_vectors_params {
   float spacing = 0.2f;      // r
   int candidates = 12;       // k
   glm::vec3 domain_size{4.4f, 5.6f, 4.4f};
+  float ground_rise = 0;     // no vertex below y = rise·(ρ − base): stems leave the base climbing (0: off)
+  float ground_base = 0.1f;  // metres: radius around the root that the rise rule spares
   // Endpoint volume of step 1.
   gv_volume volume = gv_volume::sphere;
   glm::vec3 volume_offset{0, 3.6f, 0};
@@ -71,6 +73,8 @@ void visit_params(P& p, V&& v) {
   v(p.spacing, param_info{"spacing", "Point spacing", "r", 0.05f, 2, "Minimum distance between Poisson-disc graph vertices (metres); smaller gives smoother, costlier trees", param_log | param_on_release, "Graph"});
   v(p.candidates, param_info{"candidates", "Candidates per point", "k", 2, 100, "Poisson-disc candidates tried around each accepted point; more leaves fewer holes", param_on_release | param_advanced});
   v(p.domain_size, param_info{"domain_size", "Domain size", "", 0.1f, 20, "Extent of the point box (metres): centred on the trunk in x and z, from the ground up in y", param_on_release});
+  v(p.ground_rise, param_info{"ground_rise", "Ground rise", "", 0, 10, "Graph vertices lower than this slope times their distance from the base are left out, so every path leaves the base climbing at least this steeply and no stem runs along the ground (0: off; not in the paper)", param_on_release});
+  v(p.ground_base, param_info{"ground_base", "Base radius", "", 0, 5, "Around the root, within this distance (metres), the ground-rise rule keeps every vertex: the stems' common base", param_on_release | param_advanced});
   v(p.volume, param_info{"volume", "Endpoint volume", "", 0, 3, "Shape that step 1 samples endpoints from (sphere, annulus = torus between inner and outer radius, box, cone)", 0, "Endpoint volume", gv_volume_names});
   v(p.volume_offset, param_info{"volume_offset", "Volume centre", "", -50, 50, "Centre of the endpoint volume (metres)"});
   v(p.volume_scale, param_info{"volume_scale", "Volume stretch", "", 0.01f, 50, "Per-axis stretch of the endpoint volume"});

@@ -75,6 +75,8 @@ constexpr refusal gv_refusals[] = {
     {"spacing", "the Poisson-disc graph is built once, before the first step"},
     {"candidates", "the Poisson-disc graph is built once, before the first step"},
     {"domain_size", "the Poisson-disc graph is built once, before the first step"},
+    {"ground_rise", "the Poisson-disc graph is built once, before the first step"},
+    {"ground_base", "the Poisson-disc graph is built once, before the first step"},
     {"volume", "only step 1 samples the endpoint volume; later steps use the border set"},
     {"volume_offset", "only step 1 samples the endpoint volume; later steps use the border set"},
     {"volume_scale", "only step 1 samples the endpoint volume; later steps use the border set"},

@@ -183,14 +183,37 @@ std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p,
   return out;
 }
 
+void keep_leaves_above_ground(std::vector<leaf>& leaves, float ground) {
+  if (!std::isfinite(ground)) return;
+  // Lowest point of the card (corners ±X/2 at the petiole and at one blade length along Y).
+  auto lowest = [](const leaf& l, const glm::vec3& x, const glm::vec3& y) {
+    return l.position.y - 0.5f * l.size * std::abs(x.y) + l.size * std::min(0.0f, y.y);
+  };
+  std::erase_if(leaves, [&](leaf& l) {
+    if (l.position.y < ground) return true;
+    const glm::vec3 x = l.orientation * glm::vec3(1, 0, 0), y = l.orientation * glm::vec3(0, 1, 0);
+    if (lowest(l, x, y) >= ground) return false;
+    // Mirror the frame in the horizontal plane and flip the normal back to the sky, which keeps it
+    // a rotation: the blade then rises as far as it fell.
+    const glm::vec3 z = l.orientation * glm::vec3(0, 0, 1);
+    const glm::vec3 mx(x.x, -x.y, x.z), my(y.x, -y.y, y.z), mz(-z.x, z.y, -z.z);
+    if (lowest(l, mx, my) < ground) return true;
+    l.orientation = glm::normalize(glm::quat_cast(glm::mat3(mx, my, mz)));
+    return false;
+  });
+}
+
 foliage place_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed) {
   foliage f;
   if (p.mode == leaf_mode::generator && !t.leaves.empty()) {
     f.leaves = t.leaves;
   } else if (p.mode == leaf_mode::tips) {
     f.leaves = place_tip_leaves(t, p, seed);
+    keep_leaves_above_ground(f.leaves, p.ground);
   } else {
-    return place_shoot_leaves(t, p, seed);
+    foliage s = place_shoot_leaves(t, p, seed);
+    keep_leaves_above_ground(s.leaves, p.ground);
+    return s;
   }
   const size_t cap = size_t(std::clamp(p.cap, 1, 2000000));
   if (f.leaves.size() > cap) {

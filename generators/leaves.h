@@ -34,6 +34,7 @@ struct leaf_params {
   float size_jitter = 0.3f;   // relative random variation of the size
   float taper = 0;            // leaves shrink by this share per branch order above min_order
   int min_order = 0;          // only nodes of at least this branch order carry leaves
+  float ground = 0;           // no leaf card reaches below this height (metres; the ground is y = 0)
   leaf_archetype archetype = leaf_archetype::ovate;  // the card every leaf uses
   int cap = 300000;           // at most this many leaves; growth goes on, the status bar says so
   bool clusters = false;      // cluster cards: one card carries several leaves
@@ -59,6 +60,7 @@ void visit_params(P& p, V&& v) {
   v(p.size_jitter, param_info{"leaf_size_jitter", "Size variation", "", 0, 1, "Relative random variation of leaf size"});
   v(p.taper, param_info{"leaf_taper", "Size taper", "", 0, 0.9f, "Leaves shrink by this share per branch order above the order threshold"});
   v(p.min_order, param_info{"leaf_min_order", "Leaf order threshold", "", 0, 8, "Only branches of at least this order carry leaves"});
+  v(p.ground, param_info{"leaf_ground", "Ground level", "", -100, 100, "No leaf card reaches below this height (metres; the tree stands at y = 0): a blade that would is turned up, a leaf on a node below it is dropped"});
   v(p.cap, param_info{"leaf_cap", "Leaf cap", "", 1000, 2000000, "At most this many leaves; past it growth goes on and the status bar says so", param_log | param_on_release});
   v(p.clusters, param_info{"leaf_clusters", "Cluster cards", "", 0, 1, "One card carries a twig with several leaves: a dense crown for few instances (game LODs)"});
   v(p.cluster_size, param_info{"leaf_cluster_size", "Leaves per card", "", 2, 32, "How many leaves one cluster card stands for"});
@@ -90,6 +92,11 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
 // Leaves on every node that is a tip at some step: a leaf is born with its node and dies when the
 // node gets its first child (or is shed), so playback shows foliage on the growing tips.
 std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed);
+
+// Keeps the cards above the ground (p.ground): a blade whose card would reach below it is turned
+// up by mirroring its vertical part, and a leaf that still reaches below is dropped. Cards are
+// the exporter's: one blade length long from the petiole, half a length wide.
+void keep_leaves_above_ground(std::vector<leaf>& leaves, float ground);
 
 // The leaves `p.mode` asks for, capped at p.cap.
 foliage place_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed);
