@@ -38,7 +38,7 @@ export const SPECIES_NAMES = {
   ash: ['ash', 'fraxinus'],
   birch: ['birch', 'betula'],
   poplar: ['poplar', 'populus'],
-  sapling: ['sapling', 'maple sapling', 'young maple', 'young tree'],
+  sapling: ['sapling', 'maple', 'acer'], // a young maple: its species or what it is
   bush: ['bush', 'shrub'],
   pine: ['pine', 'pinus'],
   spruce: ['spruce', 'picea'],
