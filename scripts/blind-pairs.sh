@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The blind-judging kit (issue 23; docs/JUDGING.md): exports every species preset (not the forest
+# or the maple cluster cards), renders each next to the nearest ez-tree 1.1.0 preset in the
+# three.js viewer (tools/viewer) and writes anonymised A/B pairs, unlabelled recognition images
+# and the key.
+#
+#   bash scripts/blind-pairs.sh [SYLVA_BINARY] [PRESET_DIR] [OUT_DIR]
+#
+# SYLVA_BINARY defaults to ./build/app/sylva, PRESET_DIR to presets/, OUT_DIR to
+# /tmp/sylva-judging. Give a reader OUT_DIR/judge/ only; OUT_DIR/key.json is for
+# tools/viewer/judge-score.mjs. SEED (23) picks the left/right order and the image names, VIEWS
+# (iso,front) the views, SIZE (768) the size of each tree's image. Installs what it needs on
+# first use, as scripts/compare-trees.sh does.
+set -euo pipefail
+
+SYLVA=${1:-./build/app/sylva}
+PRESETS=${2:-presets}
+OUT=${3:-/tmp/sylva-judging}
+SEED=${SEED:-23}
+VIEWS=${VIEWS:-iso,front}
+SIZE=${SIZE:-768}
+VIEWER="$(cd "$(dirname "$0")/../tools/viewer" && pwd)"
+start=$(date +%s)
+
+[ -x "$SYLVA" ] || { echo "blind-pairs: no sylva binary at $SYLVA (build it, or pass its path)" >&2; exit 1; }
+[ -d "$PRESETS" ] || { echo "blind-pairs: no preset directory $PRESETS" >&2; exit 1; }
+
+need=()
+[ -x "${SYLVA_CHROMIUM:-/usr/bin/chromium}" ] || need+=(chromium)
+command -v montage >/dev/null 2>&1 || need+=(imagemagick)
+command -v node >/dev/null 2>&1 || need+=(nodejs)
+command -v npm >/dev/null 2>&1 || need+=(npm)
+fc-list 2>/dev/null | grep -qi dejavu || need+=(fonts-dejavu-core)
+if [ ${#need[@]} -gt 0 ]; then
+  echo "blind-pairs: installing ${need[*]}" >&2
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi
+if [ ! -f "$VIEWER/node_modules/three/package.json" ] \
+  || [ ! -f "$VIEWER/node_modules/@dgreenheck/ez-tree/package.json" ] \
+  || [ ! -f "$VIEWER/node_modules/playwright-core/package.json" ]; then
+  echo "blind-pairs: npm ci in tools/viewer" >&2
+  (cd "$VIEWER" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi
+
+GLB_DIR=$(mktemp -d)
+trap 'rm -rf "$GLB_DIR"' EXIT
+for preset in "$PRESETS"/species_*.json; do
+  [ -e "$preset" ] || continue
+  name=$(basename "$preset" .json)
+  case "$name" in species_forest|species_maple_cards) continue ;; esac
+  if ! "$SYLVA" export "$preset" -o "$GLB_DIR/$name.glb" >"$GLB_DIR/$name.log" 2>&1; then
+    echo "blind-pairs: export of $preset failed:" >&2
+    sed 's/^/  /' "$GLB_DIR/$name.log" >&2
+    rm -f "$GLB_DIR/$name.glb"
+  fi
+done
+echo "blind-pairs: exported $(ls "$GLB_DIR"/*.glb 2>/dev/null | wc -l) species in $(($(date +%s) - start)) s" >&2
+
+status=0
+node "$VIEWER/blind-pairs.mjs" --glb-dir "$GLB_DIR" --preset-dir "$PRESETS" --out-dir "$OUT" \
+  --seed "$SEED" --views "$VIEWS" --size "$SIZE" --binary "$SYLVA" || status=$?
+echo "blind-pairs: done in $(($(date +%s) - start)) s; give a reader $OUT/judge/, keep $OUT/key.json" >&2
+exit $status
