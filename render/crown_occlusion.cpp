@@ -64,7 +64,7 @@ void bake_sky(leaf_grid& g, float window) {
             const size_t c = g.at(x, y, z);
             const int bx = x + steps * dx, by = y + steps, bz = z + steps * dz;
             const float beyond = g.inside(bx, by, bz) ? prefix[g.at(bx, by, bz)] : 0.0f;
-            const float depth = std::max(prefix[c] - beyond - 0.5f * lad[c], 0.0f) * ds;
+            const float depth = std::max(prefix[c] - beyond - lad[c], 0.0f) * ds;   // the cell's own leaves do not shade it
             sky[c] += w * std::exp(-0.5f * depth);
           }
       weights += w;
@@ -88,7 +88,11 @@ void bake_crown_occlusion(tree_mesh& m) {
   const float longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 0.1f});
   const float window = std::clamp(longest / 6.0f, 0.1f, 3.0f);   // about a limb mass
   leaf_grid g;
-  g.cell = std::max(longest / 40.0f, 0.05f);
+  // Cells no smaller than a leaf's card, so one leaf never fills a cell on its own.
+  double mean_size = 0;
+  for (const leaf_instance& l : m.leaves) mean_size += std::isfinite(l.size) ? double(l.size) : 0.0;
+  mean_size /= double(m.leaves.size());
+  g.cell = std::max({longest / 40.0f, 1.5f * float(mean_size), 0.05f});
   g.origin = lo - glm::vec3(0.5f * g.cell, 0.5f * g.cell + window, 0.5f * g.cell);
   const glm::vec3 extent = hi + glm::vec3(0.5f * g.cell) - g.origin;
   g.nx = int(extent.x / g.cell) + 1, g.ny = int(extent.y / g.cell) + 1, g.nz = int(extent.z / g.cell) + 1;

@@ -101,7 +101,7 @@ TEST(Clumping, OcclusionDarkensTheInsideOfEachMass) {
   const tree_mesh m = mesh_tree(g.t, mp);
   ASSERT_GT(m.leaves.size(), size_t(1000));
   const std::vector<int32_t> mass = limb_masses(g.t, 2);
-  // Each mass's leaf centroid, then each leaf's distance from it relative to the mass's rms.
+  // Each mass's leaf centroid and rms radius.
   std::vector<glm::vec3> centre(g.t.size(), glm::vec3(0));
   std::vector<double> count(g.t.size(), 0), sq(g.t.size(), 0);
   for (const leaf_instance& l : m.leaves)
@@ -109,19 +109,25 @@ TEST(Clumping, OcclusionDarkensTheInsideOfEachMass) {
   for (size_t i = 0; i < centre.size(); ++i) if (count[i] > 0) centre[i] /= float(count[i]);
   for (const leaf_instance& l : m.leaves)
     if (mass[l.node] >= 0) sq[size_t(mass[l.node])] += std::pow(glm::length(l.position - centre[size_t(mass[l.node])]), 2);
+  glm::vec3 crown(0);
+  for (const leaf_instance& l : m.leaves) crown += l.position;
+  crown /= float(m.leaves.size());
+  // Within each mass: the leaves on its side toward the crown's centre (its inside) against those
+  // on the side that faces out of the crown.
   double inner = 0, outer = 0;
   size_t n_inner = 0, n_outer = 0;
   for (const leaf_instance& l : m.leaves) {
     const size_t k = size_t(mass[l.node] >= 0 ? mass[l.node] : 0);
     if (mass[l.node] < 0 || count[k] < 30) continue;
-    const double r = glm::length(l.position - centre[k]) / std::sqrt(sq[k] / count[k]);
-    if (r < 0.6) inner += l.occlusion, ++n_inner;
-    if (r > 1.2) outer += l.occlusion, ++n_outer;
+    const glm::vec3 out = glm::normalize(centre[k] - crown);
+    const double along = glm::dot(l.position - centre[k], out) / std::sqrt(sq[k] / count[k]);
+    if (along < -0.5) inner += l.occlusion, ++n_inner;
+    if (along > 0.5) outer += l.occlusion, ++n_outer;
   }
   ASSERT_GT(n_inner, size_t(50));
   ASSERT_GT(n_outer, size_t(50));
   EXPECT_LT(inner / double(n_inner) + 8, outer / double(n_outer));   // at least 8 of 255 darker
-  // And the crown's core is darker than its rim.
+  // And the crown's core is darker than the top of its dome.
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (const leaf_instance& l : m.leaves) lo = glm::min(lo, l.position), hi = glm::max(hi, l.position);
   const glm::vec3 c = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
@@ -130,7 +136,7 @@ TEST(Clumping, OcclusionDarkensTheInsideOfEachMass) {
   for (const leaf_instance& l : m.leaves) {
     const float d = glm::length((l.position - c) / half);
     if (d < 0.5f) core += l.occlusion, ++n_core;
-    if (d > 0.85f) rim += l.occlusion, ++n_rim;
+    if (d > 0.85f && l.position.y > c.y + 0.5f * half.y) rim += l.occlusion, ++n_rim;   // the dome's top
   }
   ASSERT_GT(n_core, size_t(20));
   EXPECT_LT(core / double(n_core) + 20, rim / double(n_rim));
