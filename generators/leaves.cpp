@@ -2,6 +2,8 @@
 // generator's own leaves.
 #include "generators/leaves.h"
 
+#include "generators/leaf_clumps.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -66,12 +68,19 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
   // length to reserve from, so placement never regrows its vector.
   std::vector<float> arc(n, 0);
   double length = 0;
+  const bool clumped = std::isfinite(p.clumping) && p.clumping > 0;
+  std::vector<float> bearing(clumped ? n : 0, 0.0f);   // leaf-bearing length per internode
   for (size_t i = 0; i < n; ++i) {
     if (t.parent[i] < 0) continue;
     const float len = glm::length(t.position[i] - t.position[t.parent[i]]);
     arc[i] = arc[t.parent[i]] + (std::isfinite(len) ? len : 0.0f);
     if (carries(i)) length += std::isfinite(len) ? len : 0.0f;
+    if (clumped && carries(i) && std::isfinite(len)) bearing[i] = len;
   }
+  // Clumping: a factor per internode on its leaf count (leaf_clumps.h); none when 0, so the
+  // placement below is exactly the even one.
+  const std::vector<float> density =
+      clumped ? clump_density(t, bearing, clump_settings{p.clumping, p.clump_size, p.clump_variation}, seed) : std::vector<float>();
   out.leaves.reserve(std::min(cap, size_t(length / spacing * per_node / cluster) + n / 8 + 16));
 
   const float spread = glm::radians(std::isfinite(p.spread) ? p.spread : 50.0f);
@@ -100,7 +109,7 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
     rng r(seed ^ (uint64_t(i) * 0x9E3779B97F4A7C15ull + 0xf011a9eull));
     d /= len;
     // Leaf nodes along the internode; the fraction gives one more with its probability.
-    const float want = len / spacing / float(cluster);
+    const float want = len / spacing / float(cluster) * (density.empty() ? 1.0f : density[i]);
     int nodes = int(want);
     if (r.uniform() < want - float(nodes)) ++nodes;
     if (nodes == 0) continue;

@@ -40,6 +40,9 @@ struct leaf_params {
   bool clusters = false;      // cluster cards: one card carries several leaves
   int cluster_size = 6;       // leaves one cluster card stands for
   leaf_archetype cluster_archetype = leaf_archetype::twig_cluster;
+  float clumping = 0;         // 0: leaves spread evenly; 1: only on the outer shells of the limb masses
+  float clump_size = 1.2f;    // metres: half the extent of one limb mass
+  float clump_variation = 0.3f;  // seeded density difference between limb masses
   bool operator==(const leaf_params&) const = default;
 };
 
@@ -65,6 +68,9 @@ void visit_params(P& p, V&& v) {
   v(p.clusters, param_info{"leaf_clusters", "Cluster cards", "", 0, 1, "One card carries a twig with several leaves: a dense crown for few instances (game LODs)"});
   v(p.cluster_size, param_info{"leaf_cluster_size", "Leaves per card", "", 2, 32, "How many leaves one cluster card stands for"});
   v(p.cluster_archetype, param_info{"leaf_cluster_archetype", "Cluster card", "", 0, 8, "Archetype of the cluster cards", 0, nullptr, leaf_archetype_names});
+  v(p.clumping, param_info{"leaf_clumping", "Clumping", "", 0, 1, "Shoots mode: leaves gather on the outer shoots of each limb mass, thinning in its interior and in the gaps between masses, so the crown breaks into clumps (0: spread evenly; the leaf count stays about the same)"});
+  v(p.clump_size, param_info{"leaf_clump_size", "Clump size", "", 0.2f, 8, "Half the extent of one limb mass in metres: the largest subtrees this small each form one clump", param_log});
+  v(p.clump_variation, param_info{"leaf_clump_variation", "Clump variation", "", 0, 1, "Seeded difference in leaf density from one limb mass to the next"});
 }
 
 // The editor shows only the sliders that matter for the current mode.
@@ -76,6 +82,8 @@ inline bool param_relevant(const leaf_params& p, const void* field, const param_
     return shoots;
   if (field == &p.whorl) return shoots && p.arrangement == leaf_arrangement::whorled;
   if (field == &p.cluster_size || field == &p.cluster_archetype) return shoots && p.clusters;
+  if (field == &p.clumping) return shoots;
+  if (field == &p.clump_size || field == &p.clump_variation) return shoots && p.clumping > 0;
   return true;
 }
 

@@ -112,10 +112,13 @@ struct tree_mesh {
 
 tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1);
 
-// Crown ambient occlusion (issue 13): bark vertices and leaves deep inside the crown see less sky.
-// The crown is the ellipsoid spanned by the leaves' box; the visibility of a point at normalised
-// depth d (0 at the centre, 1 on the surface) is 0.35 + 0.65 d, and 1 outside. Fills
-// m.occlusion and each leaf's occlusion; O(vertices + leaves). mesh_tree calls it.
+// Crown ambient occlusion (issues 13, 23): bark vertices and leaves deep inside the crown, and
+// inside each clump of it, see less sky. The crown is the ellipsoid spanned by the leaves' box (d:
+// normalised depth, 0 at the centre, 1 on the surface and outside); the local sky s is the
+// Beer-Lambert transmittance through the leaf area density within about a sixth of the crown's
+// size, along nine upward directions (render/crown_occlusion.cpp). Visibility 0.35 + 0.65 sqrt(d) s:
+// 1 under open sky. Fills m.occlusion and each leaf's occlusion; O(vertices + leaves + grid cells,
+// about 40 along the crown's longest side). mesh_tree calls it.
 void bake_crown_occlusion(tree_mesh& m);
 
 // Gnarl (issue 12): per node, the rotation vector (axis * angle) of its internode, from seeded noise

@@ -23,19 +23,6 @@ bool structurally_sound(const tree_skeleton& t) {
 }
 }  // namespace
 
-void bake_crown_occlusion(tree_mesh& m) {
-  m.occlusion.assign(m.position.size(), 1.0f);
-  if (m.leaves.empty()) return;   // no crown: nothing shades the sky
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const leaf_instance& l : m.leaves) { lo = glm::min(lo, l.position); hi = glm::max(hi, l.position); }
-  const glm::vec3 c = 0.5f * (lo + hi), inv = 1.0f / glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
-  auto visibility = [&](const glm::vec3& p) {
-    const float d = glm::length((p - c) * inv);
-    return std::isfinite(d) ? 0.35f + 0.65f * std::min(d, 1.0f) : 1.0f;
-  };
-  for (size_t i = 0; i < m.position.size(); ++i) m.occlusion[i] = visibility(m.position[i]);
-  for (leaf_instance& l : m.leaves) l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
-}
 
 std::string validate_mesh(const tree_mesh& m) {
   const size_t nv = m.position.size();

@@ -275,8 +275,9 @@ TEST(Mesh, CrownOcclusionDarkensTheInsideOfTheCrownOnly) {
   tree_mesh m = mesh_tree(t, mesh_params{});
   ASSERT_FALSE(m.leaves.empty());
   ASSERT_EQ(m.occlusion.size(), m.position.size());
-  // The trunk's base ring lies below the crown: open sky.
-  EXPECT_FLOAT_EQ(m.occlusion[0], 1.0f);
+  // The trunk's base ring lies below the crown: nearly open sky (the lowest leaves are within the
+  // local sky's reach of it, render/crown_occlusion.cpp).
+  EXPECT_GT(m.occlusion[0], 0.95f);
   float lo = 1, hi = 0;
   for (float o : m.occlusion) {
     ASSERT_TRUE(std::isfinite(o));
