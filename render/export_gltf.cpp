@@ -177,8 +177,7 @@ struct gltf_materials {
               {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture(p->color, false, name)}}},
                                         {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}},
               {"alphaMode", "MASK"},
-              {"alphaCutoff", src.alpha_cutoff()},
-              {"doubleSided", true}};
+              {"alphaCutoff", src.alpha_cutoff()}};   // single-sided: every card has a face per side
     if (!p->normal.empty()) m["normalTexture"] = {{"index", texture(p->normal, false, name + "_normal")}};
     leaf_normal[size_t(slot)] = !p->normal.empty();
     return leaf[size_t(slot)] = add_material(std::move(m));
@@ -243,7 +242,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
         const int mat = mats.leaf_material(slot);
         if (mat < 0) return mats.src.error;
         geometry quad;
-        // Unbent: an instance's crown direction would need a normal per instance.
+        // Two sides, unbent: an instance's crown direction would need a normal per instance.
         bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, {});
         mats.quad_mesh[s] = d.add_mesh(mats.src.leaf_name(slot), json::array({d.add_primitive(quad, mat, mats.leaf_normal[s])}));
       }

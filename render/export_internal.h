@@ -74,12 +74,13 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material);
 
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
-// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). With a
-// crown, the face is turned to look out of it and its normal bent toward the crown's outward
-// direction by normal_blend (render/leaf_shading.h); without, the card's own +Z.
+// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). A face per
+// side with two_sided (render/leaf_shading.h), the side looking out of the crown first; with a
+// crown, each side's normal is bent toward its outward direction by normal_blend.
 struct leaf_bake {
   const crown_ellipsoid* crown = nullptr;
   float normal_blend = 0;
+  bool two_sided = true;
 };
 void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b);
 
@@ -87,7 +88,7 @@ bool has_shed(const tree_skeleton& t, int s);
 
 // Splits a mesh into one part per tree (a forest is one glTF node per tree); leaves alive at
 // `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
-// they are left to the caller. Baked leaves face out of their tree's crown, bent toward it by
+// they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
 // normal_blend (render/leaf_shading.h).
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
                                    float normal_blend);

@@ -44,9 +44,10 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material) {
 
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
-// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). The face
-// is turned to look out of the crown and its normal bent toward the crown's outward direction by
-// b.normal_blend (render/leaf_shading.h), so a viewer outside the crown meets its lit side.
+// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). Each side
+// is a face of its own (render/leaf_shading.h): the side that looks out of the crown first, then,
+// with b.two_sided, the other a hair behind it; each normal is that side's, bent toward the
+// crown's outward direction by b.normal_blend.
 void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
   const glm::quat q(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z);
   const float h = l.size, w = l.size * 0.5f;
@@ -59,25 +60,30 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
   const glm::vec3 n = unit(q * glm::vec3(0, 0, 1), glm::vec3(0, 0, 1));
   const glm::vec3 across = unit(q * glm::vec3(1, 0, 0), glm::vec3(1, 0, 0));
   const glm::vec3 out = b.crown ? crown_outward(*b.crown, l.position) : n;
-  const float side = glm::dot(n, out) < 0 ? -1.0f : 1.0f;
-  const glm::vec3 nf = blend_leaf_normal(side * n, out, b.normal_blend);
-  // Tangent along +u (local +X), made orthogonal to the bent normal. The bitangent normal x
-  // tangent runs up the image (local +Y) on the front, so w = +1; a card turned over keeps its
-  // image upright with w = -1.
-  const glm::vec4 t(unit(across - nf * glm::dot(nf, across), across), side);
   const glm::vec3 occlusion(float(l.occlusion) / 255.0f);
-  const uint32_t base = uint32_t(g.position.size());
-  for (int k = 0; k < 4; ++k) {
-    g.position.push_back(l.position + q * corner[k]);
-    g.normal.push_back(nf);
-    g.uv.push_back(uv[k]);
-    g.tangent.push_back(t);
-    g.color.push_back(occlusion);
-    g.node.push_back(l.node);
-  }
-  // Counter-clockwise seen from the side the face looks to.
-  if (side > 0) for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
-  else for (uint32_t k : {0u, 2u, 1u, 0u, 3u, 2u}) g.index.push_back(base + k);
+  const float outer = glm::dot(n, out) < 0 ? -1.0f : 1.0f;   // the side that looks out of the crown
+  auto face = [&](float side) {
+    const glm::vec3 nf = blend_leaf_normal(side * n, out, b.normal_blend);
+    // Tangent along +u (local +X), made orthogonal to the bent normal. The bitangent normal x
+    // tangent runs up the image (local +Y) on the front, so w = +1; on the back the normal is
+    // turned over, so w = -1 keeps it running up the image.
+    const glm::vec4 t(unit(across - nf * glm::dot(nf, across), across), side);
+    const glm::vec3 shift = side == outer ? glm::vec3(0) : -outer * n * (leaf_back_offset * l.size);
+    const uint32_t base = uint32_t(g.position.size());
+    for (int k = 0; k < 4; ++k) {
+      g.position.push_back(l.position + q * corner[k] + shift);
+      g.normal.push_back(nf);
+      g.uv.push_back(uv[k]);
+      g.tangent.push_back(t);
+      g.color.push_back(occlusion);
+      g.node.push_back(l.node);
+    }
+    // Counter-clockwise seen from the side the face looks to.
+    if (side > 0) for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
+    else for (uint32_t k : {0u, 2u, 1u, 0u, 3u, 2u}) g.index.push_back(base + k);
+  };
+  face(outer);
+  if (b.two_sided) face(-outer);
 }
 
 bool has_shed(const tree_skeleton& t, int s) {
@@ -108,7 +114,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
     for (int k = 0; k < leaf_slots; ++k) {
       geometry& f = parts[0].leaves[size_t(k)];
       const size_t n = alive[size_t(k)];
-      f.position.reserve(4 * n), f.normal.reserve(4 * n), f.uv.reserve(4 * n), f.tangent.reserve(4 * n), f.index.reserve(6 * n);
+      f.position.reserve(8 * n), f.normal.reserve(8 * n), f.uv.reserve(8 * n), f.tangent.reserve(8 * n), f.index.reserve(12 * n);
     }
   }
   std::vector<uint32_t> local(nv, UINT32_MAX);
@@ -145,7 +151,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       if (l.born <= step && step < l.died) crowns[part_of(l)].add(l.position);
     std::vector<leaf_bake> look(parts.size());
     std::vector<crown_ellipsoid> shape(parts.size());
-    for (size_t k = 0; k < parts.size(); ++k) shape[k] = crowns[k].ellipsoid(), look[k] = {&shape[k], normal_blend};
+    for (size_t k = 0; k < parts.size(); ++k) shape[k] = crowns[k].ellipsoid(), look[k] = {&shape[k], normal_blend, true};
     for (const leaf_instance& l : m.leaves)
       if (l.born <= step && step < l.died)
         bake_leaf(parts[part_of(l)].leaves[size_t(leaf_slot(l, one_leaf_material))], l, look[part_of(l)]);

@@ -34,9 +34,18 @@ glm::vec3 crown_outward(const crown_ellipsoid& c, const glm::vec3& p) {
 
 glm::vec3 blend_leaf_normal(const glm::vec3& side, const glm::vec3& outward, float blend) {
   const float b = std::clamp(std::isfinite(blend) ? blend : 0.0f, 0.0f, 1.0f);
-  const glm::vec3 n = (1.0f - b) * side + b * outward;
+  glm::vec3 n = (1.0f - b) * side + b * outward;
   const float len = glm::length(n);
-  return len > 1e-4f ? n / len : side;
+  if (!(len > 1e-4f)) return side;
+  n /= len;
+  // Kept on its own side (within about 75 degrees of it): a face bent past its edge would be lit
+  // from behind, which is the black card this is meant to cure.
+  const float c = glm::dot(n, side);
+  if (c >= min_leaf_normal_cos) return n;
+  const glm::vec3 across = n - c * side;   // the bend's direction, kept; its angle capped
+  const float a = glm::length(across);
+  if (!(a > 1e-4f)) return side;
+  return min_leaf_normal_cos * side + std::sqrt(1.0f - min_leaf_normal_cos * min_leaf_normal_cos) * (across / a);
 }
 
 }  // namespace sylva

@@ -12,7 +12,8 @@
 # (a temporary directory) where the renders, leaf masks and leaves.json go, CONTROL=1 adds a
 # render of the first tree with black leaves to prove the measure sees them (and its tile),
 # MONTAGE_ONLY=1 with WORK_DIR redraws the sheet from an earlier run, TRANSPARENT_BOUNCES
-# Cycles' transparent bounce limit (unset: Blender's default, 8, what an artist gets). Installs Debian's
+# Cycles' transparent bounce limit (64, the foliage setting docs/DESIGN-NOTES.md asks for:
+# Blender's default of 8 runs out inside a crown of cut-out cards; 8 shows what that looks like). Installs Debian's
 # blender, python3-numpy and imagemagick when missing (apt-get as root, sudo otherwise).
 set -euo pipefail
 
@@ -70,7 +71,7 @@ else
 
   extra=()
   [ "$CONTROL" = 1 ] && extra=(--control)
-  [ -n "${TRANSPARENT_BOUNCES:-}" ] && extra+=(--transparent-bounces "$TRANSPARENT_BOUNCES")
+  extra+=(--transparent-bounces "${TRANSPARENT_BOUNCES:-64}")
   status=0
   blender -b --factory-startup --python "$HERE/tools/blender/render_sheet.py" -- "$WORK/renders" \
     --size "$SIZE" --samples "$SAMPLES" "${extra[@]}" "${glbs[@]}" >"$WORK/blender.log" 2>&1 || status=$?

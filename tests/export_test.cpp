@@ -180,7 +180,7 @@ TEST(Export, GlbReimportsWithMeshCounts) {
   EXPECT_GE(bm.pbrMetallicRoughness.metallicRoughnessTexture.index, 0);
   EXPECT_EQ(bm.pbrMetallicRoughness.metallicFactor, 0.0);
   // Leaves: the 2^5 tips of step 6 less the one on the trunk's axis (order 0), 4 leaves each,
-  // baked as quads of 4 vertices and 2 triangles, one primitive per archetype.
+  // baked as two-sided cards (a quad of 4 vertices and 2 triangles per side), one primitive per archetype.
   EXPECT_EQ(leaves_alive(h.m, 6), size_t(31 * 4));
   ASSERT_EQ(leaves->primitives.size(), size_t(2));
   size_t verts = 0, indices = 0;
@@ -193,7 +193,7 @@ TEST(Export, GlbReimportsWithMeshCounts) {
     names.insert(lm.name);
     EXPECT_EQ(lm.alphaMode, "MASK");
     EXPECT_FLOAT_EQ(float(lm.alphaCutoff), 0.3f);
-    EXPECT_TRUE(lm.doubleSided);
+    EXPECT_FALSE(lm.doubleSided);   // each side is a face of its own (render/leaf_shading.h)
     EXPECT_GE(lm.normalTexture.index, 0);
     // Each card shows the whole texture: UVs are the corners of the unit square.
     const tinygltf::Accessor& uv = model.accessors[lp.attributes.at("TEXCOORD_0")];
@@ -202,8 +202,8 @@ TEST(Export, GlbReimportsWithMeshCounts) {
     for (size_t k = 0; k < 2 * uv.count; ++k) ASSERT_TRUE(f[k] == 0.0f || f[k] == 1.0f) << f[k];
   }
   EXPECT_EQ(names, (std::set<std::string>{"leaves_lobed", "leaves_palmate"}));
-  EXPECT_EQ(verts, 4 * leaves_alive(h.m, 6));
-  EXPECT_EQ(indices, 6 * leaves_alive(h.m, 6));
+  EXPECT_EQ(verts, 8 * leaves_alive(h.m, 6));
+  EXPECT_EQ(indices, 12 * leaves_alive(h.m, 6));
   // Procedural textures are tinted: the leaf colour is the tinted archetype texture, byte for byte.
   const tinygltf::Material& lobed = *find_material(model, "leaves_lobed");
   image leaf;
@@ -229,7 +229,7 @@ TEST(Export, InstancedLeavesAreOneCardMeshPerArchetype) {
     ASSERT_TRUE(card) << name;
     ASSERT_EQ(card->primitives.size(), size_t(1));
     EXPECT_EQ(model.materials[size_t(card->primitives[0].material)].name, name);
-    EXPECT_EQ(model.accessors[card->primitives[0].attributes.at("POSITION")].count, size_t(4));
+    EXPECT_EQ(model.accessors[card->primitives[0].attributes.at("POSITION")].count, size_t(8));   // two sides
     for (const auto& node : model.nodes)
       if (node.name == name) {
         const auto& ext = node.extensions.at("EXT_mesh_gpu_instancing");
@@ -282,8 +282,8 @@ TEST(Export, StepExportHasTheStepsTree) {
   // The step's tree re-meshed: its tips then get caps, so compare with that mesh, not a prefix.
   EXPECT_EQ(model.accessors[find_mesh(model, "bark")->primitives[0].indices].count,
             mesh_tree_at_step(h.t, h.m, h.p, 3).index.size());
-  // Step 3: 4 tips, 3 of them lateral, 4 leaves each.
-  EXPECT_EQ(model.accessors[find_mesh(model, "leaves")->primitives[0].indices].count, size_t(6 * 3 * 4));
+  // Step 3: 4 tips, 3 of them lateral, 4 leaves each, 12 indices per two-sided card.
+  EXPECT_EQ(model.accessors[find_mesh(model, "leaves")->primitives[0].indices].count, size_t(12 * 3 * 4));
   h.o.dry_run = true;
   const export_result dry = export_tree(h.t, h.m, {"lsystem", 1}, dir / "dry.glb", h.o);
   EXPECT_GT(dry.bytes, size_t(0));
@@ -383,15 +383,15 @@ TEST(Export, ObjParsesBackWithMatchingCounts) {
   }
   const size_t leaves = leaves_alive(h.m, 6);
   EXPECT_TRUE(mtllib);
-  EXPECT_EQ(v, used_vertices(h.m) + 4 * leaves);
+  EXPECT_EQ(v, used_vertices(h.m) + 8 * leaves);   // two-sided cards: a quad per side
   EXPECT_EQ(vt, v);
   EXPECT_EQ(vn, v);
   EXPECT_EQ(bark_faces, h.m.triangles());
-  EXPECT_EQ(leaf_faces, 2 * leaves);
+  EXPECT_EQ(leaf_faces, 4 * leaves);
   // One material per archetype present, plus the bark.
   ASSERT_EQ(faces_by_material.size(), size_t(3));
   EXPECT_EQ(faces_by_material["bark_furrowed"], h.m.triangles());
-  EXPECT_EQ(faces_by_material["leaves_lobed"] + faces_by_material["leaves_palmate"], 2 * leaves);
+  EXPECT_EQ(faces_by_material["leaves_lobed"] + faces_by_material["leaves_palmate"], 4 * leaves);
   EXPECT_GT(faces_by_material["leaves_palmate"], size_t(0));
   const std::string mtl = slurp(dir / "tree.mtl");
   for (const char* want : {"newmtl bark_furrowed\n", "map_Kd tree_bark_furrowed.png\n", "map_Bump -bm 1 tree_bark_furrowed_normal.png\n",

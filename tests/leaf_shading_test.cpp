@@ -46,18 +46,25 @@ TEST(LeafShading, OutwardIsTheEllipsoidsNormal) {
 TEST(LeafShading, BlendRunsFromTheCardToTheCrown) {
   const glm::vec3 n(0, 0, 1), out(1, 0, 0);
   EXPECT_EQ(blend_leaf_normal(n, out, 0), n);
-  EXPECT_NEAR(blend_leaf_normal(n, out, 1).x, 1.0f, 1e-6f);
+  const glm::vec3 diag = glm::normalize(glm::vec3(1, 0, 1));
+  EXPECT_NEAR(blend_leaf_normal(n, diag, 1).x, diag.x, 1e-6f);   // 45 degrees: the crown's own
+  // 90 degrees away: capped at the cosine limit, bent toward the crown.
+  EXPECT_NEAR(glm::dot(blend_leaf_normal(n, out, 1), n), min_leaf_normal_cos, 1e-5f);
+  EXPECT_GT(blend_leaf_normal(n, out, 1).x, 0.96f);
   const glm::vec3 half = blend_leaf_normal(n, out, 0.5f);
   EXPECT_NEAR(half.x, std::sqrt(0.5f), 1e-6f);
   EXPECT_NEAR(half.z, std::sqrt(0.5f), 1e-6f);
   EXPECT_EQ(blend_leaf_normal(n, -n, 0.5f), n);                  // cancelled: the card's own
   EXPECT_EQ(blend_leaf_normal(n, out, std::nanf("")), n);        // a NaN slider is no bend
+  // Bent almost against itself, a side stays on its own side (cosine 0.25).
+  const glm::vec3 far = blend_leaf_normal(n, glm::normalize(glm::vec3(0.2f, 0, -1)), 0.9f);
+  EXPECT_NEAR(glm::dot(far, n), min_leaf_normal_cos, 1e-5f);
+  EXPECT_GT(far.x, 0.9f);
 }
 
-// Every baked card looks out of its crown and carries its normal on the side it looks to, so a
-// viewer outside the crown meets the lit front, and the turned-over normal of a back seen through
-// the crown points toward that viewer (render/leaf_shading.h).
-TEST(LeafShading, ExportedCardsLookOutOfTheCrown) {
+// Every baked card is two single-sided faces, each wound toward the side its normal lights; a face
+// that looks out of the crown is lit from outside (render/leaf_shading.h).
+TEST(LeafShading, ExportedCardsHaveAFacePerSideLitFromTheirSide) {
   lsystem_params lp;
   lp.derivations = 6;
   const tree_skeleton t = grow_honda(lp, {});
@@ -78,7 +85,7 @@ TEST(LeafShading, ExportedCardsLookOutOfTheCrown) {
     const glm::quat q(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z);
     if (l.born <= m.steps && m.steps < l.died && glm::dot(q * glm::vec3(0, 0, 1), crown_outward(crown, l.position)) < 0) ++inward;
   }
-  EXPECT_GT(inward, alive / 10);   // the test sees cards to turn
+  EXPECT_GT(inward, alive / 10);   // the test sees cards whose outer side is their back
   for (float blend : {0.0f, 0.6f}) {
     export_options o;
     o.mesh = p;
@@ -91,11 +98,11 @@ TEST(LeafShading, ExportedCardsLookOutOfTheCrown) {
     std::string err, warn;
     ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
     fs::remove(file);
-    size_t faces = 0, bent = 0;
+    size_t faces = 0, bent = 0, outer = 0;
     for (const auto& mesh : model.meshes) {
       if (mesh.name != "leaves") continue;
       for (const auto& prim : mesh.primitives) {
-        EXPECT_TRUE(model.materials[size_t(prim.material)].doubleSided);
+        EXPECT_FALSE(model.materials[size_t(prim.material)].doubleSided);
         const float* pos = floats(model, prim.attributes.at("POSITION"));
         const float* nrm = floats(model, prim.attributes.at("NORMAL"));
         const tinygltf::Accessor& ia = model.accessors[size_t(prim.indices)];
@@ -113,14 +120,17 @@ TEST(LeafShading, ExportedCardsLookOutOfTheCrown) {
           const size_t corner0 = index(k) / 4 * 4;
           const glm::vec3 out = crown_outward(crown, 0.5f * (vec3_at(pos, corner0) + vec3_at(pos, corner0 + 1)));
           ++faces;
-          EXPECT_GE(glm::dot(facing, out), -1e-4f) << "a card looking into the crown";
-          EXPECT_GT(glm::dot(n, facing), 0.0f) << "a card lit from its back";
-          EXPECT_GE(glm::dot(n, out), -1e-4f) << "a card looking out of the crown lit from inside";
+          EXPECT_GT(glm::dot(n, facing), 0.0f) << "a face lit from its back";
+          if (glm::dot(facing, out) >= 0) {
+            ++outer;
+            EXPECT_GE(glm::dot(n, out), -1e-4f) << "a face looking out of the crown lit from inside";
+          }
           if (glm::dot(n, facing) < 0.999f) ++bent;
         }
       }
     }
-    EXPECT_EQ(faces, 2 * alive);   // one face of 2 triangles per card
+    EXPECT_EQ(faces, 4 * alive);   // two faces of 2 triangles per card
+    EXPECT_NEAR(double(outer), double(faces) / 2, double(faces) / 100);   // one side of every card looks out
     if (blend == 0) EXPECT_EQ(bent, size_t(0));
     else EXPECT_GT(bent, faces / 2);
   }

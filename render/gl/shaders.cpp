@@ -183,7 +183,12 @@ void main() {
   // the crown's outward direction. The impostor's card keeps its atlas normals.
   if (v_plain < 0.5) {
     vec3 bent = mix(n, v_outward, clamp(u_normal_blend, 0.0, 1.0));
-    if (length(bent) > 1e-4) n = normalize(bent);
+    if (length(bent) > 1e-4) {
+      bent = normalize(bent);
+      float c = dot(bent, n);   // kept within about 75 degrees of its side (min_leaf_normal_cos)
+      vec3 across = bent - c * n;
+      n = c >= 0.25 ? bent : (length(across) > 1e-4 ? 0.25 * n + 0.9682458 * normalize(across) : n);
+    }
   }
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
   // tinted_texture's formula (render/textures.h), then the per-leaf variation.
