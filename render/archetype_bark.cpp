@@ -226,4 +226,80 @@ void bark_ringed(bark_field& f, uint64_t seed) {
     }
 }
 
+void bark_mottled(bark_field& f, uint64_t seed) {
+  // Fagus sylvatica (also young Abies): thin, smooth, silver-grey bark with no lenticel dashes;
+  // soft lighter and darker mottles, faint horizontal wrinkles, a few small dark spots.
+  const lattice mottle(4, 3, seed + 1), mottle2(9, 7, seed + 2), wrinkle(4, 60, seed + 3), fine(90, 90, seed + 4);
+  const cells spots(9, 12, seed + 5, 0.4f);
+  const vec3 light = srgb_color(236, 236, 232), shadow = srgb_color(196, 194, 188), spot_col = srgb_color(120, 116, 110);
+  const int n = f.n;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const float u = (float(x) + 0.5f) / float(n), v = (float(y) + 0.5f) / float(n);
+      const float m = 0.65f * mottle(u, v) + 0.35f * mottle2(u, v);
+      const float w = wrinkle(u, v), fn = fine(u, v);
+      // One possible spot per cell, round and small around the cell's point (jitter 0.4 keeps it
+      // inside its cell).
+      const float fx = u * float(spots.cx), fy = v * float(spots.cy);
+      const int id = wrap(int(ffloor(fy)), spots.cy) * spots.cx + wrap(int(ffloor(fx)), spots.cx);
+      const vec2 cell_pt = spots.points[size_t(id)];
+      const float dx = fx - ffloor(fx) - cell_pt.x, dy = fy - ffloor(fy) - cell_pt.y;
+      const float spot = unit(seed * 313 + uint64_t(id)) < 0.1f ? 1 - smooth(0.01f, 0.05f, dx * dx + dy * dy) : 0.0f;
+      const size_t k = size_t(y) * n + x;
+      f.height[k] = 0.3f * w + 0.22f * fn + 0.2f * m - 0.3f * spot;  // thin bark: soft, shallow relief
+      vec3 c = mix3(shadow, light, smooth(0.1f, 0.9f, m)) * (0.96f + 0.06f * w + 0.04f * fn);
+      c = mix3(c, spot_col, 0.6f * spot);
+      f.paint(k, c, 0.55f + 0.15f * (1 - m) + 0.1f * spot);
+    }
+}
+
+void bark_fissured(bark_field& f, uint64_t seed) {
+  // Fraxinus excelsior (old Cedrus too): grey bark cut by shallow fissures that lean left and right
+  // and cross, leaving a network of narrow, elongated diamond ridges along the trunk.
+  const int across = 9, along = 3;  // fissures around the tile; crossings along it
+  const lattice warp(6, 5, seed + 1), jag(36, 24, seed + 2), grain(110, 20, seed + 3), tone(5, 4, seed + 4);
+  const vec3 ridge = srgb_color(226, 224, 218), ridge2 = srgb_color(200, 196, 188), fissure = srgb_color(70, 66, 62);
+  const int n = f.n;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const float u = (float(x) + 0.5f) / float(n), v = (float(y) + 0.5f) / float(n);
+      const float wu = u + 0.09f * (warp(u, v) - 0.5f) + 0.012f * (jag(u, v) - 0.5f);
+      const float wv = v + 0.08f * (warp(v, u) - 0.5f);
+      // Two families of slanted lines, u * across +- v * along = integer: periodic in both.
+      const float s1 = wu * float(across) + wv * float(along), s2 = wu * float(across) - wv * float(along);
+      const float d1 = std::abs(s1 - fround(s1)), d2 = std::abs(s2 - fround(s2));
+      const float d = std::min(d1, d2);                 // in line spacings
+      const float open = smooth(0.02f, 0.1f + 0.08f * jag(v, u), d);  // 0 in a fissure, of uneven width
+      const float g = grain(wu, v), t = tone(u, v);
+      const size_t k = size_t(y) * n + x;
+      f.height[k] = 0.7f * std::sqrt(open) + 0.12f * g;
+      const vec3 top = mix3(ridge, ridge2, t) * (0.9f + 0.14f * g);
+      f.paint(k, mix3(fissure, top, open), 0.95f - 0.1f * open);
+    }
+}
+
+void bark_fibrous(bark_field& f, uint64_t seed) {
+  // Cupressus / Thuja / Sequoia: soft bark of long stringy fibres in narrow shreds that wander,
+  // merge and part along the trunk; loose shreds lift at their ends, reddish where fresh, greyer
+  // where weathered, dark where one shred leaves a gap to the next.
+  wandering_lines shreds(26, 1.5f, 7, seed + 1);
+  const lattice fibre(160, 8, seed + 2), fibre2(60, 4, seed + 3), tone(5, 3, seed + 4), lift(26, 9, seed + 5);
+  const vec3 fresh = srgb_color(222, 166, 132), weathered = srgb_color(196, 186, 174), gap_col = srgb_color(58, 42, 34);
+  const int n = f.n;
+  for (int y = 0; y < n; ++y) {
+    const float v = (float(y) + 0.5f) / float(n);
+    shreds.row(v);
+    for (int x = 0; x < n; ++x) {
+      const float u = (float(x) + 0.5f) / float(n);
+      const float d = shreds.distance(u);                // 0 on a gap between shreds
+      const float open = smooth(0.03f, 0.22f, d);
+      const float fb = 0.6f * fibre(u, v) + 0.4f * fibre2(u, v), l = lift(u, v);
+      const size_t k = size_t(y) * n + x;
+      f.height[k] = open * (0.45f + 0.3f * l) + 0.35f * fb;
+      const vec3 c = mix3(fresh, weathered, smooth(0.3f, 0.8f, 0.5f * tone(u, v) + 0.5f * l)) * (0.72f + 0.4f * fb);
+      f.paint(k, mix3(gap_col, c, open), 0.93f - 0.05f * fb);
+    }
+  }
+}
+
 }  // namespace sylva::archetype

@@ -322,6 +322,7 @@ void draw_flat_spray(leaf_canvas& c, rng& g);
 void draw_scale_spray(leaf_canvas& c, rng& g);
 void draw_palm_frond(leaf_canvas& c, rng& g);
 void draw_twig_cluster(leaf_canvas& c, rng& g);
+void draw_needle_tufts(leaf_canvas& c, rng& g);
 
 // ================================================================ bark
 // Tile coordinates u (around the branch) and v (along it, image rows), both periodic in [0, 1).
@@ -354,6 +355,9 @@ void bark_plated(bark_field& f, uint64_t seed);
 void bark_smooth(bark_field& f, uint64_t seed);
 void bark_peeling(bark_field& f, uint64_t seed);
 void bark_ringed(bark_field& f, uint64_t seed);
+void bark_mottled(bark_field& f, uint64_t seed);
+void bark_fissured(bark_field& f, uint64_t seed);
+void bark_fibrous(bark_field& f, uint64_t seed);
 // Scales the heights by relief (height units per tile width) and makes the normal map.
 bark_texture_set finish_bark(bark_field& f, float relief);
 

@@ -110,26 +110,22 @@ void draw_pinnate(leaf_canvas& c, rng& g) {
 }
 
 void draw_palm_frond(leaf_canvas& c, rng& g) {
-  // A pinnate frond: the rachis sweeps across the card, leaflets droop from both sides of it.
-  const vec2 p0{0.5f, 0.0f}, p1{0.24f, 0.78f}, p2{0.93f, 0.9f};
+  // A fan of three long, narrow leaflets (pinnae) from one point, each with its own midrib and
+  // gaps of sky between them: one card per side of a rachis node, so a frond is the L-system's
+  // rachis (wood) with these cards along both sides, leaflets in pairs like Phoenix or Cocos.
   blade_style st;
-  st.veins = 1, st.midrib = 1.2f, st.edge_dark = 0.3f;
-  const int pairs = 30;
-  for (int i = 0; i < pairs; ++i) {
-    const float t = 0.08f + 0.9f * float(i) / float(pairs - 1);
-    const vec2 p = bezier(p0, p1, p2, t);
-    const vec2 tangent = glm::normalize(2 * (1 - t) * (p1 - p0) + 2 * t * (p2 - p1));
-    const float along = degrees_of(tangent);
-    const float env = 0.42f + 0.58f * std::sin(pi * std::min(1.0f, t * 1.05f));
-    for (int side : {-1, 1}) {
-      const float ang = along + float(side) * g.range(50, 60);
-      const vec2 d = heading(ang);
-      st.bend = -float(side) * 0.12f;   // droop back toward the rachis' tip
-      const float len = fit(p, d, 0.34f * env * g.range(0.92f, 1.05f), 0.015f);
-      blade(c, p, ang, len, 0.021f, [](float u, int) { return std::pow(std::sin(pi * std::pow(u, 0.55f)), 0.6f); }, st);
-    }
+  st.veins = 1, st.midrib = 1.4f, st.edge_dark = 0.3f, st.dome = 0.25f;
+  auto leaflet = [](float u, int) { return std::pow(std::sin(pi * std::pow(u, 0.45f)), 0.7f); };
+  const float spread[3] = {-6.5f, 0.0f, 6.5f};
+  for (int k = 0; k < 3; ++k) {
+    const vec2 base{0.5f + 0.035f * float(k - 1), 0.0f};
+    const float ang = 90 + spread[k] + g.range(-1.5f, 1.5f);
+    st.bend = (k == 1 ? 1.0f : -1.0f) * 0.025f;
+    const float len = fit(base, heading(ang), (k == 1 ? 0.97f : 0.9f) * g.range(0.95f, 1.0f), 0.01f);
+    blade(c, base, ang, len, 0.03f, leaflet, st);
   }
-  curve_stroke(c, [&](float t) { return bezier(p0, p1, p2, t); }, 10, 0.011f, 0.0035f, {0.85f, 0.8f, 0.15f, 0.15f});
+  // The leaflets' joint with the rachis: a short, thick stalk.
+  stroke(c, {0.5f, 0.0f}, {0.5f, 0.05f}, 0.03f, 0.012f, {0.8f, 0.85f, 0.2f, 0});
 }
 
 void draw_twig_cluster(leaf_canvas& c, rng& g) {

@@ -4,6 +4,8 @@
 // archetype_conifers.cpp and archetype_bark.cpp; this file holds the tables, the cache and the
 // parallel preparation.
 #include <algorithm>
+#include <array>
+#include <iterator>
 #include <atomic>
 #include <map>
 #include <memory>
@@ -19,19 +21,39 @@ namespace {
 
 using namespace archetype;
 
-// A pale, low-chroma mid green (linear ~0.45), so that the tint sets the hue and the leaf's albedo
-// is a little under half the tint; each archetype keeps a little character of its own.
-const leaf_look leaf_looks[leaf_archetype_count] = {
-    {{178, 194, 156}, {206, 208, 160}},  // ovate: fresh, slightly yellow
-    {{170, 188, 156}, {196, 202, 156}},  // lobed: deeper
-    {{178, 194, 152}, {210, 208, 152}},  // palmate
-    {{174, 192, 158}, {202, 206, 162}},  // pinnate
-    {{164, 186, 172}, {190, 202, 176}},  // needles: blue-green
-    {{162, 184, 166}, {188, 200, 172}},  // flat spray: bluish
-    {{176, 190, 152}, {198, 202, 152}},  // scale spray: yellow-green
-    {{182, 194, 150}, {212, 208, 150}},  // palm frond: yellowish
-    {{178, 194, 156}, {206, 208, 160}},  // twig cluster
+// One row per archetype, in the order of generators/archetypes.h; the static_asserts catch a
+// missing or extra row. cost: a rough rank of the time to make the set (higher first when
+// preparing on several threads, so they finish close together).
+struct leaf_entry {
+  void (*draw)(leaf_canvas&, rng&);
+  // A pale, low-chroma mid green (linear ~0.45), so that the tint sets the hue and the leaf's
+  // albedo is a little under half the tint; each archetype keeps a little character of its own.
+  leaf_look look;
+  int cost;
 };
+const leaf_entry leaf_table[] = {
+    {draw_ovate, {{178, 194, 156}, {206, 208, 160}}, 0},         // fresh, slightly yellow
+    {draw_lobed, {{170, 188, 156}, {196, 202, 156}}, 0},         // deeper
+    {draw_palmate, {{178, 194, 152}, {210, 208, 152}}, 0},
+    {draw_pinnate, {{174, 192, 158}, {202, 206, 162}}, 0},
+    {draw_needles, {{164, 186, 172}, {190, 202, 176}}, 2},       // blue-green
+    {draw_flat_spray, {{162, 184, 166}, {188, 200, 172}}, 2},    // bluish
+    {draw_scale_spray, {{176, 190, 152}, {198, 202, 152}}, 2},   // yellow-green
+    {draw_palm_frond, {{182, 194, 150}, {212, 208, 150}}, 1},    // yellowish
+    {draw_twig_cluster, {{178, 194, 156}, {206, 208, 160}}, 1},
+    {draw_needle_tufts, {{160, 184, 172}, {186, 200, 178}}, 2},  // glaucous blue-green
+};
+static_assert(std::size(leaf_table) == size_t(leaf_archetype_count), "one leaf_table row per leaf archetype");
+
+struct bark_entry {
+  void (*fill)(bark_field&, uint64_t);
+  float relief;  // height units per tile width (normal-map strength)
+};
+const bark_entry bark_table[] = {
+    {bark_furrowed, 14}, {bark_plated, 10}, {bark_smooth, 4}, {bark_peeling, 9},
+    {bark_ringed, 8},    {bark_mottled, 5}, {bark_fissured, 9}, {bark_fibrous, 9},
+};
+static_assert(std::size(bark_table) == size_t(bark_archetype_count), "one bark_table row per bark archetype");
 
 int clamp_size(int size) { return std::clamp(size, 8, 4096); }
 
@@ -65,12 +87,8 @@ leaf_texture_set make_leaf_archetype_textures(leaf_archetype a, int size, uint64
   scratch_lease lease;
   leaf_canvas c(n, lease);
   rng g{mix64(seed * 1315423911ull + uint64_t(i))};
-  using draw_fn = void (*)(leaf_canvas&, rng&);
-  static const draw_fn draw[leaf_archetype_count] = {draw_ovate,      draw_lobed,       draw_palmate,
-                                                      draw_pinnate,    draw_needles,     draw_flat_spray,
-                                                      draw_scale_spray, draw_palm_frond, draw_twig_cluster};
-  draw[i](c, g);
-  return finish_leaf(c, lease[5], leaf_looks[i], mix64(seed + uint64_t(i) * 101));
+  leaf_table[i].draw(c, g);
+  return finish_leaf(c, lease[5], leaf_table[i].look, mix64(seed + uint64_t(i) * 101));
 }
 
 bark_texture_set make_bark_archetype_textures(bark_archetype a, int size, uint64_t seed) {
@@ -79,11 +97,8 @@ bark_texture_set make_bark_archetype_textures(bark_archetype a, int size, uint64
   scratch_lease lease;
   bark_field f(n, lease);
   const uint64_t s = mix64(seed * 2654435761ull + uint64_t(i));
-  using fill_fn = void (*)(bark_field&, uint64_t);
-  static const fill_fn fill[bark_archetype_count] = {bark_furrowed, bark_plated, bark_smooth, bark_peeling, bark_ringed};
-  static const float relief[bark_archetype_count] = {14, 10, 4, 9, 8};
-  fill[i](f, s);
-  return finish_bark(f, relief[i]);
+  bark_table[i].fill(f, s);
+  return finish_bark(f, bark_table[i].relief);
 }
 
 const leaf_texture_set& leaf_archetype_textures(leaf_archetype a, int size, uint64_t seed) {
@@ -111,13 +126,21 @@ void run_jobs(int jobs, int threads, Job&& job) {
   worker();
   for (std::thread& t : pool) t.join();
 }
-// The costliest first, so two threads finish close together.
-constexpr int job_order[leaf_archetype_count + bark_archetype_count] = {9, 10, 11, 12, 13, 4, 6, 5, 7, 8, 0, 1, 2, 3};
+// Jobs 0..leaf_archetype_count-1 are the leaf sets, then the barks; the costliest first (barks
+// rank above every card), so two threads finish close together.
+constexpr int job_count = leaf_archetype_count + bark_archetype_count;
+const std::array<int, job_count> job_order = [] {
+  std::array<int, job_count> order{};
+  for (int k = 0; k < job_count; ++k) order[size_t(k)] = k;
+  auto cost = [](int k) { return k < leaf_archetype_count ? leaf_table[k].cost : 3; };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return cost(a) > cost(b); });
+  return order;
+}();
 }  // namespace
 
 void prepare_archetype_textures(int size, uint64_t seed, int threads) {
   run_jobs(leaf_archetype_count + bark_archetype_count, threads, [&](int j) {
-    const int k = job_order[j];
+    const int k = job_order[size_t(j)];
     if (k < leaf_archetype_count) leaf_archetype_textures(leaf_archetype(k), size, seed);
     else bark_archetype_textures(bark_archetype(k - leaf_archetype_count), size, seed);
   });
@@ -126,7 +149,7 @@ void prepare_archetype_textures(int size, uint64_t seed, int threads) {
 size_t make_all_archetype_textures(int size, uint64_t seed, int threads) {
   std::atomic<size_t> bytes{0};
   run_jobs(leaf_archetype_count + bark_archetype_count, threads, [&](int j) {
-    const int k = job_order[j];
+    const int k = job_order[size_t(j)];
     if (k < leaf_archetype_count) {
       const leaf_texture_set s = make_leaf_archetype_textures(leaf_archetype(k), size, seed);
       bytes += s.color.pixels.size() + s.normal.pixels.size() + s.thickness.pixels.size();
