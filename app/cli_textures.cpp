@@ -3,6 +3,7 @@
 #include "app/cli_textures.h"
 
 #include <algorithm>
+#include <iterator>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
@@ -47,26 +48,33 @@ void paste(image& sheet, const image& tile, int ox, int oy) {
     }
 }
 
-// Species tints (linear RGB) used on the sheet, one per archetype: the species presets' colours.
-const glm::vec3 leaf_tints[leaf_archetype_count] = {
+// Species tints (linear RGB) used on the sheet, one per archetype in the order of
+// generators/archetypes.h: the species presets' colours. Unsized, with a static_assert, so a new
+// archetype without its row fails to compile.
+const glm::vec3 leaf_tints[] = {
     {0.32f, 0.55f, 0.16f},  // ovate: birch
     {0.22f, 0.42f, 0.12f},  // lobed: oak
     {0.26f, 0.50f, 0.12f},  // palmate: maple
     {0.24f, 0.46f, 0.12f},  // pinnate: ash
     {0.10f, 0.26f, 0.12f},  // needles: Scots pine
     {0.08f, 0.22f, 0.12f},  // flat spray: spruce
-    {0.12f, 0.30f, 0.12f},  // scale spray: cedar
+    {0.07f, 0.20f, 0.09f},  // scale spray: cypress
     {0.26f, 0.45f, 0.14f},  // palm frond
     {0.26f, 0.50f, 0.12f},  // twig cluster: maple cluster cards
+    {0.09f, 0.22f, 0.16f},  // needle tufts: cedar of Lebanon
 };
-const glm::vec3 bark_tints[bark_archetype_count] = {
+static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
+const glm::vec3 bark_tints[] = {
     {0.36f, 0.31f, 0.26f},  // furrowed: oak
     {0.40f, 0.28f, 0.20f},  // plated: Scots pine
     {0.82f, 0.80f, 0.76f},  // smooth: birch (white)
-    {0.50f, 0.32f, 0.24f},  // peeling: cedar
+    {0.50f, 0.32f, 0.24f},  // peeling
     {0.50f, 0.44f, 0.36f},  // ringed: palm
+    {0.46f, 0.46f, 0.44f},  // mottled: beech
+    {0.40f, 0.40f, 0.38f},  // fissured: ash
+    {0.42f, 0.32f, 0.26f},  // fibrous: cypress
 };
-const glm::vec3 beech_tint{0.52f, 0.52f, 0.50f};  // smooth again, grey
+static_assert(std::size(bark_tints) == size_t(bark_archetype_count));
 
 // A 5x7 pixel font for the sheet's labels: each glyph is 7 rows of 5 bits, most significant left.
 struct glyph { char c; uint8_t rows[7]; };
@@ -106,28 +114,33 @@ void label(image& sheet, const std::string& text, int x, int y, int scale, uint8
   }
 }
 
-const char* leaf_labels[leaf_archetype_count] = {"ovate (birch)",       "lobed (oak)",         "palmate (maple)",
-                                                 "pinnate (ash)",       "needles (pine)",      "flat_spray (spruce)",
-                                                 "scale_spray (cedar)", "palm_frond (palm)",   "twig_cluster (maple)"};
-const char* bark_labels[bark_archetype_count] = {"furrowed (oak)", "plated (pine)", "smooth (birch)", "peeling (cedar)",
-                                                 "ringed (palm)"};
+const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        "palmate (maple)",
+                                   "pinnate (ash)",       "needles (pine)",     "flat_spray (spruce)",
+                                   "scale_spray (cypress)", "palm_frond (palm)", "twig_cluster (maple)",
+                                   "needle_tufts (cedar)"};
+static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
+const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
+                                   "ringed (palm)",  "mottled (beech)", "fissured (ash)", "fibrous (cypress)"};
+static_assert(std::size(bark_labels) == size_t(bark_archetype_count));
 
 image contact_sheet(int size) {
   const int cell = 256, pad = 12, text = 26, cols = 5;
   const int factor = std::max(size / cell, 1);
-  const int w = cols * cell + (cols + 1) * pad, h = 3 * (cell + text) + 4 * pad;
+  const int leaf_rows = (leaf_archetype_count + cols - 1) / cols;
+  const int rows = leaf_rows + (bark_archetype_count + cols - 1) / cols;
+  const int w = cols * cell + (cols + 1) * pad, h = rows * (cell + text) + (rows + 1) * pad;
   image sheet{w, h, 3, std::vector<uint8_t>(size_t(w) * h * 3, 118)};  // neutral grey
   auto place = [&](const image& tile, const std::string& name, int col, int row) {
     const int x = pad + col * (cell + pad), y = pad + row * (cell + text + pad);
     paste(sheet, shrink(tile, factor), x, y);
     label(sheet, name, x + 2, y + cell + 6, 2, 240);
   };
+  // The leaves, then the barks from a fresh row.
   for (int i = 0; i < leaf_archetype_count; ++i)
     place(tinted_texture(leaf_archetype_textures(leaf_archetype(i), size).color, leaf_tints[i]), leaf_labels[i], i % cols, i / cols);
-  // The empty slot after the leaves: the smooth bark once more, tinted grey as beech.
-  place(tinted_texture(bark_archetype_textures(bark_archetype::smooth, size).color, beech_tint), "smooth (beech)", 4, 1);
   for (int i = 0; i < bark_archetype_count; ++i)
-    place(tinted_texture(bark_archetype_textures(bark_archetype(i), size).color, bark_tints[i]), bark_labels[i], i, 2);
+    place(tinted_texture(bark_archetype_textures(bark_archetype(i), size).color, bark_tints[i]), bark_labels[i], i % cols,
+          leaf_rows + i / cols);
   return sheet;
 }
 
@@ -160,7 +173,7 @@ int run_textures_cli(int argc, char** argv) {
   app.add_option("--sheet", sheet, "Write a contact sheet PNG: leaf cards (species tints) and barks");
   app.add_option("--dir", dir, "Write every map of every set as PNGs into this folder");
   app.add_option("--size", size, "Texture size in pixels")->check(CLI::Range(8, 4096));
-  app.add_flag("--bench", bench, "Time making all 14 sets afresh; prints the median");
+  app.add_flag("--bench", bench, "Time making every leaf and bark set afresh; prints the median");
   app.add_option("--repeat", repeat, "--bench: runs")->check(CLI::Range(1, 1000));
   app.add_option("--threads", threads, "--bench: threads")->check(CLI::Range(1, 64));
   try {

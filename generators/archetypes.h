@@ -1,34 +1,55 @@
 // Leaf and bark archetypes: the procedural texture sets species choose from (issue 11).
 // Plain enums with their option names, shared by the foliage model (sylva_core), the texture
 // generator, the renderer and the exporters.
+//
+// One list each (the X-macros below) makes the enum, the count and the option names, so they
+// cannot disagree; every other per-archetype table (the drawing functions and looks in
+// render/archetype_textures.cpp, the contact sheet's tints and labels in app/cli_textures.cpp) is
+// an unsized array with a static_assert on its length, so a forgotten entry fails to compile.
+// Append new archetypes at the end: presets store names, but old files and tests store indices.
 #pragma once
 
 namespace sylva {
 
-// One card per leaf instance; leaf_instance::texture holds the archetype's index.
-enum class leaf_archetype : int {
-  ovate = 0,      // simple ovate blade with a serrated edge (birch, beech, aspen)
-  lobed,          // oak
-  palmate,        // maple
-  pinnate,        // compound leaf, one card per leaf (ash, rowan)
-  needles,        // pine needle fascicles: bundles of 2-5 long needles
-  flat_spray,     // flat conifer sprays (spruce, fir)
-  scale_spray,    // scale-leaf sprays (cypress, cedar)
-  palm_frond,     // leaflets along a curved rachis
-  twig_cluster,   // a broadleaf twig carrying several leaves (cluster cards)
-};
-inline constexpr int leaf_archetype_count = 9;
-inline constexpr const char* leaf_archetype_names[] = {
-    "ovate", "lobed", "palmate", "pinnate", "needles", "flat_spray", "scale_spray", "palm_frond", "twig_cluster", nullptr};
+// X(name): one card per leaf instance; leaf_instance::texture holds the archetype's index.
+#define SYLVA_LEAF_ARCHETYPES(X)                                               \
+  X(ovate)        /* simple ovate blade with a serrated edge (birch, beech) */ \
+  X(lobed)        /* oak */                                                    \
+  X(palmate)      /* maple */                                                  \
+  X(pinnate)      /* compound leaf, one card per leaf (ash, rowan) */          \
+  X(needles)      /* pine shoot: fascicles of two fine needles */              \
+  X(flat_spray)   /* spruce and fir shoots: needles on twigs, sky between */  \
+  X(scale_spray)  /* scale-leaf sprays (cypress, thuja) */                     \
+  X(palm_frond)   /* a fan of three palm leaflets: one card per rachis side */ \
+  X(twig_cluster) /* a broadleaf twig carrying several leaves (cluster cards) */ \
+  X(needle_tufts) /* true cedar (Cedrus): rosettes of short needles on spurs */
 
-enum class bark_archetype : int {
-  furrowed = 0,   // deep vertical furrows (oak)
-  plated,         // flat plates between fissures (pine)
-  smooth,         // smooth with lenticels and dark patches (birch white, beech grey: the tint decides)
-  peeling,        // long peeling strips (cedar)
-  ringed,         // rings of leaf scars (palm)
-};
-inline constexpr int bark_archetype_count = 5;
-inline constexpr const char* bark_archetype_names[] = {"furrowed", "plated", "smooth", "peeling", "ringed", nullptr};
+// X(name): bark tiles.
+#define SYLVA_BARK_ARCHETYPES(X)                                              \
+  X(furrowed) /* deep vertical furrows (oak) */                               \
+  X(plated)   /* flat plates between fissures (pine) */                       \
+  X(smooth)   /* smooth with lenticel dashes and dark patches (birch) */      \
+  X(peeling)  /* long peeling strips */                                       \
+  X(ringed)   /* rings of leaf scars (palm) */                                \
+  X(mottled)  /* smooth, faintly mottled, no lenticels (beech, fir) */        \
+  X(fissured) /* a network of shallow fissures between narrow ridges (ash, Cedrus) */ \
+  X(fibrous)  /* soft stringy fibres in long shreds (cypress, thuja) */
+
+#define SYLVA_ARCHETYPE_ENUM(n) n,
+#define SYLVA_ARCHETYPE_NAME(n) #n,
+#define SYLVA_ARCHETYPE_ONE(n) +1
+enum class leaf_archetype : int { SYLVA_LEAF_ARCHETYPES(SYLVA_ARCHETYPE_ENUM) };
+inline constexpr int leaf_archetype_count = 0 SYLVA_LEAF_ARCHETYPES(SYLVA_ARCHETYPE_ONE);
+inline constexpr const char* leaf_archetype_names[] = {SYLVA_LEAF_ARCHETYPES(SYLVA_ARCHETYPE_NAME) nullptr};
+
+enum class bark_archetype : int { SYLVA_BARK_ARCHETYPES(SYLVA_ARCHETYPE_ENUM) };
+inline constexpr int bark_archetype_count = 0 SYLVA_BARK_ARCHETYPES(SYLVA_ARCHETYPE_ONE);
+inline constexpr const char* bark_archetype_names[] = {SYLVA_BARK_ARCHETYPES(SYLVA_ARCHETYPE_NAME) nullptr};
+#undef SYLVA_ARCHETYPE_ENUM
+#undef SYLVA_ARCHETYPE_NAME
+#undef SYLVA_ARCHETYPE_ONE
+
+static_assert(sizeof(leaf_archetype_names) / sizeof(leaf_archetype_names[0]) == leaf_archetype_count + 1);
+static_assert(sizeof(bark_archetype_names) / sizeof(bark_archetype_names[0]) == bark_archetype_count + 1);
 
 }  // namespace sylva

@@ -49,7 +49,7 @@ struct leaf_params {
 template <params_of<leaf_params> P, class V>
 void visit_params(P& p, V&& v) {
   v(p.mode, param_info{"leaf_mode", "Leaf placement", "", 0, 2, "shoots: along every young shoot (the foliage model); tips: a tuft on each current tip; generator: the generator's own leaf rule (space colonization's spiral, the L-system's L), else shoots", 0, "Leaves", leaf_mode_names});
-  v(p.archetype, param_info{"leaf_archetype", "Leaf archetype", "", 0, 8, "Procedural leaf card: ovate (birch, beech), lobed (oak), palmate (maple), pinnate compound (ash), pine needle fascicles, flat spray (spruce, fir), scale spray (cypress), palm frond, twig cluster", 0, nullptr, leaf_archetype_names});
+  v(p.archetype, param_info{"leaf_archetype", "Leaf archetype", "", 0, leaf_archetype_count - 1, "Procedural leaf card: ovate (birch, beech), lobed (oak), palmate (maple), pinnate compound (ash), pine needle fascicles, flat needle spray (spruce, fir), scale spray (cypress), palm leaflets (one card per rachis side), twig cluster, needle tufts (true cedars)", 0, nullptr, leaf_archetype_names});
   v(p.retention, param_info{"leaf_retention", "Leaf retention", "", 0, 64, "Growth steps a shoot keeps its leaves: 1 for deciduous trees (this season's and last season's shoots), 3-7 for conifers' needles"});
   v(p.outer_internodes, param_info{"leaf_outer_internodes", "Outer internodes", "", 0, 64, "Only nodes within this many internodes of a shoot tip carry leaves (0: no limit)"});
   v(p.spacing, param_info{"leaf_spacing", "Leaf spacing", "", 0.005f, 2, "Distance between leaf nodes along a shoot, metres", param_log});
@@ -67,7 +67,7 @@ void visit_params(P& p, V&& v) {
   v(p.cap, param_info{"leaf_cap", "Leaf cap", "", 1000, 2000000, "At most this many leaves; past it growth goes on and the status bar says so", param_log | param_on_release});
   v(p.clusters, param_info{"leaf_clusters", "Cluster cards", "", 0, 1, "One card carries a twig with several leaves: a dense crown for few instances (game LODs)"});
   v(p.cluster_size, param_info{"leaf_cluster_size", "Leaves per card", "", 2, 32, "How many leaves one cluster card stands for"});
-  v(p.cluster_archetype, param_info{"leaf_cluster_archetype", "Cluster card", "", 0, 8, "Archetype of the cluster cards", 0, nullptr, leaf_archetype_names});
+  v(p.cluster_archetype, param_info{"leaf_cluster_archetype", "Cluster card", "", 0, leaf_archetype_count - 1, "Archetype of the cluster cards", 0, nullptr, leaf_archetype_names});
   v(p.clumping, param_info{"leaf_clumping", "Clumping", "", 0, 1, "Shoots mode: leaves gather on the outer shoots of each limb mass, thinning in its interior and in the gaps between masses, so the crown breaks into clumps (0: spread evenly; the leaf count stays about the same)"});
   v(p.clump_size, param_info{"leaf_clump_size", "Clump size", "", 0.2f, 8, "Half the extent of one limb mass in metres: the largest subtrees this small each form one clump", param_log});
   v(p.clump_variation, param_info{"leaf_clump_variation", "Clump variation", "", 0, 1, "Seeded difference in leaf density from one limb mass to the next"});

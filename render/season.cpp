@@ -11,7 +11,7 @@ namespace sylva {
 
 bool archetype_is_evergreen(leaf_archetype a) {
   return a == leaf_archetype::needles || a == leaf_archetype::flat_spray || a == leaf_archetype::scale_spray ||
-         a == leaf_archetype::palm_frond;
+         a == leaf_archetype::palm_frond || a == leaf_archetype::needle_tufts;
 }
 
 season_look season_leaf_look(const render_params& rp) {

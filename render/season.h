@@ -24,7 +24,7 @@ struct season_look {
   bool operator==(const season_look&) const = default;
 };
 
-// True for the archetypes that stay green through winter: needles, conifer sprays, palm fronds.
+// True for the archetypes that stay green through winter: needles, conifer sprays, needle tufts (Cedrus), palm fronds.
 bool archetype_is_evergreen(leaf_archetype a);
 
 // The look of `rp.season` for this preset's leaf colour, autumn colours and leaf habit. An

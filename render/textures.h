@@ -43,10 +43,10 @@ const bark_texture_set& bark_archetype_textures(bark_archetype a, int size = 512
 // The same sets made afresh, without the cache (benchmarks, tests).
 leaf_texture_set make_leaf_archetype_textures(leaf_archetype a, int size = 512, uint64_t seed = 1);
 bark_texture_set make_bark_archetype_textures(bark_archetype a, int size = 512, uint64_t seed = 1);
-// Fills the cache with all 9 leaf and 5 bark sets on `threads` threads (deterministic: each set
+// Fills the cache with every leaf and bark set on `threads` threads (deterministic: each set
 // depends only on its own key).
 void prepare_archetype_textures(int size = 512, uint64_t seed = 1, int threads = 2);
-// Makes all 14 sets uncached on `threads` threads and returns their total bytes (the timing in
+// Makes every leaf and bark set uncached on `threads` threads and returns their total bytes (the timing in
 // `sylva textures --bench`).
 size_t make_all_archetype_textures(int size = 512, uint64_t seed = 1, int threads = 2);
 

@@ -1,5 +1,6 @@
 // Archetype texture sets (issue 11): determinism, the cache, plausible leaf cut-outs, seamless bark,
 // valid normal maps, the tint formula, and the checks on users' texture files.
+#include <iterator>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -142,17 +143,19 @@ TEST(ArchetypeTextures, MapsHaveTheDocumentedSizesAndChannels) {
 
 TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
   struct range { double lo, hi; };
-  const range expected[leaf_archetype_count] = {
+  const range expected[] = {
       {0.30, 0.75},  // ovate
       {0.30, 0.75},  // lobed
       {0.30, 0.75},  // palmate
       {0.15, 0.60},  // pinnate: leaflets and the gaps between them
-      {0.15, 0.60},  // needles: dense enough that a crown of tufts is not see-through
-      {0.15, 0.60},  // flat spray
+      {0.08, 0.45},  // needles: fine needles, sky between them
+      {0.12, 0.50},  // flat spray
       {0.15, 0.60},  // scale spray
-      {0.20, 0.65},  // palm frond
+      {0.04, 0.30},  // palm frond: three narrow leaflets
       {0.25, 0.75},  // twig cluster
+      {0.08, 0.45},  // needle tufts
   };
+  static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
     const image& c = leaf_archetype_textures(leaf_archetype(i), kSize).color;
     const double cov = coverage(c);
@@ -164,6 +167,46 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
     EXPECT_TRUE(stem) << leaf_archetype_names[i] << ": nothing at the bottom edge's centre";
     EXPECT_EQ(c.pixels[3], 0) << leaf_archetype_names[i];
   }
+}
+
+// Needle cards are fine structure: most of their opaque texels lie within 2 texels of the sky,
+// where a blade's lie deep inside it.
+TEST(ArchetypeTextures, NeedleCardsAreFineWithSkyBetweenTheNeedles) {
+  auto near_sky = [](const image& c) {
+    const int n = c.width;
+    auto opaque = [&](int x, int y) { return x < 0 || y < 0 || x >= n || y >= n ? false : c.pixels[(size_t(y) * n + x) * 4 + 3] >= 128; };
+    size_t solid = 0, edge = 0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        if (!opaque(x, y)) continue;
+        ++solid;
+        bool sky = false;
+        for (int dy = -2; dy <= 2 && !sky; ++dy)
+          for (int dx = -2; dx <= 2 && !sky; ++dx) sky = !opaque(x + dx, y + dy);
+        edge += sky;
+      }
+    return solid ? double(edge) / double(solid) : 0.0;
+  };
+  for (leaf_archetype a : {leaf_archetype::needles, leaf_archetype::flat_spray, leaf_archetype::needle_tufts})
+    EXPECT_GT(near_sky(leaf_archetype_textures(a, 512).color), 0.6) << leaf_archetype_names[int(a)];
+  for (leaf_archetype a : {leaf_archetype::ovate, leaf_archetype::lobed})
+    EXPECT_LT(near_sky(leaf_archetype_textures(a, 512).color), 0.2) << leaf_archetype_names[int(a)];
+}
+
+// Beech's mottled bark has no lenticel dashes: almost no texel is far darker than the tile's mean,
+// where birch's smooth bark has many.
+TEST(ArchetypeTextures, MottledBarkHasNoDarkDashesWhereSmoothHasThem) {
+  auto dark_share = [](const image& c) {
+    double mean = 0;
+    const size_t count = size_t(c.width) * size_t(c.height);
+    for (size_t k = 0; k < count; ++k) mean += c.pixels[k * 3 + 1];
+    mean /= double(count);
+    size_t dark = 0;
+    for (size_t k = 0; k < count; ++k) dark += c.pixels[k * 3 + 1] < 0.6 * mean;
+    return double(dark) / double(count);
+  };
+  EXPECT_LT(dark_share(bark_archetype_textures(bark_archetype::mottled, kSize).color), 0.01);
+  EXPECT_GT(dark_share(bark_archetype_textures(bark_archetype::smooth, kSize).color), 0.03);
 }
 
 TEST(ArchetypeTextures, LeafArchetypesDifferFromEachOther) {
