@@ -20,7 +20,7 @@ namespace sylva {
   X(needles)      /* pine shoot: fascicles of two fine needles */              \
   X(flat_spray)   /* spruce and fir shoots: needles on twigs, sky between */  \
   X(scale_spray)  /* scale-leaf sprays (cypress, thuja) */                     \
-  X(palm_frond)   /* a fan of three palm leaflets: one card per rachis side */ \
+  X(palm_frond)   /* a fan of four palm leaflets: one card per rachis side */ \
   X(twig_cluster) /* a broadleaf twig carrying several leaves (cluster cards) */ \
   X(needle_tufts) /* true cedar (Cedrus): rosettes of short needles on spurs */
 

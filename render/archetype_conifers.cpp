@@ -29,7 +29,7 @@ void draw_needles(leaf_canvas& c, rng& g) {
       const vec2 d = heading(a);
       const float len = fit(p, d, g.range(0.22f, 0.3f) * (1 - 0.25f * t));
       needle.shade = g.range(0.82f, 1.0f);
-      stroke(c, p, p + d * len, 0.0046f, 0.0008f, needle);
+      stroke(c, p, p + d * len, 0.0056f, 0.0009f, needle);
     }
     stroke(c, p - heading(ang) * 0.004f, p + heading(ang) * 0.01f, 0.0042f, 0.0032f, {0.45f, 1.0f, 0.05f, 0});  // sheath
   }

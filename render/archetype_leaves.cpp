@@ -110,19 +110,19 @@ void draw_pinnate(leaf_canvas& c, rng& g) {
 }
 
 void draw_palm_frond(leaf_canvas& c, rng& g) {
-  // A fan of three long, narrow leaflets (pinnae) from one point, each with its own midrib and
+  // A fan of four long, narrow leaflets (pinnae) from one point, each with its own midrib and
   // gaps of sky between them: one card per side of a rachis node, so a frond is the L-system's
   // rachis (wood) with these cards along both sides, leaflets in pairs like Phoenix or Cocos.
   blade_style st;
   st.veins = 1, st.midrib = 1.4f, st.edge_dark = 0.3f, st.dome = 0.25f;
   auto leaflet = [](float u, int) { return std::pow(std::sin(pi * std::pow(u, 0.45f)), 0.7f); };
-  const float spread[3] = {-6.5f, 0.0f, 6.5f};
-  for (int k = 0; k < 3; ++k) {
-    const vec2 base{0.5f + 0.035f * float(k - 1), 0.0f};
+  const float spread[4] = {-9.0f, -3.0f, 3.0f, 9.0f};
+  for (int k = 0; k < 4; ++k) {
+    const vec2 base{0.5f + 0.03f * (float(k) - 1.5f), 0.0f};
     const float ang = 90 + spread[k] + g.range(-1.5f, 1.5f);
-    st.bend = (k == 1 ? 1.0f : -1.0f) * 0.025f;
-    const float len = fit(base, heading(ang), (k == 1 ? 0.97f : 0.9f) * g.range(0.95f, 1.0f), 0.01f);
-    blade(c, base, ang, len, 0.03f, leaflet, st);
+    st.bend = (k % 2 ? 1.0f : -1.0f) * 0.025f;
+    const float len = fit(base, heading(ang), (k == 1 || k == 2 ? 0.97f : 0.88f) * g.range(0.95f, 1.0f), 0.01f);
+    blade(c, base, ang, len, 0.04f, leaflet, st);
   }
   // The leaflets' joint with the rachis: a short, thick stalk.
   stroke(c, {0.5f, 0.0f}, {0.5f, 0.05f}, 0.03f, 0.012f, {0.8f, 0.85f, 0.2f, 0});
