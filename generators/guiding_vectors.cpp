@@ -1,5 +1,6 @@
 // Guiding-vector shortest-path trees (Xu & Mould 2015, seed 002): graph, search and the step loop.
 #include "generators/guiding_vectors.h"
+#include "generators/vec_util.h"
 
 #include <algorithm>
 #include <bit>
@@ -25,7 +26,6 @@ constexpr glm::vec3 up(0, 1, 0);
 constexpr uint64_t max_grid_cells = gv_grid_cell_cap;
 constexpr int32_t kd_leaf = 32;
 
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // The implicit k-d tree splits the longest side of each box at the median point; build and query
 // recompute the same boxes, so the tree needs no storage beyond the point order.

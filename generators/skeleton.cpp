@@ -114,4 +114,14 @@ std::vector<float> radii_at_step(const tree_skeleton& s, int step) {
   return r;
 }
 
+bool structurally_sound(const tree_skeleton& t) {
+  const size_t n = t.position.size();
+  if (t.parent.size() != n || t.radius.size() != n || t.born.size() != n || t.died.size() != n ||
+      t.order.size() != n)
+    return false;
+  for (size_t i = 0; i < n; ++i)
+    if (t.parent[i] < -1 || t.parent[i] >= int32_t(i)) return false;
+  return true;
+}
+
 }  // namespace sylva

@@ -55,6 +55,10 @@ struct tree_skeleton {               // node i is the tip of the internode from 
   void reserve(size_t n);
 };
 
+// The minimum a consumer (the mesher) needs to index the arrays safely: every array as long as
+// position, and -1 <= parent[i] < i. Anything else degrades the picture, not memory.
+bool structurally_sound(const tree_skeleton& t);
+
 // Checks every invariant of DESIGN §2; returns "" when valid, else the first violation.
 std::string validate_skeleton(const tree_skeleton& s);
 

@@ -10,6 +10,9 @@
 
 namespace sylva {
 
+// Every component is finite (no NaN, no infinity).
+inline bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
 // A unit vector perpendicular to the unit vector t: t's own plane with the x axis (the z axis when
 // t is near x), so the same t always gives the same vector (a branch frame's start, a fallback side).
 inline glm::vec3 any_perpendicular(const glm::vec3& t) {

@@ -38,7 +38,6 @@ float alpha_coverage(int archetype) {
 // Below this many triangles LOD0 is already cheap: the levels keep it (issue 17, bad input).
 constexpr size_t min_reducible_triangles = 200;
 
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Parallel transport of frame normal n from tangent t0 to t1 (Bishop 1975), as the mesher does.
 glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1) {

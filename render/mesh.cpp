@@ -31,18 +31,7 @@ glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1
   return len > 1e-7f ? r / len : any_perpendicular(t1);
 }
 
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The minimum the mesher needs to index safely; anything else degrades the picture, not memory.
-bool structurally_sound(const tree_skeleton& t) {
-  const size_t n = t.position.size();
-  if (t.parent.size() != n || t.radius.size() != n || t.born.size() != n || t.died.size() != n ||
-      t.order.size() != n)
-    return false;
-  for (size_t i = 0; i < n; ++i)
-    if (t.parent[i] < -1 || t.parent[i] >= int32_t(i)) return false;
-  return true;
-}
 
 // Stable counting sort of `count` items by a born step clamped into 0..steps; writes the
 // per-step "end" table (size steps+1) and returns the permutation (order[k] = item index).

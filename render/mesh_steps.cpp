@@ -8,21 +8,6 @@
 #include "render/mesh.h"
 
 namespace sylva {
-namespace {
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-// The minimum the mesher needs to index safely (as in mesh.cpp).
-bool structurally_sound(const tree_skeleton& t) {
-  const size_t n = t.position.size();
-  if (t.parent.size() != n || t.radius.size() != n || t.born.size() != n || t.died.size() != n ||
-      t.order.size() != n)
-    return false;
-  for (size_t i = 0; i < n; ++i)
-    if (t.parent[i] < -1 || t.parent[i] >= int32_t(i)) return false;
-  return true;
-}
-}  // namespace
-
 
 std::string validate_mesh(const tree_mesh& m) {
   const size_t nv = m.position.size();
