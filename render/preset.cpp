@@ -1,5 +1,6 @@
-// Preset JSON (DESIGN §6) driven by visit_params, `--set` assignments, and atomic file writes.
+// Preset JSON (DESIGN §6) driven by visit_params (`--set`: preset_set.cpp; file writes: file_io.cpp).
 #include "render/preset.h"
+#include "render/preset_detail.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -23,6 +24,8 @@
 namespace sylva {
 namespace {
 
+using namespace preset_detail;
+
 using json = nlohmann::ordered_json;
 
 // ---------------------------------------------------------------------------------------------
@@ -36,29 +39,6 @@ double float_for_json(float f) {
   return std::strtod(buf, nullptr);
 }
 
-std::string format_number(double d) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", d);
-  return buf;
-}
-
-// Built with += because GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
-std::string range_text(const param_info& info) {
-  std::string r = "[";
-  r += format_number(info.min);
-  r += ", ";
-  r += format_number(info.max);
-  r += ']';
-  return r;
-}
-
-std::string quote_text(std::string_view s) {
-  std::string r = "\"";
-  r += s;
-  r += '"';
-  return r;
-}
-
 const char* json_type_name(const json& j) {
   if (j.is_string()) return "a string";
   if (j.is_boolean()) return "a boolean";
@@ -70,28 +50,7 @@ const char* json_type_name(const json& j) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Limits on what a value may hold (preset.h), shared by the preset loader and --set.
-
-std::string mb_text(size_t bytes) {
-  return bytes >= (1u << 20) ? std::to_string(bytes >> 20) + " MB" : std::to_string(bytes >> 10) + " KB";
-}
-
-std::string check_text(std::string_view s) {
-  if (s.size() > max_preset_text_bytes) return "text longer than the " + mb_text(max_preset_text_bytes) + " limit";
-  if (!valid_utf8(s)) return "text is not valid UTF-8";
-  return "";
-}
-
-template <class T>
-std::string check_value_limits(const T& v) {
-  if constexpr (std::is_same_v<T, std::string>) {
-    return check_text(v);
-  } else if constexpr (std::is_same_v<T, std::vector<float>> || std::is_same_v<T, std::vector<glm::vec3>>) {
-    if (v.size() > max_preset_list)
-      return std::to_string(v.size()) + " entries, more than the limit of " + std::to_string(max_preset_list);
-  }
-  return "";
-}
+// Limits on what a document may hold (preset.h); a value's own limits are in preset_detail.h.
 
 // Counts values and checks nesting and string sizes before the document is built, so a hostile
 // file is refused while it still costs nothing. Syntax errors are left to the real parse.
@@ -272,27 +231,6 @@ std::string params_from_json(const json& o, const std::string& section, P& p, st
 
 // ---------------------------------------------------------------------------------------------
 // Growth phases: "keyframes": [{"step": k, "key": "...", "value": v}], v typed as its parameter.
-
-// Calls f(value, info) on the keyable generator parameter `key` of a copy of the spec's params;
-// false when there is none (check_keyframe then names the problem).
-template <class F>
-bool with_keyable(const tree_spec& spec, std::string_view key, F&& f) {
-  bool found = false;
-  std::visit(
-      [&](const auto& gp) {
-        auto copy = gp;
-        visit_params(copy, [&](auto& value, const param_info& info) {
-          using T = std::remove_cvref_t<decltype(value)>;
-          if constexpr (keyable_type<T>)
-            if (key == info.key) {
-              found = true;
-              f(value, info);
-            }
-        });
-      },
-      spec.params);
-  return found;
-}
 
 json keyframes_to_json(const tree_spec& spec) {
   json a = json::array();
@@ -517,125 +455,6 @@ load_result load_preset_doc(json& doc, preset& out) {
   return r;
 }
 
-// ---------------------------------------------------------------------------------------------
-// `--set`: text -> value, strict (an argument typo should stop the command, not be clamped).
-
-bool parse_float_text(std::string_view s, float& out) {
-  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  float f = 0;
-  auto r = std::from_chars(s.data(), s.data() + s.size(), f);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(f)) return false;
-  out = f;
-  return true;
-}
-
-std::vector<std::string_view> split(std::string_view s, char sep) {
-  std::vector<std::string_view> parts;
-  size_t start = 0;
-  for (size_t i = 0; i <= s.size(); ++i)
-    if (i == s.size() || s[i] == sep) {
-      parts.push_back(s.substr(start, i - start));
-      start = i + 1;
-    }
-  return parts;
-}
-
-bool parse_vec3_text(std::string_view s, glm::vec3& out) {
-  auto parts = split(s, ',');
-  if (parts.size() != 3) return false;
-  glm::vec3 v;
-  for (int i = 0; i < 3; ++i)
-    if (!parse_float_text(parts[size_t(i)], v[i])) return false;
-  out = v;
-  return true;
-}
-
-template <class T>
-std::string text_to_value(std::string_view s, T& out, const param_info& info) {
-  if constexpr (std::is_same_v<T, float>) {
-    if (!parse_float_text(s, out)) return quote_text(s) + " is not a finite number";
-  } else if constexpr (std::is_same_v<T, int>) {
-    float f;
-    if (!parse_float_text(s, f) || f != std::floor(f) || std::fabs(f) > 2e9f)
-      return quote_text(s) + " is not an integer";
-    out = int(f);
-  } else if constexpr (std::is_same_v<T, bool>) {
-    if (s == "true" || s == "1" || s == "on" || s == "yes") out = true;
-    else if (s == "false" || s == "0" || s == "off" || s == "no") out = false;
-    else return quote_text(s) + " is not true or false";
-  } else if constexpr (std::is_enum_v<T>) {
-    const int n = option_count(info);
-    std::string names;
-    for (int i = 0; i < n; ++i) {
-      if (s == info.options[i]) { out = T(i); return ""; }
-      names += std::string(i ? ", " : "") + info.options[i];
-    }
-    return quote_text(s) + " is not one of " + names;
-  } else if constexpr (std::is_same_v<T, glm::vec3>) {
-    if (!parse_vec3_text(s, out)) return quote_text(s) + " is not x,y,z";
-  } else if constexpr (std::is_same_v<T, std::string>) {
-    if (std::string e = check_text(s); !e.empty()) return e;
-    out = std::string(s);
-  } else if constexpr (std::is_same_v<T, std::vector<float>>) {
-    std::vector<float> v;
-    if (!s.empty())
-      for (std::string_view part : split(s, ',')) {
-        v.push_back(0);
-        if (!parse_float_text(part, v.back())) return quote_text(part) + " is not a finite number";
-      }
-    out = std::move(v);
-  } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
-    std::vector<glm::vec3> v;
-    if (!s.empty())
-      for (std::string_view part : split(s, ';')) {
-        v.emplace_back(0);
-        if (!parse_vec3_text(part, v.back())) return quote_text(part) + " is not x,y,z";
-      }
-    out = std::move(v);
-  } else {
-    static_assert(sizeof(T) == 0, "value type not supported by --set (see params.h)");
-  }
-  return check_value_limits(out);
-}
-
-// Calls f(value, info) on the parameter `key` (optionally "params.", "mesh.", "render." or "wood."
-// qualified). Returns "" or why no single parameter matched.
-template <class F>
-std::string with_param(preset& p, std::string_view key, F&& f) {
-  std::string_view only;
-  for (std::string_view s : {"params", "mesh", "render", "wood"})
-    if (key.size() > s.size() && key.substr(0, s.size()) == s && key[s.size()] == '.') {
-      only = s;
-      key.remove_prefix(s.size() + 1);
-    }
-  std::vector<std::string> hits;
-  std::function<void()> apply;
-  auto look = [&](std::string_view section, auto& params) {
-    if (!only.empty() && only != section) return;
-    visit_params(params, [&](auto& value, const param_info& info) {
-      if (key != info.key) return;
-      hits.push_back(std::string(section) + "." + info.key);
-      apply = [&value, info, &f] { f(value, info); };
-    });
-  };
-  std::visit([&](auto& gp) { look("params", gp); }, p.spec.params);
-  look("mesh", p.mesh);
-  look("render", p.render);
-  look("wood", p.spec.wood);
-  if (hits.empty())
-    return "unknown parameter \"" + std::string(key) + "\" for generator " + generator_name(p.spec) +
-           " (see `sylva params`)";
-  if (hits.size() > 1) {
-    std::string names;
-    for (const std::string& h : hits) names += (names.empty() ? "" : " or ") + h;
-    return quote_text(key) + " is ambiguous: write " + names;
-  }
-  apply();
-  return "";
-}
-
 }  // namespace
 
 load_result load_preset_json(std::string_view text, preset& out) {
@@ -731,130 +550,6 @@ bool valid_utf8(std::string_view s) {
   return true;
 }
 
-namespace {
-constexpr std::string_view define_prefix = "define.";
-bool is_define_key(std::string_view key) {
-  return key.size() > define_prefix.size() && key.substr(0, define_prefix.size()) == define_prefix;
-}
-
-// --set define.NAME=value: rewrites `#define NAME ...` in a text-mode L-system's source. The value
-// must lie in the constant's [min,max] (its comment, or the editor's default range around it).
-std::string set_preset_define(preset& p, std::string_view key, std::string_view text) {
-  auto* lp = std::get_if<lsystem_params>(&p.spec.params);
-  if (!lp || lp->mode != lsystem_mode::text)
-    return std::string(key) + ": define.NAME reaches the #define constants of a text-mode L-system; this preset has none";
-  const std::string name(key.substr(define_prefix.size()));
-  const std::vector<lsystem_constant> ks = lsystem_constants(lp->source);
-  const lsystem_constant* k = nullptr;
-  std::string names;
-  for (const lsystem_constant& c : ks) {
-    if (c.name == name) k = &c;
-    names += (names.empty() ? "" : ", ") + c.name;
-  }
-  if (!k) return std::string(key) + ": the L-system has no #define " + quote_text(name) +
-                (names.empty() ? " (it defines no constants)" : " (it defines " + names + ")");
-  float v;
-  if (!parse_float_text(text, v) || !std::isfinite(v)) return std::string(key) + ": " + quote_text(text) + " is not a number";
-  if (v < k->min || v > k->max) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, " is outside [%g, %g]", double(k->min), double(k->max));
-    return std::string(key) + ": " + quote_text(text) + buf;
-  }
-  if (!set_lsystem_constant(lp->source, name, v)) return std::string(key) + ": could not rewrite #define " + name;
-  return "";
-}
-}  // namespace
-
-// `--set key@step=value`: a keyframe of the generator's parameter `key` (issue 18).
-static std::string set_preset_keyframe(preset& p, std::string_view key_at, std::string_view text) {
-  const size_t at = key_at.find('@');
-  std::string_view key = key_at.substr(0, at);
-  if (key.substr(0, 7) == "params.") key.remove_prefix(7);
-  float step_f = 0;
-  if (!parse_float_text(key_at.substr(at + 1), step_f) || step_f != std::floor(step_f) || std::fabs(step_f) > 1e6f)
-    return std::string(key_at) + ": the step after @ must be a whole number";
-  keyframe k;
-  k.step = int(step_f);
-  k.key = std::string(key);
-  std::string error;
-  with_keyable(p.spec, k.key, [&](auto& value, const param_info& info) {
-    error = text_to_value(text, value, info);
-    k.value = to_key_value(value);
-  });
-  if (!error.empty()) return std::string(key_at) + ": " + error;
-  return set_keyframe(p.spec, k);
-}
-
-std::string set_preset_param(preset& p, std::string_view assignment) {
-  const size_t eq = assignment.find('=');
-  if (eq == std::string_view::npos || eq == 0)
-    return "--set expects key=value, got \"" + std::string(assignment) + "\"";
-  const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
-  if (is_define_key(key)) return set_preset_define(p, key, text);
-  if (key.find('@') != std::string_view::npos) return set_preset_keyframe(p, key, text);
-  std::string error;
-  std::string found = with_param(p, key, [&](auto& value, const param_info& info) {
-    auto v = value;
-    error = text_to_value(text, v, info);
-    if (error.empty() && !clamp_param(v, info)) error = quote_text(text) + " is outside " + range_text(info);
-    if (error.empty()) value = std::move(v);
-  });
-  if (!found.empty()) return found;
-  if (!error.empty()) return std::string(key) + ": " + error;
-  return "";
-}
-
-std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out) {
-  const size_t eq = assignment.find('=');
-  if (eq == std::string_view::npos || eq == 0)
-    return "--set expects key=value, got \"" + std::string(assignment) + "\"";
-  const std::string_view key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
-  if (key.find('@') != std::string_view::npos) {
-    // A keyframe: one value, checked when it is set, after the --set before it (which may raise
-    // the step count it is checked against).
-    out.emplace_back(assignment);
-    return "";
-  }
-  const auto parts = split(text, ':');
-  preset copy = p;
-  bool numeric = is_define_key(key), integral = false;
-  std::string found = numeric ? std::string() : with_param(copy, key, [&](auto& value, const param_info&) {
-    using T = std::decay_t<decltype(value)>;
-    numeric = std::is_same_v<T, float> || std::is_same_v<T, int>;
-    integral = std::is_same_v<T, int>;
-  });
-  if (!found.empty()) return found;
-  if (!numeric || parts.size() != 3) {  // a plain value (strings such as L-system text may hold ':')
-    if (std::string e = set_preset_param(copy, assignment); !e.empty()) return e;
-    out.emplace_back(assignment);
-    return "";
-  }
-  float a, b, n;
-  if (!parse_float_text(parts[0], a) || !parse_float_text(parts[1], b) || !parse_float_text(parts[2], n) ||
-      n != std::floor(n) || n < 1 || n > 100000)
-    return std::string(key) + ": a sweep is from:to:count with a whole count >= 1, got \"" + std::string(text) + "\"";
-  const int count = int(n);
-  std::vector<std::string> values;
-  for (int i = 0; i < count; ++i) {
-    const double t = count == 1 ? 0.0 : double(i) / double(count - 1);
-    double v = double(a) + (double(b) - double(a)) * t;
-    if (integral) v = std::round(v);
-    char buf[32];
-    if (integral) std::snprintf(buf, sizeof buf, "%lld", (long long)v);
-    else {
-      auto r = std::to_chars(buf, buf + sizeof buf - 1, float(v));
-      *r.ptr = 0;
-    }
-    std::string value = std::string(key) + "=" + buf;
-    // Checked now, so that a sweep whose last value is out of range is refused before the first grows.
-    if (std::string e = set_preset_param(copy, value); !e.empty())
-      return e + " (value " + std::to_string(i + 1) + " of the sweep " + quote_text(text) + ")";
-    values.push_back(std::move(value));
-  }
-  out.insert(out.end(), std::make_move_iterator(values.begin()), std::make_move_iterator(values.end()));
-  return "";
-}
-
 preset default_preset() {
   preset p;
   p.name = "Honda tree a";
@@ -862,158 +557,6 @@ preset default_preset() {
   p.tags = {"lsystem", "honda", "paper"};
   p.spec.params = lsystem_params{};
   return p;
-}
-
-namespace {
-std::atomic<int> write_fault{-1};   // stage_file calls left before one fails (tests); -1: never
-}  // namespace
-
-void inject_write_failure_for_tests(int n) { write_fault.store(n); }
-
-std::string stage_file(const std::string& path, std::string_view bytes, staged_write& out) {
-  namespace fs = std::filesystem;
-  out = {};
-  if (path.empty()) return "cannot write: empty path";
-  // Through symlinks (as editors do): renaming over the link itself would turn it into a copy.
-  fs::path target(path);
-  for (int hops = 0;; ++hops) {
-    std::error_code ec;
-    if (!fs::is_symlink(fs::symlink_status(target, ec)) || ec) break;
-    if (hops == 40) return "cannot write " + path + ": too many levels of symbolic links";
-    const fs::path link = fs::read_symlink(target, ec);
-    if (ec) return "cannot write " + path + ": cannot read the symbolic link: " + ec.message();
-    target = link.is_absolute() ? link : target.parent_path() / link;
-  }
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  // An existing file keeps its permissions (a 0600 file must not come back 0644) and, where the
-  // user may, its owner; a new file gets 0666 less the umask, as open() would give it.
-  struct stat old_st {};
-  const bool present = ::stat(target.c_str(), &old_st) == 0;
-  if (present && S_ISDIR(old_st.st_mode)) return "cannot write " + path + ": it is a folder";
-  const bool existed = present && S_ISREG(old_st.st_mode);
-  static std::atomic<unsigned> counter{0};
-  const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(counter.fetch_add(1)));
-  auto fail = [&](const char* what, int err) {
-    return "cannot write " + path + ": " + what + ": " + std::strerror(err);
-  };
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, existed ? 0600 : 0666);
-  if (fd < 0) return fail("cannot create a file in its folder", errno);
-  if (existed) {
-    if (::fchown(fd, old_st.st_uid, old_st.st_gid) != 0) {}  // only root may give a file away; not an error
-    if (::fchmod(fd, old_st.st_mode & 07777) != 0) {
-      const int err = errno;
-      ::close(fd);
-      ::unlink(temp.c_str());
-      return fail("cannot keep the file's permissions", err);
-    }
-  }
-  size_t done = 0;
-  const bool injected = write_fault.load() >= 0 && write_fault.fetch_sub(1) == 0;
-  while (done < bytes.size() || injected) {
-    const ssize_t n = injected ? (errno = ENOSPC, -1) : ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = n < 0 ? errno : EIO;
-      ::close(fd);
-      ::unlink(temp.c_str());
-      return fail("write failed", err);  // e.g. a full disk: the partial temp file is removed
-    }
-    done += size_t(n);
-  }
-  // fsync before rename: otherwise a crash can leave the new name pointing at an empty file.
-  if (::fsync(fd) != 0) {
-    const int err = errno;
-    ::close(fd);
-    ::unlink(temp.c_str());
-    return fail("fsync failed", err);
-  }
-  if (::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(temp.c_str());
-    return fail("close failed", err);
-  }
-  out.path = path;
-  out.temp = temp.string();
-  out.target = target.string();
-  return "";
-}
-
-std::string commit_staged(const staged_write& s) {
-  namespace fs = std::filesystem;
-  if (::rename(s.temp.c_str(), s.target.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(s.temp.c_str());
-    return "cannot write " + s.path + ": rename failed: " + std::strerror(err);
-  }
-  const fs::path target(s.target);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
-    ::fsync(dfd);  // makes the rename itself durable; failure here loses nothing already written
-    ::close(dfd);
-  }
-  return "";
-}
-
-void discard_staged(const staged_write& s) {
-  if (!s.temp.empty()) ::unlink(s.temp.c_str());
-}
-
-std::string write_file_atomic(const std::string& path, std::string_view bytes) {
-  staged_write s;
-  if (std::string err = stage_file(path, bytes, s); !err.empty()) return err;
-  return commit_staged(s);
-}
-
-std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes) {
-  auto fail = [&](const std::string& why) { return "cannot read " + path + ": " + why; };
-  // O_NONBLOCK: opening a FIFO with no writer must not hang before the type check below refuses it.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
-  if (fd < 0) return fail(std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) {
-    const int err = errno;
-    ::close(fd);
-    return fail(std::strerror(err));
-  }
-  // Only regular files: a device (/dev/zero), FIFO or socket may never end, and a folder has no bytes.
-  if (!S_ISREG(st.st_mode)) {
-    ::close(fd);
-    return fail(S_ISDIR(st.st_mode) ? "it is a folder" : "not a regular file (a device, FIFO or socket)");
-  }
-  auto too_big = [&] {
-    return fail("larger than the " + std::to_string(max_bytes >> 20) + " MB limit for this kind of file");
-  };
-  if (uint64_t(st.st_size) > max_bytes) {
-    ::close(fd);
-    return too_big();
-  }
-  std::string text;
-  text.resize(size_t(st.st_size));
-  size_t got = 0;
-  for (;;) {  // also reads past st_size if the file grows meanwhile, up to the limit
-    if (got == text.size()) {
-      if (got > max_bytes) {
-        ::close(fd);
-        return too_big();
-      }
-      text.resize(std::min<uint64_t>(max_bytes + 1, std::max<uint64_t>(got * 2, 4096)));
-    }
-    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      return fail(std::strerror(err));
-    }
-    if (n == 0) break;
-    got += size_t(n);
-  }
-  ::close(fd);
-  if (got > max_bytes) return too_big();
-  text.resize(got);
-  out = std::move(text);
-  return "";
 }
 
 }  // namespace sylva

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "generators/tree_spec.h"
+#include "render/file_io.h"
 #include "render/mesh.h"
 #include "render/render_params.h"
 
@@ -18,7 +19,6 @@ inline constexpr int preset_version = 1;
 
 // Input limits (docs/DESIGN-NOTES.md): a preset is a page of text; a texture or mesh may be large.
 inline constexpr uint64_t max_preset_bytes = 64ull << 20;
-inline constexpr uint64_t max_asset_bytes = 256ull << 20;
 // What one preset may hold, so a small file cannot expand into gigabytes once parsed.
 inline constexpr size_t max_preset_values = 1000000;     // JSON values in the whole document
 inline constexpr size_t max_preset_tags = 1000;
@@ -65,28 +65,5 @@ std::string expand_param_sweep(const preset& p, std::string_view assignment, std
 
 // The tree `sylva` shows when started without a preset: Honda's tree a (lsystem_params defaults).
 preset default_preset();
-
-// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-// A symlink is written through: its target is replaced and the link stays. An existing file keeps
-// its permission bits (and its owner, where allowed). Returns "" or a message naming the path and
-// the reason.
-std::string write_file_atomic(const std::string& path, std::string_view bytes);
-// write_file_atomic in two halves, for writes that span several files (an OBJ with its MTL and PNGs):
-// stage every file (written and synced under a temporary name beside its target, through symlinks,
-// keeping permissions), and only when all are staged commit them (rename); on a failure discard the
-// staged ones, so the previous files stay whole.
-struct staged_write {
-  std::string path;     // as asked for
-  std::string target;   // where it lands (symlinks followed)
-  std::string temp;     // the temporary beside it
-};
-std::string stage_file(const std::string& path, std::string_view bytes, staged_write& out);
-std::string commit_staged(const staged_write& s);
-void discard_staged(const staged_write& s);
-// Tests: the n-th stage_file call from now (0: the next) fails as a full disk would; -1 never.
-void inject_write_failure_for_tests(int n);
-// Reads a whole regular file of at most `max_bytes`. Devices, FIFOs, sockets and folders are refused
-// at once, and so is a file over the limit (docs/DESIGN-NOTES.md, "Input limits").
-std::string read_file(const std::string& path, std::string& out, uint64_t max_bytes = max_asset_bytes);
 
 }  // namespace sylva

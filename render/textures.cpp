@@ -10,7 +10,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
-#include "render/preset.h"
+#include "render/file_io.h"
 
 namespace sylva {
 
