@@ -35,13 +35,8 @@ command -v blender >/dev/null 2>&1 || need+=(blender)
 dpkg-query -W -f='${Status}' python3-numpy 2>/dev/null | grep -q 'ok installed' || need+=(python3-numpy)  # Blender's Python reads Debian's numpy
 command -v montage >/dev/null 2>&1 || need+=(imagemagick)
 fc-list 2>/dev/null | grep -qi dejavu || need+=(fonts-dejavu-core)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "blender-sheet: installing ${need[*]}" >&2
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO=sudo
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
-fi
+. "$(dirname "$0")/viewer-deps.sh"
+apt_install_missing blender-sheet "${need[@]}"
 
 if [ -n "${WORK_DIR:-}" ]; then
   WORK=$WORK_DIR

@@ -25,25 +25,8 @@ start=$(date +%s)
 [ -x "$SYLVA" ] || { echo "blind-pairs: no sylva binary at $SYLVA (build it, or pass its path)" >&2; exit 1; }
 [ -d "$PRESETS" ] || { echo "blind-pairs: no preset directory $PRESETS" >&2; exit 1; }
 
-need=()
-[ -x "${SYLVA_CHROMIUM:-/usr/bin/chromium}" ] || need+=(chromium)
-command -v montage >/dev/null 2>&1 || need+=(imagemagick)
-command -v node >/dev/null 2>&1 || need+=(nodejs)
-command -v npm >/dev/null 2>&1 || need+=(npm)
-fc-list 2>/dev/null | grep -qi dejavu || need+=(fonts-dejavu-core)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "blind-pairs: installing ${need[*]}" >&2
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO=sudo
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
-fi
-if [ ! -f "$VIEWER/node_modules/three/package.json" ] \
-  || [ ! -f "$VIEWER/node_modules/@dgreenheck/ez-tree/package.json" ] \
-  || [ ! -f "$VIEWER/node_modules/playwright-core/package.json" ]; then
-  echo "blind-pairs: npm ci in tools/viewer" >&2
-  (cd "$VIEWER" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null)
-fi
+. "$(dirname "$0")/viewer-deps.sh"
+viewer_deps blind-pairs "$VIEWER"
 
 GLB_DIR=$(mktemp -d)
 trap 'rm -rf "$GLB_DIR"' EXIT

@@ -28,28 +28,9 @@ if [ ! -d "$PRESETS" ]; then
   exit 1
 fi
 
-# Debian packages, only when missing.
-need=()
-[ -x "${SYLVA_CHROMIUM:-/usr/bin/chromium}" ] || need+=(chromium)
-command -v montage >/dev/null 2>&1 || need+=(imagemagick)
-command -v node >/dev/null 2>&1 || need+=(nodejs)
-command -v npm >/dev/null 2>&1 || need+=(npm)
-fc-list 2>/dev/null | grep -qi dejavu || need+=(fonts-dejavu-core)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "compare-trees: installing ${need[*]}" >&2
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO=sudo
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
-fi
-
-# npm packages (three, ez-tree, playwright-core; no browser download), only when missing.
-if [ ! -f "$VIEWER/node_modules/three/package.json" ] \
-  || [ ! -f "$VIEWER/node_modules/@dgreenheck/ez-tree/package.json" ] \
-  || [ ! -f "$VIEWER/node_modules/playwright-core/package.json" ]; then
-  echo "compare-trees: npm ci in tools/viewer" >&2
-  (cd "$VIEWER" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null)
-fi
+# Debian packages and the viewer's npm packages, only when missing.
+. "$(dirname "$0")/viewer-deps.sh"
+viewer_deps compare-trees "$VIEWER"
 
 # Export every species preset.
 GLB_DIR=$(mktemp -d)

@@ -13,7 +13,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { openViewer, writeDataURL, VIEWER_DIR } from './lib/harness.mjs';
+import { openViewer, writeDataURL, reportHeader } from './lib/harness.mjs';
 import { EXCLUDED_PRESETS, EZ_FOR_SPECIES, makeKey } from './lib/blind.js';
 
 const args = process.argv.slice(2);
@@ -38,7 +38,6 @@ if (!opt.glbDir || !Number.isInteger(opt.seed) || !opt.views.length || !Number.i
   process.exit(2);
 }
 
-const pkgVersion = (name) => JSON.parse(fs.readFileSync(path.join(VIEWER_DIR, 'node_modules', name, 'package.json'), 'utf8')).version;
 // The first view's images carry no suffix; the others carry _VIEW.
 const suffix = (view) => (view === opt.views[0] ? '' : `_${view.replace(/[^a-z0-9]+/gi, '_')}`);
 
@@ -147,12 +146,7 @@ only when you truly cannot choose). A short \`note\` on what is wrong helps most
 );
 
 const report = {
-  generated: new Date().toISOString(),
-  sylva_binary: opt.binary || null,
-  preset_dir: opt.presetDir,
-  ez_tree_version: pkgVersion('@dgreenheck/ez-tree'),
-  three_version: pkgVersion('three'),
-  renderer: viewer.webgl,
+  ...reportHeader(opt, viewer),
   views: opt.views,
   size: opt.size,
   excluded: EXCLUDED_PRESETS,

@@ -11,7 +11,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { openViewer, writeDataURL, VIEWER_DIR } from './lib/harness.mjs';
+import { openViewer, writeDataURL, pkgVersion, reportHeader } from './lib/harness.mjs';
 
 const GRID_SPECIES = ['oak', 'pine', 'birch', 'willow', 'maple', 'palm'];
 const DEFAULT_EZ = ['Oak Medium', 'Pine Medium', 'Aspen Medium', 'Ash Medium'];
@@ -40,7 +40,6 @@ if (!opt.glbDir) {
   process.exit(2);
 }
 
-const pkgVersion = (name) => JSON.parse(fs.readFileSync(path.join(VIEWER_DIR, 'node_modules', name, 'package.json'), 'utf8')).version;
 
 // Sylva trees: every species_*.json in the preset dir, grid species first.
 const presetFiles = fs.existsSync(opt.presetDir) ? fs.readdirSync(opt.presetDir).filter((f) => /^species_.+\.json$/.test(f)) : [];
@@ -189,12 +188,7 @@ if (gridOk && allSylva.length) {
 }
 
 const report = {
-  generated: new Date().toISOString(),
-  sylva_binary: opt.binary || null,
-  preset_dir: opt.presetDir,
-  ez_tree_version: pkgVersion('@dgreenheck/ez-tree'),
-  three_version: pkgVersion('three'),
-  renderer: viewer.webgl,
+  ...reportHeader(opt, viewer),
   view: { name: 'iso', elevation_deg: 35, azimuth_deg: 45, fov_deg: 30, size: opt.size, extra_azimuths_deg: opt.azimuths.filter((a) => a !== 45) },
   goal: GOAL,
   missing: missing.map((s) => `species_${s}.json`),

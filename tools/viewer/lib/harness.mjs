@@ -16,6 +16,19 @@ try {
 
 export const VIEWER_DIR = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
+// The version of an npm package installed in the viewer.
+export const pkgVersion = (name) => JSON.parse(fs.readFileSync(path.join(VIEWER_DIR, 'node_modules', name, 'package.json'), 'utf8')).version;
+
+// The fields every run report starts with: when, what made the trees, and what drew them.
+export const reportHeader = (opt, viewer) => ({
+  generated: new Date().toISOString(),
+  sylva_binary: opt.binary || null,
+  preset_dir: opt.presetDir,
+  ez_tree_version: pkgVersion('@dgreenheck/ez-tree'),
+  three_version: pkgVersion('three'),
+  renderer: viewer.webgl,
+});
+
 const TYPES = {
   '.html': 'text/html; charset=utf-8',
   '.js': 'text/javascript; charset=utf-8',
