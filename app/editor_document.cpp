@@ -1,0 +1,245 @@
+// The document: presets opened and saved, unsaved work (the quit and open prompts, recovery), undo.
+#include "app/editor_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+#include <cctype>
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+namespace sylva::ed {
+
+// ---------------------------------------------------------------- presets
+
+std::vector<fs::path> preset_dirs() {
+  std::vector<fs::path> dirs;
+#ifdef SYLVA_SOURCE_DIR
+  dirs.emplace_back(fs::path(SYLVA_SOURCE_DIR) / "presets");
+#endif
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    dirs.push_back(exe.parent_path() / "presets");
+    dirs.push_back(exe.parent_path().parent_path() / "presets");
+  }
+  dirs.push_back(fs::current_path(ec) / "presets");
+  return dirs;
+}
+
+void open_preset(editor_state& e, const std::string& path) {
+  preset loaded;
+  load_result r = load_preset_file(path, loaded);
+  if (!r.ok) {   // the current tree stays as it is
+    set_status(e, "Cannot open " + path + ": " + r.error, true);
+    return;
+  }
+  if (!e.before_open) e.before_open = std::make_unique<editor_state::document>(
+      editor_state::document{e.doc, e.path, e.browser.baseline, e.browser.baseline_path});
+  e.undo.push_back(e.doc);
+  e.redo.clear();
+  e.doc = loaded;
+  e.undo_base = loaded;
+  e.path = path;
+  note_saved_preset(e.browser, e.doc, path);
+  note_recent(e.recent, path);
+  e.frame_new = true;
+  std::string m = "Opened " + path;
+  if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
+  set_status(e, m, false);
+}
+
+bool save_to(editor_state& e, const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
+  std::string err = save_preset_file(e.doc, path);
+  if (!err.empty()) {
+    set_status(e, "Save failed: " + err, true);
+    return false;
+  }
+  e.path = path;
+  note_saved_preset(e.browser, e.doc, path);
+  note_recent(e.recent, path);
+  set_status(e, "Saved " + path);
+  return true;
+}
+
+// ---------------------------------------------------------------- unsaved work (issue 14)
+
+// The user's own folder for saves, exports, screenshots and the recovery file: $SYLVA_HOME, else ~/Sylva.
+std::string user_folder() {
+  if (const char* h = std::getenv("SYLVA_HOME"); h && *h) return h;
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / "Sylva").string();
+  return (fs::current_path() / "Sylva").string();
+}
+
+// A shipped preset is never overwritten by Save: it goes to Save as in the user's folder instead.
+bool is_installed_preset(const std::string& path) {
+  if (path.empty()) return false;
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  for (const fs::path& d : preset_dirs()) {
+    const fs::path c = fs::weakly_canonical(d, ec);
+    if (!ec && p.parent_path() == c) return true;
+  }
+  return false;
+}
+
+// "My tree" -> "~/Sylva/my_tree.json".
+std::string default_save_path(const editor_state& e) {
+  if (!e.path.empty() && !is_installed_preset(e.path)) return e.path;
+  std::string stem;
+  for (char c : e.doc.name) stem += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '_';
+  if (stem.empty()) stem = "tree";
+  return (fs::path(e.home) / (stem + ".json")).string();
+}
+
+bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
+
+// The slots with unsaved changes (A/B: both slots; the selected one first).
+std::vector<int> unsaved_slots(const editor_state& e) { return ab_unsaved_slots(e.ab, e.doc, e.browser.baseline); }
+
+// Slot A's recovery file, or slot B's (hidden from the file browser).
+std::string recovery_path(const editor_state& e, int slot) {
+  return (fs::path(e.home) / (slot == 0 ? ".recovery.json" : ".recovery_b.json")).string();
+}
+
+void remove_recovery(editor_state& e, int slot) {
+  std::error_code ec;
+  fs::remove(recovery_path(e, slot), ec);
+  fs::remove(recovery_path(e, slot) + ".source", ec);
+  e.autosaved_any[slot] = false;
+}
+void remove_recovery(editor_state& e) {
+  remove_recovery(e, 0);
+  remove_recovery(e, 1);
+}
+
+// Work left unsaved by a crash or a killed session (each slot's autosave), offered back at start.
+void find_recovery(editor_state& e) {
+  for (int slot = 0; slot < 2; ++slot) {
+    std::error_code ec;
+    if (!fs::exists(recovery_path(e, slot), ec)) continue;
+    preset& doc = slot == 0 ? e.recovered : e.recovered_b_doc;
+    if (!load_preset_file(recovery_path(e, slot), doc).ok) continue;
+    std::string source;
+    (void)read_file(recovery_path(e, slot) + ".source", source);
+    (slot == 0 ? e.recovered_path : e.recovered_b_path) = source;
+    (slot == 0 ? e.recovered_a : e.recovered_b) = true;
+    e.open_recovery = true;
+  }
+}
+
+// Every few seconds while modified: each slot's document to ~/Sylva/.recovery[_b].json, its own
+// path beside it. Slots are A and B, not selected and other, so a recovery names the right slot.
+void autosave(editor_state& e, double dt) {
+  if (e.quit_confirmed) return;
+  const std::vector<int> unsaved = unsaved_slots(e);
+  for (int slot = 0; slot < 2; ++slot)
+    if (e.autosaved_any[slot] && std::find(unsaved.begin(), unsaved.end(), slot) == unsaved.end()) remove_recovery(e, slot);
+  if (unsaved.empty()) {
+    e.autosave_wait = 0;
+    return;
+  }
+  e.autosave_wait += dt;
+  if (e.autosave_wait < 3.0) return;
+  e.autosave_wait = 0;
+  std::error_code ec;
+  fs::create_directories(e.home, ec);
+  for (int slot : unsaved) {
+    const bool selected = !e.ab.has_b || slot == e.ab.selected;
+    const preset& doc = selected ? e.doc : e.ab.other_doc.doc;
+    if (e.autosaved_any[slot] && doc == e.autosaved[slot]) continue;
+    if (!save_preset_file(doc, recovery_path(e, slot)).empty()) continue;   // best effort; never interrupts
+    (void)write_file_atomic(recovery_path(e, slot) + ".source", selected ? e.path : e.ab.other_doc.path);
+    e.autosaved[slot] = doc;
+    e.autosaved_any[slot] = true;
+  }
+}
+
+
+namespace {
+
+// Quit with "Save": saves the next slot with unsaved changes (the selected one first). A slot
+// without its own file selects it and asks where (Save as), then goes on. Returns false when a
+// slot is waiting for its Save as, or a save failed (the quit stops there).
+bool save_next_slot(editor_state& e) {
+  const std::vector<int> unsaved = unsaved_slots(e);
+  if (unsaved.empty()) return true;
+  if (e.ab.has_b && unsaved.front() != e.ab.selected) select_slot(e, unsaved.front());
+  if (e.path.empty() || is_installed_preset(e.path)) {
+    e.continue_after_save = true;
+    e.open_save_as = true;
+    return false;
+  }
+  if (!save_to(e, e.path)) {
+    e.save_all = false;
+    e.pending = editor_state::then::nothing;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// Carries out what waited for the unsaved-changes question.
+void perform_pending(editor_state& e) {
+  // Quitting with "Save" and two slots: every slot with changes is saved before the quit.
+  if (e.pending == editor_state::then::quit && e.save_all) {
+    while (!unsaved_slots(e).empty())
+      if (!save_next_slot(e)) return;
+    e.save_all = false;
+  }
+  const editor_state::then what = e.pending;
+  e.pending = editor_state::then::nothing;
+  e.continue_after_save = false;
+  if (what == editor_state::then::quit) {
+    e.quit_confirmed = true;
+    remove_recovery(e);
+    glfwSetWindowShouldClose(e.window, GLFW_TRUE);
+  } else if (what == editor_state::then::open) {
+    open_preset(e, e.pending_path);
+  }
+}
+
+// Quit, window close, Open and the library go through here: asks first when the document is
+// modified. Open replaces the selected slot only; quitting asks about both A/B slots.
+void request(editor_state& e, editor_state::then what, const std::string& path) {
+  e.pending = what;
+  e.pending_path = path;
+  e.save_all = false;
+  if (what == editor_state::then::quit ? unsaved_slots(e).empty() : !modified(e)) return perform_pending(e);
+  e.open_confirm = true;
+}
+
+// Save: to the document's own file, or Save as when it has none or it is a shipped preset.
+void save_command(editor_state& e) {
+  if (e.path.empty() || is_installed_preset(e.path)) e.open_save_as = true;
+  else save_to(e, e.path);
+}
+
+// ---------------------------------------------------------------- undo
+
+void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>& to) {
+  if (from.empty()) return;
+  to.push_back(e.doc);
+  e.doc = from.back();
+  from.pop_back();
+  e.undo_base = e.doc;
+}
+
+// One undo step per completed edit: nothing is recorded while a widget is held.
+void record_undo(editor_state& e) {
+  if (ImGui::IsAnyItemActive() || e.doc == e.undo_base) return;
+  e.undo.push_back(e.undo_base);
+  if (e.undo.size() > 200) e.undo.erase(e.undo.begin());
+  e.redo.clear();
+  e.undo_base = e.doc;
+}
+
+}  // namespace sylva::ed

@@ -1,0 +1,275 @@
+// The parameter panel: one slider per declared parameter (visit_params), grouped as declared.
+#include "app/editor_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+#include <random>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+namespace sylva::ed {
+
+namespace {
+
+// ---------------------------------------------------------------- parameter panel
+
+// Collects pointers to each field of a defaults struct in visit order, so the drawer can reset
+// field i to its default without a second declaration of anything.
+template <class P>
+std::vector<const void*> default_pointers(const P& defaults) {
+  std::vector<const void*> out;
+  visit_params(defaults, [&](const auto& value, const param_info&) { out.push_back(&value); });
+  return out;
+}
+
+struct param_drawer {
+  const std::vector<const void*>& defaults;
+  const char* section;     // header for parameters before the first group
+  const char* source;      // the paper the struct's parameters come from, with a trailing newline, or nullptr
+  bool show_advanced;
+  bool hold = false;       // an apply-on-release item is active
+  bool open = true;
+  bool header_drawn = false;
+  const char* pending_header = nullptr;   // drawn before the group's first shown parameter
+  const char* last_header = nullptr;      // the header drawn last
+  bool relevant = true;                   // param_relevant() for the parameter being visited
+  std::vector<step_column>* steps = nullptr;   // the struct's per-step schedules, drawn as one table
+  const tree_spec* keyed_spec = nullptr;       // growth phases: mark the parameters keyed at keyed_step
+  int keyed_step = -1;
+  bool steps_drawn = false;
+  size_t index = 0;
+
+  // "symbol  label##key" in a fixed buffer: building the panel allocates nothing per frame.
+  char buffer[256];
+  const char* label(const param_info& info) {
+    if (info.symbol && *info.symbol) std::snprintf(buffer, sizeof buffer, "%s  %s##%s", info.symbol, info.label, info.key);
+    else std::snprintf(buffer, sizeof buffer, "%s##%s", info.label, info.key);
+    return buffer;
+  }
+
+  template <class T>
+  void operator()(T& value, const param_info& info) {
+    const T& def = *static_cast<const T*>(defaults[index++]);
+    if (info.group || !header_drawn) {
+      pending_header = info.group ? info.group : section;
+      header_drawn = true;
+    }
+    // Hidden in the current mode; multi-line texts get their own panel (draw_generator_panel).
+    if (!relevant || (info.flags & param_multiline)) return;
+    // A group that continues the one just drawn (nested structs may both name "Leaves") gets no
+    // second header.
+    if (pending_header && last_header && std::strcmp(pending_header, last_header) == 0) pending_header = nullptr;
+    if (pending_header) {
+      open = ImGui::CollapsingHeader(pending_header, ImGuiTreeNodeFlags_DefaultOpen);
+      last_header = pending_header;
+      pending_header = nullptr;
+    }
+    if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
+    if constexpr (std::is_same_v<T, std::vector<float>>) {
+      if (steps && !steps->empty()) {   // all schedules in one table, where the first one is declared
+        if (!steps_drawn) draw_step_table(*steps, hold);
+        steps_drawn = true;
+        return;
+      }
+    }
+    ImGui::PushID(info.key);
+    const char* l = label(info);
+    const int slider_flags = (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0;
+    if constexpr (std::is_same_v<T, float>) {
+      const char* fmt = (info.flags & param_degrees) ? "%.1f°" : (info.flags & param_log) ? "%.4g" : "%.3f";
+      ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
+    } else if constexpr (std::is_same_v<T, int>) {
+      ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
+    } else if constexpr (std::is_same_v<T, bool>) {
+      ImGui::Checkbox(l, &value);
+    } else if constexpr (std::is_enum_v<T>) {
+      int v = int(value);
+      const int n = option_count(info);
+      if (ImGui::Combo(l, &v, info.options, n)) value = T(v);
+    } else if constexpr (std::is_same_v<T, glm::vec3>) {
+      // A colour is a vec3 on [0,1] that is not a direction; sizes and offsets get plain drags.
+      const bool colour = !(info.flags & param_direction) && info.min == 0 && info.max == 1;
+      if (colour) ImGui::ColorEdit3(l, &value.x, ImGuiColorEditFlags_Float);
+      else ImGui::DragFloat3(l, &value.x, std::max((info.max - info.min) * 0.001f, 0.001f), info.min, info.max);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (info.flags & param_multiline) {
+        ImGui::TextUnformatted(info.label);
+        ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
+      } else {
+        ImGui::InputText(l, &value);
+      }
+    } else if constexpr (std::is_same_v<T, std::vector<float>>) {
+      ImGui::TextUnformatted(l, std::strstr(l, "##"));
+      for (size_t i = 0; i < value.size(); ++i) {
+        ImGui::PushID(int(i));
+        if (i) ImGui::SameLine();
+        ImGui::SetNextItemWidth(52);
+        ImGui::DragFloat("##v", &value[i], (info.max - info.min) * 0.002f, info.min, info.max, "%.2f");
+        ImGui::PopID();
+      }
+      ImGui::SameLine();
+      if (ImGui::SmallButton("+")) value.push_back(value.empty() ? info.min : value.back());
+      ImGui::SameLine();
+      if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
+    } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
+      ImGui::TextUnformatted(l, std::strstr(l, "##"));
+      for (size_t i = 0; i < value.size(); ++i) {
+        ImGui::PushID(int(i));
+        ImGui::DragFloat3("##v", &value[i].x, 0.01f, info.min, info.max);
+        ImGui::PopID();
+      }
+      if (ImGui::SmallButton("+")) value.push_back(value.empty() ? glm::vec3(0) : value.back());
+      ImGui::SameLine();
+      if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
+    }
+    if (ImGui::IsItemHovered() && info.help && *info.help)
+      ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
+    if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) value = def;
+    if ((info.flags & param_on_release) && ImGui::IsItemActive()) hold = true;
+    if (keyed_spec && keyed_at(*keyed_spec, info.key, keyed_step)) {
+      ImGui::SameLine(0, 2);
+      ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "•");
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keyed at step %d (Growth phases)", keyed_step);
+    }
+    ImGui::PopID();
+  }
+};
+
+// True when the seed cannot change the skeleton (cached per L-system source).
+bool skeleton_is_deterministic(const tree_spec& spec) {
+  const auto* l = std::get_if<lsystem_params>(&spec.params);
+  if (!l) return false;
+  if (l->mode == lsystem_mode::honda) return true;
+  static std::string cached_source;
+  static bool cached = false;
+  if (l->source != cached_source) {
+    cached_source = l->source;
+    lsystem_program prog;
+    cached = compile_lsystem(l->source, prog).ok() && l->source.find("rand") == std::string::npos;
+    if (cached)
+      for (const lsystem_rule& r : prog.rules)
+        if (r.successors.size() > 1) cached = false;
+  }
+  return cached;
+}
+
+// The paper each generator's parameters come from, named in every tooltip.
+template <class P>
+const char* param_source() {
+  if constexpr (std::is_same_v<P, self_organizing_params>)
+    return "Palubicki et al. 2009, Self-organizing tree models for image synthesis (SIGGRAPH)\n";
+  else if constexpr (std::is_same_v<P, space_colonization_params>)
+    return "Runions, Lane & Prusinkiewicz 2007, Modeling trees with a space colonization algorithm\n";
+  else if constexpr (std::is_same_v<P, guiding_vectors_params>)
+    return "Xu & Mould 2015, Procedural tree modeling with guiding vectors\n";
+  else if constexpr (std::is_same_v<P, lsystem_params>)
+    return "Honda 1971; Prusinkiewicz & Lindenmayer 1990, The Algorithmic Beauty of Plants (ch. 1-2)\n";
+  else if constexpr (std::is_same_v<P, wood_params>)
+    return "Beam bending with permanent set (Jirasek, Prusinkiewicz & Moulia 2000); green wood from the USDA Wood Handbook 2010\n";
+  else
+    return nullptr;
+}
+
+// Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
+template <class P>
+void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr) {
+  static const P defaults{};
+  static const std::vector<const void*> pointers = default_pointers(defaults);
+  param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
+  std::vector<step_column> steps = collect_step_columns(p);
+  d.steps = &steps;
+  d.keyed_spec = keyed;
+  d.keyed_step = e.step;
+  visit_params(p, [&](auto& value, const param_info& info) {
+    d.relevant = param_relevant(std::as_const(p), &value, info);
+    d(value, info);
+  });
+  e.hold_post |= d.hold;
+}
+
+
+}  // namespace
+
+void draw_panel(editor_state& e, float top, float bottom) {
+  ImGui::SetNextWindowPos(ImVec2(0, top));
+  ImGui::SetNextWindowSize(ImVec2(panel_width(), bottom - top));
+  ImGui::Begin("Parameters", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar);
+  ImGui::PushItemWidth(-205 * ui_scale);
+  if (const ab_action a = draw_ab_controls(e.ab); a != ab_action::none) handle_ab(e, a);
+  tree_spec& spec = e.doc.spec;
+  int g = int(spec.params.index());
+  if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
+    spec.params = default_params(g);
+    spec.keyframes.clear();   // they name the old generator's parameters
+    e.frame_new = true;
+  }
+  int seed = int(spec.seed & 0x7fffffff);
+  if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
+  ImGui::SameLine();
+  // Randomize only where the seed changes something: Honda's model and L-systems without
+  // stochastic productions or rand() are deterministic; then only the leaf scatter uses the seed.
+  const bool random_tree = !skeleton_is_deterministic(spec);
+  const bool random_leaves = e.doc.mesh.leaves_enabled;
+  if (!random_tree && !random_leaves) ImGui::BeginDisabled();
+  if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
+  if (!random_tree && !random_leaves) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && !random_tree)
+    ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
+                                    : "This generator is deterministic and leaves are off: the seed changes nothing");
+  // Growth phases: with "from this step on", the panel shows the values in effect at the scrubbed
+  // step and an edit keys the new value there (app/editor_keyframes.h).
+  std::string key_error;
+  if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
+  if (draw_prune_panel(e.prune, spec, e.shown.get(), e.step, key_error)) clear_error(e);
+  if (e.keys.from_step && e.step >= 1) {
+    const generator_params before = params_at_step(spec, e.step);
+    generator_params shown = before;
+    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, shown);
+    if (!(shown == before)) key_error = key_edits(spec, before, shown, e.step);
+  } else {
+    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, spec.params);
+  }
+  if (!key_error.empty()) set_status(e, key_error, true);
+  draw_generator_panel(e.generator_panels, spec, e.shown.get());
+  draw_params(spec.wood, "Wood", e);
+  draw_params(e.doc.mesh, "Mesh", e);
+  // Time-of-day presets: a starting point for the lighting sliders below.
+  render_params& rp = e.doc.render;
+  ImGui::Separator();
+  ImGui::TextUnformatted("Time of day");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Noon")) {
+    rp.sun_elevation = 70, rp.sun_azimuth = 25, rp.sun_color = {1.0f, 0.97f, 0.92f}, rp.sun_intensity = 2.4f;
+    rp.sky_zenith = {0.22f, 0.42f, 0.85f}, rp.sky_horizon = {0.72f, 0.83f, 0.95f};
+    rp.fog_density = 0.005f, rp.haze = 0.0003f;   // a clear midday: little air to light up
+  }
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Golden hour")) {
+    rp.sun_elevation = 10, rp.sun_azimuth = std::remainder(e.camera.yaw + 60.0f, 360.0f), rp.sun_color = {1.0f, 0.72f, 0.42f}, rp.sun_intensity = 2.0f;
+    rp.sky_zenith = {0.28f, 0.38f, 0.68f}, rp.sky_horizon = {0.95f, 0.76f, 0.55f};
+    rp.fog_density = 0.018f, rp.haze = 0.0005f;
+  }
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Backlit rays")) {   // the sun straight behind the tree as seen now
+    place_sun_behind(rp, e.camera.yaw);
+    rp.sun_color = {1.0f, 0.88f, 0.7f}, rp.sun_intensity = 2.2f;
+    if (rp.shafts == light_shafts::off) rp.shafts = light_shafts::volumetric;
+    rp.fog_density = std::max(rp.fog_density, 0.025f);   // enough air for the shafts to show
+  }
+  draw_params(e.doc.render, "Render", e);
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+}  // namespace sylva::ed

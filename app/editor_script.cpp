@@ -1,0 +1,185 @@
+#include "app/editor_script.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+
+#include <GLFW/glfw3.h>
+
+namespace sylva::ed {
+
+namespace {
+
+int glfw_key(const std::string& name) {
+  if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0]))) return GLFW_KEY_A + (std::tolower(name[0]) - 'a');
+  if (name.size() == 1 && std::isdigit(static_cast<unsigned char>(name[0]))) return GLFW_KEY_0 + (name[0] - '0');
+  if (name == "escape") return GLFW_KEY_ESCAPE;
+  if (name == "enter") return GLFW_KEY_ENTER;
+  if (name == "backspace") return GLFW_KEY_BACKSPACE;
+  if (name == "space") return GLFW_KEY_SPACE;
+  if (name == "f12") return GLFW_KEY_F12;
+  return GLFW_KEY_UNKNOWN;
+}
+
+}  // namespace
+
+bool load_script(const std::string& path, script_state& sc, std::string& error) {
+  std::string text;
+  if (error = read_file(path, text); !error.empty()) return false;
+  size_t a = 0;
+  while (a <= text.size()) {
+    size_t b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    sc.lines.push_back(text.substr(a, b - a));
+    a = b + 1;
+  }
+  return true;
+}
+
+bool run_script(editor_state& e, script_state& sc) {
+  using clock = std::chrono::steady_clock;
+  auto fail = [&](const std::string& why) {
+    std::fprintf(stderr, "sylva script: FAIL at line %zu (%s): %s\n", sc.next + 1, sc.lines[sc.next].c_str(), why.c_str());
+    sc.failed = true;
+    return false;
+  };
+  while (sc.next < sc.lines.size()) {
+    const std::string& line = sc.lines[sc.next];
+    const size_t sp = line.find(' ');
+    const std::string cmd = line.substr(0, sp), arg = sp == std::string::npos ? "" : line.substr(sp + 1);
+    const double waited = std::chrono::duration<double>(clock::now() - sc.started_line).count();
+    const bool growing = e.growth_state == editor_state::growth::growing;
+    bool done = true;   // false: wait and try again next frame
+    auto shown_prompt = [&](const std::string& t) {
+      return std::find(e.prompts_shown.begin(), e.prompts_shown.end(), t) != e.prompts_shown.end();
+    };
+    if (line.empty() || line[0] == '#') {
+    } else if (cmd == "wait_tree") {
+      done = !growing && e.shown;
+      if (!done && waited > 120) return fail("no tree after 120 s");
+    } else if (cmd == "set") {
+      if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
+      sc.frames_left = 2;   // posted on the next frame
+    } else if (cmd == "expect_recovery" || cmd == "expect_recovery_b") {
+      std::error_code ec;
+      done = fs::exists(recovery_path(e, cmd == "expect_recovery" ? 0 : 1), ec) == (arg == "1");
+      if (!done && waited > 20) return fail(arg == "1" ? "no recovery file" : "the recovery file stays");
+    } else if (cmd == "wait_growing") {
+      if (!growing) return fail("the growth ended before " + arg + " s");
+      done = seconds_since(e.posted_at) >= std::atof(arg.c_str());
+    } else if (cmd == "expect_other_state") {
+      static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
+      const int st = e.ab.has_b ? e.ab.other.growth : 0;
+      done = arg == names[std::clamp(st, 0, 5)];
+      if (!done && waited > 60) return fail(std::string("the other slot's state is ") + names[std::clamp(st, 0, 5)]);
+    } else if (cmd == "key" || cmd == "taps") {
+      std::string name = arg;
+      int taps = 1;
+      if (cmd == "taps") {   // taps N KEY: N press/release pairs queued at once between two frames
+        taps = std::atoi(arg.c_str());
+        name = arg.substr(std::min(arg.size(), arg.find(' ') + 1));
+      }
+      bool ctrl = false, shift = false;
+      for (;;) {
+        if (name.rfind("ctrl+", 0) == 0) ctrl = true, name = name.substr(5);
+        else if (name.rfind("shift+", 0) == 0) shift = true, name = name.substr(6);
+        else break;
+      }
+      const int k = glfw_key(name);
+      if (k == GLFW_KEY_UNKNOWN) return fail("unknown key");
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS);
+      if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_PRESS);
+      for (int i = 0; i < taps; ++i) {
+        e.input.push_key(k, GLFW_PRESS);
+        e.input.push_key(k, GLFW_RELEASE);
+      }
+      if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_RELEASE);
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE);
+      sc.frames_left = 2 * taps + 3;   // let the queued events drain before the next command
+    } else if (cmd == "answer") {
+      e.script_answer = arg;
+      sc.frames_left = 2;
+    } else if (cmd == "expect_prompt") {
+      done = shown_prompt(arg);
+      if (!done && waited > 30) return fail("the dialog did not appear");
+    } else if (cmd == "expect_no_prompt") {
+      if (!e.prompts_shown.empty()) return fail("a dialog is open: " + e.prompts_shown.front());
+    } else if (cmd == "expect_modified") {
+      if (modified(e) != (arg == "1")) return fail(modified(e) ? "the document is modified" : "the document is not modified");
+    } else if (cmd == "expect_state") {
+      static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
+      if (arg != names[int(e.growth_state)]) return fail(std::string("the state is ") + names[int(e.growth_state)]);
+    } else if (cmd == "expect_param") {
+      preset copy = e.doc;
+      if (std::string err = set_preset_param(copy, arg); !err.empty()) return fail(err);
+      if (!(copy == e.doc)) return fail("the parameter differs");
+    } else if (cmd == "wait_progress") {
+      done = long_growth(e) && e.worker->busy;
+      if (!done && waited > 30) return fail("no progress bar");
+    } else if (cmd == "remember") {
+      sc.remembered_hold = e.shown;
+      sc.remembered = e.shown ? e.shown->skeleton.get() : nullptr;
+    } else if (cmd == "expect_same_tree" || cmd == "expect_new_tree") {
+      const bool same = e.shown && e.shown->skeleton.get() == sc.remembered;
+      if (same != (cmd == "expect_same_tree")) return fail(same ? "the tree did not change" : "the tree changed");
+    } else if (cmd == "ab_duplicate") {
+      handle_ab(e, ab_action::duplicate);
+      if (!e.ab.has_b) return fail("no slot B: " + e.message);
+      sc.frames_left = 2;
+    } else if (cmd == "ab_select") {
+      handle_ab(e, arg == "b" ? ab_action::select_b : ab_action::select_a);
+      sc.frames_left = 2;
+    } else if (cmd == "ab_mode") {
+      e.ab.mode = arg == "split" ? ab_mode::split : arg == "side" ? ab_mode::side_by_side : ab_mode::off;
+    } else if (cmd == "ab_divider") {
+      e.ab.divider = std::clamp(float(std::atof(arg.c_str())), 0.0f, 1.0f);
+    } else if (cmd == "ab_wait") {   // until slot B's tree (in whichever slot is not selected) matches its document
+      const preset& other = e.ab.other_doc.doc;
+      done = e.ab.has_b && e.ab.other.shown && e.ab.other.shown->spec == other.spec && !growing && e.shown;
+      if (!done && waited > 120) return fail("the other slot's tree did not arrive");
+    } else if (cmd == "frame_median") {   // prints the median of N frame times (the A/B figure)
+      sc.frame_times.push_back(clock::now());
+      const size_t n = size_t(std::max(1, std::atoi(arg.c_str())));
+      done = sc.frame_times.size() > n;
+      if (done) {
+        std::vector<double> ms;
+        for (size_t i = 1; i < sc.frame_times.size(); ++i)
+          ms.push_back(std::chrono::duration<double, std::milli>(sc.frame_times[i] - sc.frame_times[i - 1]).count());
+        const double worst = *std::max_element(ms.begin(), ms.end());   // the impostor atlas's hitch (issue 17)
+        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+        std::printf("sylva script: frame median %.2f ms over %zu frames (A/B %s)\n", ms[ms.size() / 2], ms.size(),
+                    ab_showing(e.ab) ? ab_mode_label(e.ab.mode) : "off");
+        std::printf("sylva script: frame max %.2f ms\n", worst);
+        std::fflush(stdout);
+        sc.frame_times.clear();
+      }
+    } else if (cmd == "budget") {
+      e.worker->node_budget = std::atoll(arg.c_str());
+    } else if (cmd == "shot") {
+      e.script_shot = arg;
+      sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame
+    } else if (cmd == "frames") {
+      if (sc.frames_left < 0) sc.frames_left = std::atoi(arg.c_str());
+    } else if (cmd == "open") {
+      request(e, editor_state::then::open, arg);
+      sc.frames_left = 2;
+    } else if (cmd == "quit") {
+      request(e, editor_state::then::quit);
+      sc.frames_left = 2;
+    } else {
+      return fail("unknown command");
+    }
+    if (!done) return true;
+    static const auto script_start = clock::now();
+    std::printf("sylva script: ok %s (%.1f s)\n", line.c_str(), std::chrono::duration<double>(clock::now() - script_start).count());
+    std::fflush(stdout);
+    ++sc.next;
+    sc.started_line = clock::now();
+    if (sc.frames_left > 0) return true;   // continue after that many frames
+  }
+  sc.finished = true;
+  return false;
+}
+
+}  // namespace sylva::ed

@@ -1,0 +1,48 @@
+// The editor driven from a script, for its end-to-end tests (not used by people).
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/editor_state.h"
+
+namespace sylva::ed {
+
+// SYLVA_SCRIPT=FILE drives the real window from a script, one command per line, for the editor's
+// end-to-end test (tests/editor_test.cpp). Commands that wait give up after a timeout and fail.
+//   wait_tree                  until no growth is in progress and a tree is shown
+//   set KEY=VALUE              an edit, as the panel would make it (set_preset_param)
+//   key [ctrl+][shift+]NAME    a press and release queued between two frames (NAME: a-z, escape, f12, ...)
+//   taps N [ctrl+]NAME         N presses and releases queued at once
+//   expect_recovery 0|1        whether the autosaved recovery file exists (waits for it)
+//   answer LABEL               press a button of the open dialog
+//   expect_prompt TITLE / expect_no_prompt
+//   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
+//   wait_progress              until the progress bar with Cancel shows
+//   remember / expect_same_tree / expect_new_tree
+//   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
+//   ab_duplicate / ab_select a|b / ab_mode off|side|split / ab_divider F / ab_wait (the other slot's tree)
+//   expect_other_state STATE   until the unselected A/B slot's growth state is STATE (as expect_state)
+//   expect_recovery_b 0|1      whether slot B's autosaved recovery file exists (waits for it)
+//   wait_growing S             until the growth in progress has run S seconds (fails if it ends first)
+//   frame_median N             prints the median (and the longest) time of the next N frames
+// At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
+struct script_state {
+  std::vector<std::string> lines;
+  size_t next = 0;
+  std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
+  int frames_left = -1;
+  const tree_skeleton* remembered = nullptr;
+  std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
+  bool failed = false, finished = false;
+  std::vector<std::chrono::steady_clock::time_point> frame_times;   // frame_median: one per frame
+};
+
+// Reads the script at `path` into `sc`; false with `error` set when it cannot be read.
+bool load_script(const std::string& path, script_state& sc, std::string& error);
+// Runs the script's current command; returns false once the script is over.
+bool run_script(editor_state& e, script_state& sc);
+
+}  // namespace sylva::ed
