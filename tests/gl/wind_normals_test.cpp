@@ -15,7 +15,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "generators/lsystem.h"
-#include "gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 #include "render/wind.h"
 #include "render/gl/wind_gl.h"
 

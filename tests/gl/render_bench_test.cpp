@@ -23,7 +23,7 @@
 #include "render/preset.h"
 #include "tests/run_sylva.h"
 #include "render/gl/renderer.h"
-#include "tests/gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 
 // Counts heap allocations made through operator new, so a test can tell whether a frame allocates.
 // Replacing the global operator is process-wide; it only adds a relaxed counter to the default.

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generators/lsystem.h"
-#include "gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 #include "render/export.h"
 #include "render/export_wind.h"
 #include "render/preset.h"

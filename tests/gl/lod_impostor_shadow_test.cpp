@@ -9,7 +9,7 @@
 #include <string>
 
 #include "generators/tree_spec.h"
-#include "gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 #include "render/gl/impostor.h"
 #include "render/preset.h"
 

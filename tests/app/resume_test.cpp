@@ -11,7 +11,7 @@
 #include "app/worker.h"
 #include "generators/keyframes.h"
 #include "generators/resume.h"
-#include "tree_compare.h"
+#include "tests/tree_compare.h"
 
 namespace sylva {
 namespace {

@@ -14,7 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/gl/renderer.h"
-#include "tests/gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 #include "render/sky.h"
 
 using namespace sylva;

@@ -8,7 +8,7 @@
 
 #include "app/editor_lod.h"
 #include "generators/tree_spec.h"
-#include "gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 #include "render/preset.h"
 
 using namespace sylva;

@@ -11,7 +11,7 @@
 #include "generators/tree_spec.h"
 #include "render/gl/renderer.h"
 #include "render/mesh.h"
-#include "tests/gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 
 using namespace sylva;
 using WoodRender = sylva_test::renderer_test;

@@ -19,7 +19,7 @@
 #include "render/preset.h"
 #include "render/gl/renderer.h"
 #include "render/season.h"
-#include "tests/gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 
 using namespace sylva;
 using RenderSeason = sylva_test::renderer_test;

@@ -13,7 +13,7 @@
 #include <GLFW/glfw3.h>
 
 #include "render/gl/renderer.h"
-#include "tests/gl_test_context.h"
+#include "tests/gl/gl_test_context.h"
 #include "render/textures.h"
 
 using namespace sylva;
