@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -20,21 +19,6 @@ namespace sylva {
 namespace {
 
 constexpr float pi = 3.14159265f;
-// Fraction of an archetype's colour texture that is opaque (alpha >= 128, the renderer's cut-out),
-// measured once per archetype on the renderer's 512 px texture (thread-safe: a race only measures twice).
-float alpha_coverage(int archetype) {
-  static std::array<std::atomic<float>, leaf_archetype_count> cache{};
-  const int a = std::clamp(archetype, 0, leaf_archetype_count - 1);
-  if (const float c = cache[size_t(a)].load(std::memory_order_relaxed); c > 0) return c;
-  const image& im = leaf_archetype_textures(leaf_archetype(a), 512).color;
-  const size_t all = size_t(im.width) * size_t(im.height);
-  size_t n = 0;
-  if (im.channels == 4)
-    for (size_t i = 0; i < all; ++i) n += im.pixels[i * 4 + 3] >= 128;
-  const float c = im.channels == 4 && all > 0 ? std::max(float(n) / float(all), 0.01f) : 1.0f;
-  cache[size_t(a)].store(c, std::memory_order_relaxed);
-  return c;
-}
 // Below this many triangles LOD0 is already cheap: the levels keep it (issue 17, bad input).
 constexpr size_t min_reducible_triangles = 200;
 
@@ -403,7 +387,7 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
     for (size_t k = a; k < b; ++k) {
       const leaf_instance& l = in.leaves[k];
       c += leaf_centre(l);
-      opaque += l.size * l.size * alpha_coverage(l.texture);
+      opaque += l.size * l.size * archetype_opaque_share(l.texture);
       occl += float(l.occlusion);
       born = std::min(born, l.born);
       died = std::max(died, l.died);
@@ -443,7 +427,7 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
   }
   for (const merged& p : cards) {
     leaf_instance& card = m.leaves[p.slot];
-    float share = alpha_coverage(card_texture), best = 1e30f;
+    float share = archetype_opaque_share(card_texture), best = 1e30f;
     for (const auto& [cov, tex] : tiles)
       if (std::abs(cov - p.fit.coverage) < best) {
         best = std::abs(cov - p.fit.coverage);

@@ -2,6 +2,8 @@
 #include "render/lod_cards.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -19,18 +21,6 @@ struct frame {
   explicit frame(const glm::vec4& q) : x(rotate(q, {1, 0, 0})), y(rotate(q, {0, 1, 0})), z(rotate(q, {0, 0, 1})) {}
 };
 
-// Opaque share of an archetype's cut-out (texels with alpha >= 128 in the renderer's 512 px set).
-float archetype_share(int archetype) {
-  static float cache[leaf_archetype_count] = {};
-  const int a = std::clamp(archetype, 0, leaf_archetype_count - 1);
-  if (cache[a] > 0) return cache[a];
-  const image& im = leaf_archetype_textures(leaf_archetype(a), 512).color;
-  size_t n = 0;
-  const size_t all = size_t(im.width) * size_t(im.height);
-  for (size_t i = 0; i < all && im.channels == 4; ++i) n += im.pixels[i * 4 + 3] >= 128;
-  return cache[a] = im.channels == 4 && all ? std::max(float(n) / float(all), 0.01f) : 1.0f;
-}
-
 }  // namespace
 
 float opaque_share(const image& im) {
@@ -39,6 +29,16 @@ float opaque_share(const image& im) {
   size_t n = 0;
   for (size_t i = 0; i < all; ++i) n += im.pixels[i * 4 + 3] >= 128;
   return std::max(float(n) / float(all), 0.01f);
+}
+
+float archetype_opaque_share(int archetype) {
+  // Thread-safe: the worker and the export jobs may both ask; a race only measures twice.
+  static std::array<std::atomic<float>, leaf_archetype_count> cache{};
+  const int a = std::clamp(archetype, 0, leaf_archetype_count - 1);
+  if (const float c = cache[size_t(a)].load(std::memory_order_relaxed); c > 0) return c;
+  const float c = opaque_share(leaf_archetype_textures(leaf_archetype(a), 512).color);
+  cache[size_t(a)].store(c, std::memory_order_relaxed);
+  return c;
 }
 
 card_fit fit_card(const leaf_instance* leaves, size_t n, const glm::vec4& orientation) {
@@ -58,7 +58,7 @@ card_fit fit_card(const leaf_instance* leaves, size_t n, const glm::vec4& orient
         lo_x = std::min(lo_x, px), hi_x = std::max(hi_x, px), lo_y = std::min(lo_y, py), hi_y = std::max(hi_y, py);
       }
     // The leaf's opaque area as seen along the card's normal.
-    projected += l.size * l.size * archetype_share(l.texture) * std::abs(glm::dot(g.z, f.z));
+    projected += l.size * l.size * archetype_opaque_share(l.texture) * std::abs(glm::dot(g.z, f.z));
   }
   c.size = std::max({hi_x - lo_x, hi_y - lo_y, 1e-6f});
   if (!std::isfinite(c.size) || !std::isfinite(projected)) return card_fit{orientation, ref, 1e-6f, 0.0f};   // bad leaves

@@ -30,6 +30,8 @@ struct baked_card_textures {
 
 // Share of an RGBA image's texels with alpha >= 128 (the renderer's cut-out); at least 0.01.
 float opaque_share(const image& rgba);
+// opaque_share of a leaf archetype's colour texture at the renderer's 512 px, measured once.
+float archetype_opaque_share(int archetype);
 
 // A card standing for leaves: the plane of one of them, a square spanning their extent on it.
 struct card_fit {
