@@ -211,3 +211,25 @@ TEST(HostileOutput, LongNamesUseAShortTemporary) {
   expect_refused(s, "", "export " + quoted(honda) + " -o " + quoted(s / ("x" + name255)), "File name too long");
   EXPECT_EQ(std::distance(fs::directory_iterator(s.dir), fs::directory_iterator()), 2);   // the two 255-byte files
 }
+
+// ---------------------------------------------------------------- textures
+
+// An 18-byte PGM whose header gives a width of 0: stb "decodes" it, so the check must come after.
+TEST(HostileInput, EmptyPgmTextureFallsBackWithTheWarning) {
+  scratch s("pgm");
+  write_text(s / "zero.pgm", std::string("P5\n0 1\n255\n\0\0\0\0\0\0\0", 18));
+  ASSERT_EQ(fs::file_size(s / "zero.pgm"), 18u);
+  image img;
+  EXPECT_NE(decode_user_texture(std::string("P5\n0 1\n255\n\0\0\0\0\0\0\0", 18), img), "");
+  EXPECT_NE(decode_png(std::string("P5\n0 1\n255\n\0\0\0\0\0\0\0", 18), img), "");
+  for (const char* key : {"leaf_texture", "bark_texture"}) {
+    SCOPED_TRACE(key);
+    const sylva_run r = run_sylva("", "export " + quoted(honda) + " -o " + quoted(s / "t.glb") + " --set " + key + "=" +
+                                          quoted(s / "zero.pgm"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(s / "zero.pgm"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("using the procedural"), std::string::npos) << r.err;
+    EXPECT_GT(fs::file_size(s / "t.glb"), 1000u);
+  }
+}
