@@ -233,3 +233,18 @@ TEST(HostileInput, EmptyPgmTextureFallsBackWithTheWarning) {
     EXPECT_GT(fs::file_size(s / "t.glb"), 1000u);
   }
 }
+
+// ---------------------------------------------------------------- sweeps
+
+// Only later variants (fewer steps) refuse the keyframe: every variant is checked first.
+TEST(HostileInput, SweepWithAKeyframeWritesNothingWhenAnyVariantRefusesIt) {
+  scratch s("sweep_key");
+  write_text(s / "t-1.json", "the user's own file");
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json";
+  expect_refused(s, "", "export " + quoted(preset) + " -o " + quoted(s / "t.json") + " --set steps=20:2:3 --set lambda@10=0.5",
+                 "lambda@10");
+  const sylva_run ok = run_sylva("", "export " + quoted(preset) + " -o " + quoted(s / "k.json") +
+                                         " --set steps=12:11:2 --set lambda@10=0.5");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(s / "k-1.json") && fs::exists(s / "k-2.json"));
+}
