@@ -248,3 +248,39 @@ TEST(HostileInput, SweepWithAKeyframeWritesNothingWhenAnyVariantRefusesIt) {
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(s / "k-1.json") && fs::exists(s / "k-2.json"));
 }
+
+// ---------------------------------------------------------------- inputs
+
+TEST(HostileInput, FoldersDevicesFifosAndHugePresetsAreRefused) {
+  scratch s("inputs");
+  ASSERT_EQ(::mkfifo((s / "pipe.json").c_str(), 0600), 0);
+  fs::create_directory(s / "folder.json");
+  {  // 60 MB, under the 64 MB preset limit: read, then refused by the 1 MB text limit
+    std::ofstream f(s / "big.json", std::ios::binary);
+    f << "{\"sylva_preset\": 1, \"generator\": \"lsystem\", \"name\": \"";
+    const std::string block(1 << 20, 'x');
+    for (int i = 0; i < 60; ++i) f << block;
+    f << "\"}";
+  }
+  const std::string out = " -o " + quoted(s / "out.glb");
+  expect_refused(s, "", "export " + quoted(s / "folder.json") + out, "it is a folder");
+  expect_refused(s, "", "export /dev/zero" + out, "not a regular file");
+  expect_refused(s, "", "export " + quoted(s / "pipe.json") + out, "not a regular file");   // must not hang
+  expect_refused(s, "", "export " + quoted(s / "big.json") + out, "1 MB limit");
+  EXPECT_FALSE(fs::exists(s / "out.glb"));
+  EXPECT_LT(children_peak_mb(), 1024);   // the 60 MB preset is read once, not copied over and over
+}
+
+// A user texture that is a folder, a device or a FIFO: a warning, and the export is written with
+// the procedural texture (and a FIFO with no writer does not hang the export).
+TEST(HostileInput, SpecialTextureFilesFallBack) {
+  scratch s("texture_files");
+  ASSERT_EQ(::mkfifo((s / "pipe.png").c_str(), 0600), 0);
+  for (const std::string& tex : {s / "pipe.png", std::string("/dev/zero"), s.dir.string()}) {
+    SCOPED_TRACE(tex);
+    const sylva_run r = run_sylva("", "export " + quoted(honda) + " -o " + quoted(s / "t.glb") + " --set leaf_texture=" + quoted(tex));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("leaf texture " + tex), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("using the procedural leaves"), std::string::npos) << r.err;
+  }
+}
