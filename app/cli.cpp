@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -266,6 +267,15 @@ int run_export(const export_args& a) {
     if (variants.size() > 100000) return usage_error(cmd, "more than 100000 variants");
   }
   const bool batch = variants.size() > 1;
+  // Every variant's values are applied once before anything is written (a keyframe may be past
+  // the last step of a later variant only): a sweep is refused whole, never half-written.
+  std::set<std::vector<std::string>> checked;
+  for (const variant& v : variants) {
+    if (!checked.insert(v.sets).second) continue;   // the same values under another seed
+    preset p = base;
+    for (const std::string& set : v.sets)
+      if (std::string e = set_preset_param(p, set); !e.empty()) return usage_error(cmd, e);
+  }
 
   const fs::path out(a.output);
   if (out.has_parent_path()) {

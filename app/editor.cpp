@@ -172,7 +172,11 @@ int run_editor(const editor_options& o) {
     return 1;
   }
   // The window fits the monitor's work area on the first start and keeps its place afterwards.
-  editor_settings settings = load_settings(e->home);
+  // Each line that cannot be used is said and left out; the editor starts with the defaults for it.
+  std::vector<std::string> setting_notes;
+  editor_settings settings = load_settings(e->home, &setting_notes);
+  if (!setting_notes.empty()) set_status(*e, setting_notes[0] + (setting_notes.size() > 1 ? " (more on stderr)" : ""), true);
+  for (size_t i = 1; i < setting_notes.size(); ++i) std::fprintf(stderr, "sylva: %s\n", setting_notes[i].c_str());
   if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker->node_budget = settings.node_budget;
   if (!scripted) e->recent = settings.recent;
   const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;

@@ -1,5 +1,6 @@
 // The document: presets opened and saved, unsaved work (the quit and open prompts, recovery), undo.
 #include "app/editor_state.h"
+#include "app/editor_settings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -121,15 +122,21 @@ void remove_recovery(editor_state& e) {
 }
 
 // Work left unsaved by a crash or a killed session (each slot's autosave), offered back at start.
+// A recovery file that cannot be used is left where it is (the next autosave replaces it) and said.
 void find_recovery(editor_state& e) {
   for (int slot = 0; slot < 2; ++slot) {
     std::error_code ec;
-    if (!fs::exists(recovery_path(e, slot), ec)) continue;
+    const std::string file = recovery_path(e, slot);
+    if (!fs::exists(fs::symlink_status(file, ec))) continue;
+    std::string json, source, why = read_file(file, json, max_preset_bytes);
+    if (why.empty() && fs::exists(fs::symlink_status(file + ".source", ec)))
+      why = read_file(file + ".source", source, settings_path_max + 1);
     preset& doc = slot == 0 ? e.recovered : e.recovered_b_doc;
-    if (!load_preset_file(recovery_path(e, slot), doc).ok) continue;
-    std::string source;
-    (void)read_file(recovery_path(e, slot) + ".source", source);
-    (slot == 0 ? e.recovered_path : e.recovered_b_path) = source;
+    if (why.empty()) why = parse_recovery(json, source, doc, slot == 0 ? e.recovered_path : e.recovered_b_path);
+    if (!why.empty()) {
+      set_status(e, "the autosaved work in " + file + " cannot be offered back: " + why, true);   // also on stderr
+      continue;
+    }
     (slot == 0 ? e.recovered_a : e.recovered_b) = true;
     e.open_recovery = true;
   }

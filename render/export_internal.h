@@ -54,10 +54,6 @@ struct step_view {
   const tree_mesh* mesh = nullptr;
 };
 
-constexpr uintmax_t max_user_texture_bytes = uintmax_t(64) << 20;
-
-constexpr int max_user_texture_side = 8192;
-
 // A texture of the user's: its pixels (RGBA), and the file's own bytes when it is a PNG, which
 // is then written unchanged.
 struct user_image {

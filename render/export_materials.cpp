@@ -43,20 +43,8 @@ std::string load_user_image(const std::string& path, user_image& out) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return "file not found";
   if (!fs::is_regular_file(path, ec)) return "not a file";
-  const uintmax_t on_disk = fs::file_size(path, ec);
-  if (ec) return "cannot read it: " + ec.message();
-  if (on_disk > max_user_texture_bytes)
-    return "the file is " + std::to_string(on_disk >> 20) + " MB, over the limit of " +
-           std::to_string(max_user_texture_bytes >> 20) + " MB";
   std::string bytes;
-  if (std::string err = read_file(path, bytes); !err.empty()) return err;
-  int w = 0, h = 0, ch = 0;
-  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch))
-    return "not a readable PNG (corrupt, or another format)";
-  if (w > max_user_texture_side || h > max_user_texture_side)
-    return std::to_string(w) + "x" + std::to_string(h) + " pixels, over the limit of " +
-           std::to_string(max_user_texture_side) + " a side";
-  if (std::string err = decode_png(bytes, out.pixels); !err.empty()) return err;
+  if (std::string err = read_user_texture(path, out.pixels, &bytes); !err.empty()) return err;
   static constexpr std::string_view png_signature("\x89PNG\r\n\x1a\n", 8);
   if (std::string_view(bytes).substr(0, 8) == png_signature) out.png = std::move(bytes);
   return "";

@@ -19,6 +19,19 @@ std::atomic<int> write_fault{-1};   // stage_file calls left before one fails (t
 
 void inject_write_failure_for_tests(int n) { write_fault.store(n); }
 
+const char* file_kind(unsigned mode) {
+  switch (mode & S_IFMT) {
+    case S_IFREG: return "a regular file";
+    case S_IFDIR: return "a folder";
+    case S_IFIFO: return "a FIFO (named pipe)";
+    case S_IFCHR: return "a character device";
+    case S_IFBLK: return "a block device";
+    case S_IFSOCK: return "a socket";
+    case S_IFLNK: return "a symbolic link";
+    default: return "a special file";
+  }
+}
+
 std::string stage_file(const std::string& path, std::string_view bytes, staged_write& out) {
   namespace fs = std::filesystem;
   out = {};
@@ -37,12 +50,17 @@ std::string stage_file(const std::string& path, std::string_view bytes, staged_w
   // An existing file keeps its permissions (a 0600 file must not come back 0644) and, where the
   // user may, its owner; a new file gets 0666 less the umask, as open() would give it.
   struct stat old_st {};
-  const bool present = ::stat(target.c_str(), &old_st) == 0;
-  if (present && S_ISDIR(old_st.st_mode)) return "cannot write " + path + ": it is a folder";
-  const bool existed = present && S_ISREG(old_st.st_mode);
+  const bool existed = ::lstat(target.c_str(), &old_st) == 0;
+  // Only a regular file is ever replaced: renaming over a FIFO, a device (a link to /dev/null, run
+  // as root) or a folder would change what kind of thing the user had there.
+  if (existed && !S_ISREG(old_st.st_mode)) {
+    const std::string via = target.string() == path ? "" : " (the symbolic link leads to " + target.string() + ")";
+    return "cannot write " + path + ": it is " + file_kind(old_st.st_mode) + via +
+           ", not a regular file; Sylva only replaces regular files";
+  }
+  // A short temporary name: a legal 255-byte output name leaves no room for a longer one beside it.
   static std::atomic<unsigned> counter{0};
-  const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(counter.fetch_add(1)));
+  const fs::path temp = dir / (".sylva.tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1)));
   auto fail = [&](const char* what, int err) {
     return "cannot write " + path + ": " + what + ": " + std::strerror(err);
   };
@@ -90,6 +108,11 @@ std::string stage_file(const std::string& path, std::string_view bytes, staged_w
 
 std::string commit_staged(const staged_write& s) {
   namespace fs = std::filesystem;
+  // Checked again just before the rename: something may have been put there since stage_file.
+  if (struct stat st {}; ::lstat(s.target.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    ::unlink(s.temp.c_str());
+    return "cannot write " + s.path + ": it is now " + file_kind(st.st_mode) + ", not a regular file";
+  }
   if (::rename(s.temp.c_str(), s.target.c_str()) != 0) {
     const int err = errno;
     ::unlink(s.temp.c_str());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include <stb_image.h>
@@ -29,6 +30,10 @@ std::string decode_png(std::string_view bytes, image& out) {
   int w = 0, h = 0, ch = 0;
   stbi_uc* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch, 4);
   if (!data) return std::string("cannot decode image: ") + (stbi_failure_reason() ? stbi_failure_reason() : "unknown");
+  if (w < 1 || h < 1) {  // stb takes a PNM header of width or height 0 (an 18-byte PGM) as an image
+    stbi_image_free(data);
+    return "cannot decode image: it is " + std::to_string(w) + "x" + std::to_string(h) + " pixels (empty)";
+  }
   out.width = w, out.height = h, out.channels = 4;
   out.pixels.assign(data, data + size_t(w) * h * 4);
   stbi_image_free(data);
@@ -42,23 +47,37 @@ std::string load_png(const std::string& path, image& out) {
   return err.empty() ? "" : path + ": " + err;
 }
 
-std::string load_user_texture(const std::string& path, image& out) {
-  std::error_code ec;
-  const auto bytes_on_disk = std::filesystem::file_size(path, ec);
-  if (ec) return path + ": cannot read (" + ec.message() + ")";
-  if (bytes_on_disk > max_texture_file_bytes)
-    return path + ": file is " + std::to_string(bytes_on_disk >> 20) + " MB, over the " +
-           std::to_string(max_texture_file_bytes >> 20) + " MB limit for textures";
-  std::string bytes;
-  if (std::string err = read_file(path, bytes); !err.empty()) return err;
+std::string decode_user_texture(std::string_view bytes, image& out) {
+  if (bytes.size() > max_texture_file_bytes || bytes.size() > size_t(std::numeric_limits<int>::max()))
+    return "the file is " + std::to_string(bytes.size() >> 20) + " MB, over the limit of " +
+           std::to_string(max_texture_file_bytes >> 20) + " MB";
   int w = 0, h = 0, ch = 0;
   if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch))
-    return path + ": not an image stb can read (" + (stbi_failure_reason() ? stbi_failure_reason() : "unknown") + ")";
+    return std::string("not a readable image (corrupt, or another format: ") +
+           (stbi_failure_reason() ? stbi_failure_reason() : "unknown") + ")";
   if (w > max_texture_pixels || h > max_texture_pixels)
-    return path + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than " +
-           std::to_string(max_texture_pixels) + " px on a side";
-  if (w < 1 || h < 1) return path + ": empty image";
-  const std::string err = decode_png(bytes, out);
+    return std::to_string(w) + "x" + std::to_string(h) + " pixels, over the limit of " +
+           std::to_string(max_texture_pixels) + " a side";
+  if (w < 1 || h < 1) return std::to_string(w) + "x" + std::to_string(h) + " pixels: an empty image";
+  return decode_png(bytes, out);
+}
+
+std::string read_user_texture(const std::string& path, image& out, std::string* bytes_out) {
+  std::error_code ec;
+  const auto bytes_on_disk = std::filesystem::file_size(path, ec);
+  if (ec) return "cannot read it (" + ec.message() + ")";
+  if (bytes_on_disk > max_texture_file_bytes)   // refused before a byte is read
+    return "the file is " + std::to_string(bytes_on_disk >> 20) + " MB, over the limit of " +
+           std::to_string(max_texture_file_bytes >> 20) + " MB";
+  std::string bytes;
+  if (std::string err = read_file(path, bytes, max_texture_file_bytes); !err.empty()) return err;
+  if (std::string err = decode_user_texture(bytes, out); !err.empty()) return err;
+  if (bytes_out) *bytes_out = std::move(bytes);
+  return "";
+}
+
+std::string load_user_texture(const std::string& path, image& out) {
+  const std::string err = read_user_texture(path, out);
   return err.empty() ? "" : path + ": " + err;
 }
 

@@ -71,6 +71,10 @@ image tinted_texture(const image& color, const glm::vec3& tint_linear);
 inline constexpr size_t max_texture_file_bytes = size_t(64) << 20;
 inline constexpr int max_texture_pixels = 8192;
 std::string load_user_texture(const std::string& path, image& out);
+// The same checks without the path in the message: read_user_texture reads the file (and hands its
+// bytes back when asked); decode_user_texture checks and decodes bytes already read.
+std::string read_user_texture(const std::string& path, image& out, std::string* bytes = nullptr);
+std::string decode_user_texture(std::string_view bytes, image& out);
 
 // PNG through stb. Each returns "" or the error.
 std::string encode_png(const image& img, std::string& out);

@@ -576,7 +576,7 @@ TEST(Export, UnusableUserTexturesWarnAndFallBack) {
     std::string path, why;
   };
   const unusable cases[] = {{&export_options::leaf_texture, dir / "nope.png", "file not found"},
-                            {&export_options::bark_texture, dir / "corrupt.png", "not a readable PNG"},
+                            {&export_options::bark_texture, dir / "corrupt.png", "not a readable image"},
                             {&export_options::bark_texture, dir / "huge.png", "9000x1 pixels, over the limit of 8192"},
                             {&export_options::leaf_texture, dir.dir.string(), "not a file"}};
   for (const unusable& c : cases) {
