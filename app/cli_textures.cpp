@@ -62,6 +62,7 @@ const glm::vec3 leaf_tints[] = {
     {0.26f, 0.45f, 0.14f},  // palm frond
     {0.26f, 0.50f, 0.12f},  // twig cluster: maple cluster cards
     {0.09f, 0.22f, 0.16f},  // needle tufts: cedar of Lebanon
+    {0.30f, 0.50f, 0.18f},  // lanceolate: weeping willow
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -117,7 +118,7 @@ void label(image& sheet, const std::string& text, int x, int y, int scale, uint8
 const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        "palmate (maple)",
                                    "pinnate (ash)",       "needles (pine)",     "flat_spray (spruce)",
                                    "scale_spray (cypress)", "palm_frond (palm)", "twig_cluster (maple)",
-                                   "needle_tufts (cedar)"};
+                                   "needle_tufts (cedar)", "lanceolate (willow)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (beech)", "fissured (ash)", "fibrous (cypress)"};

@@ -22,7 +22,8 @@ namespace sylva {
   X(scale_spray)  /* scale-leaf sprays (cypress, thuja) */                     \
   X(palm_frond)   /* a fan of four palm leaflets: one card per rachis side */ \
   X(twig_cluster) /* a broadleaf twig carrying several leaves (cluster cards) */ \
-  X(needle_tufts) /* true cedar (Cedrus): rosettes of short needles on spurs */
+  X(needle_tufts) /* true cedar (Cedrus): rosettes of short needles on spurs */ \
+  X(lanceolate)   /* willow shoot: long narrow leaves, finely toothed, long-pointed */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

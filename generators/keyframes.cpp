@@ -50,6 +50,8 @@ constexpr refusal sc_refusals[] = {
     {"size", "the attraction points are sampled once, before the first step"},
     {"offset", "the attraction points are sampled once, before the first step"},
     {"slab_thickness", "the attraction points are sampled once, before the first step"},
+    {"envelope_dents", "the attraction points are sampled once, before the first step"},
+    {"envelope_dent_depth", "the attraction points are sampled once, before the first step"},
     {"influence_radius", "the point search grid is built for dᵢ once, before the first step"},
     {"kill_distance", "the point search grid is built for dₖ once, before the first step"},
     {"trunk_length", "the trunk's length is decided once, before the first step"},

@@ -25,6 +25,9 @@ struct space_colonization_params {
   glm::vec3 offset{0, 7, 0};
   float slab_thickness = 0.3f;
   std::string envelope_mesh;
+  // Dents (seeded bays cut into the envelope, so the crown's outline breaks into limb masses).
+  int envelope_dents = 0;
+  float envelope_dent_depth = 0.4f;
   // Growth (Runions 2007 §3).
   float segment_length = 0.25f;
   float influence_radius = 2.0f;
@@ -65,6 +68,8 @@ void visit_params(P& p, V&& v) {
   v(p.offset, param_info{"offset", "Offset", "", -1000, 1000, "Centre of the envelope's bounding box in metres; the root stands at the origin", param_on_release});
   v(p.slab_thickness, param_info{"slab_thickness", "Slab thickness", "", 0.001f, 100, "Depth (z) of the slab envelope, for planar trees (seed 003)", param_log | param_on_release});
   v(p.envelope_mesh, param_info{"envelope_mesh", "Envelope mesh", "", 0, 0, "Path of a closed OBJ mesh; it is scaled to fill the size box", param_path | param_on_release});
+  v(p.envelope_dents, param_info{"envelope_dents", "Dents", "", 0, 64, "Seeded bays cut into the envelope from outside (0: none), so the crown grows as uneven limb masses with gaps between them instead of a smooth dome", param_on_release});
+  v(p.envelope_dent_depth, param_info{"envelope_dent_depth", "Dent depth", "", 0, 0.9f, "How far each dent reaches in, as a share of the envelope's radius in its direction", param_on_release});
   v(p.segment_length, param_info{"segment_length", "Segment length", "D", 0.005f, 10, "Distance between a node and the node it grows (Runions 2007 §3)", param_log | param_on_release, "Growth"});
   v(p.influence_radius, param_info{"influence_radius", "Influence radius", "dᵢ", 0.01f, 100, "A point attracts its nearest node only within this distance (Runions 2007 §3)", param_log | param_on_release});
   v(p.kill_distance, param_info{"kill_distance", "Kill distance", "dₖ", 0, 50, "Points this close to a node are removed (Runions 2007 §3)", param_on_release});

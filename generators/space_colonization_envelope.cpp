@@ -249,6 +249,41 @@ std::string check_envelope_obj(std::string_view text, const std::vector<glm::vec
   return "";
 }
 
+// Seeded dents: bays cut into the envelope from outside. Each dent is a direction c in the
+// normalised box and a depth; a point in direction d (from the box centre) is kept only within the
+// shape scaled by 1 - depth * bump(d.c), bump rising smoothly from 0 at the cap's rim to 1 on its
+// axis. The caps together cover about a third of the directions, whatever their count.
+namespace {
+struct envelope_dents {
+  std::vector<glm::vec3> dir;
+  std::vector<float> depth;
+  float rim = 1;  // cosine of the caps' half-angle
+
+  envelope_dents(int count, float depth_max, uint64_t seed) {
+    if (count <= 0 || !(depth_max > 0)) return;
+    rim = 1.0f - 0.7f / float(count);
+    rng r(seed ^ 0xd3e7b5a1c0ffee11ull);
+    for (int k = 0; k < count; ++k) {
+      // A uniform direction on the sphere (z uniform in [-1, 1], azimuth uniform).
+      const float z = r.uniform(-1, 1), a = r.uniform(0, 6.2831853f), rho = std::sqrt(std::max(0.0f, 1 - z * z));
+      dir.emplace_back(rho * std::cos(a), z, rho * std::sin(a));
+      depth.push_back(depth_max * r.uniform(0.5f, 1.0f));
+    }
+  }
+  // The factor on the shape's radius in the direction of q (1: no dent there).
+  float scale(const glm::vec3& q) const {
+    const float len = glm::length(q);
+    if (dir.empty() || !(len > 1e-6f)) return 1.0f;
+    float cut = 0;
+    for (size_t k = 0; k < dir.size(); ++k) {
+      const float u = std::clamp((glm::dot(q, dir[k]) / len - rim) / (1 - rim), 0.0f, 1.0f);
+      cut = std::max(cut, depth[k] * u * u * (3 - 2 * u));
+    }
+    return 1.0f - cut;
+  }
+};
+}  // namespace
+
 envelope_sample sample_envelope(const space_colonization_params& p_in, uint64_t seed, bool want_outline) {
   space_colonization_params p = p_in;
   clamp_all_params(p);
@@ -269,11 +304,13 @@ envelope_sample sample_envelope(const space_colonization_params& p_in, uint64_t 
   // Rejection sampling from the bounding box is uniform inside the shape; the attempt limit keeps a
   // mesh with a tiny volume from spinning forever.
   rng r(seed ^ 0xe1e7e10feull);
+  const envelope_dents dents(p.envelope_dents, p.envelope_dent_depth, seed);
   out.points.reserve(size_t(p.points));
   const int64_t max_tries = int64_t(p.points) * 200 + 1000;
   for (int64_t tries = 0; int64_t(out.points.size()) < p.points && tries < max_tries; ++tries) {
     const glm::vec3 q(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
-    if (inside_shape(p.envelope, q, is_mesh ? &mesh : nullptr)) out.points.push_back(p.offset + q * h);
+    const float k = dents.scale(q);
+    if (inside_shape(p.envelope, q / k, is_mesh ? &mesh : nullptr)) out.points.push_back(p.offset + q * h);
   }
   if (int64_t(out.points.size()) < p.points)
     out.error = "the envelope mesh encloses too little volume: only " + std::to_string(out.points.size()) + " of " +

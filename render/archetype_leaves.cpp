@@ -128,6 +128,32 @@ void draw_palm_frond(leaf_canvas& c, rng& g) {
   stroke(c, {0.5f, 0.0f}, {0.5f, 0.05f}, 0.03f, 0.012f, {0.8f, 0.85f, 0.2f, 0});
 }
 
+// A hanging willow shoot (Salix babylonica: leaves lanceolate, about 8-12 by 1-2 cm, alternate,
+// finely toothed, drawn out into a long point): a thin shoot up the card's centre carrying nine
+// long narrow blades that leave it at a narrow angle and overlap, so the card keeps its opacity in
+// the texture's smaller mip levels where one blade a few texels wide would fade away; a seeded
+// sideways curve on each blade.
+void draw_lanceolate(leaf_canvas& c, rng& g) {
+  auto shoot = [](float t) { return vec2(0.5f + 0.025f * std::sin(2.0f * t), 0.78f * t); };
+  blade_style st;
+  st.serration = 0.06f, st.teeth = 40, st.vein_angle = 60, st.veins = 14, st.dome = 0.14f;
+  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.62f)), 1.1f); };
+  const int leaves = 9;
+  for (int i = 0; i < leaves; ++i) {
+    const float t = 0.12f + 0.8f * float(i) / float(leaves - 1);
+    const vec2 p = shoot(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    const float ang = 90 + side * g.range(16, 30);
+    const vec2 d = heading(ang);
+    st.bend = side * g.range(0.0f, 0.05f);
+    const float len = fit(p, d, g.range(0.5f, 0.6f) * (1.0f - 0.35f * t), 0.01f);
+    blade(c, p, ang, len, len * 0.09f, leaf, st);
+  }
+  curve_stroke(c, shoot, 6, 0.008f, 0.004f, twig_style);
+  const vec2 tip = shoot(1.0f);
+  blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.3f), 0.022f, leaf, st);
+}
+
 void draw_twig_cluster(leaf_canvas& c, rng& g) {
   auto twig = [](float t) { return vec2(0.5f + 0.04f * std::sin(2.4f * t), 0.62f * t); };
   blade_style st;

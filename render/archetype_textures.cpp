@@ -42,6 +42,7 @@ const leaf_entry leaf_table[] = {
     {draw_palm_frond, {{182, 194, 150}, {212, 208, 150}}, 1},    // yellowish
     {draw_twig_cluster, {{178, 194, 156}, {206, 208, 160}}, 1},
     {draw_needle_tufts, {{160, 184, 172}, {186, 200, 178}}, 2},  // glaucous blue-green
+    {draw_lanceolate, {{172, 192, 150}, {200, 206, 158}}, 0},    // willow: light, slightly greyish
 };
 static_assert(std::size(leaf_table) == size_t(leaf_archetype_count), "one leaf_table row per leaf archetype");
 

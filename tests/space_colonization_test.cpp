@@ -1,6 +1,7 @@
 // Space colonization (Runions 2007): influence vs brute force, kill/termination invariants, trunk, widths, envelopes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -345,4 +346,45 @@ TEST(SpaceColonization, ObjEnvelopeSamplesInsideClosedMesh) {
     ASSERT_GE(std::min({b.x, b.y, b.z}), -1e-4f);
     ASSERT_LE(b.x + b.y + b.z, 1 + 1e-4f);
   }
+}
+
+// Dents cut seeded bays into the envelope: with none the points are exactly the plain shape's; with
+// some, every point still lies in the plain shape, the count is kept, and the crown's outline is
+// uneven (points reach the full radius in some directions and stop well short in others).
+TEST(SpaceColonization, EnvelopeDentsCutBaysAndKeepThePointCount) {
+  space_colonization_params p;
+  p.envelope = envelope_shape::ellipsoid;
+  p.points = 6000;
+  p.size = {10, 8, 10};
+  p.offset = {0, 7, 0};
+  const envelope_sample plain = sample_envelope(p, 3);
+  p.envelope_dents = 0;
+  p.envelope_dent_depth = 0.8f;
+  EXPECT_EQ(sample_envelope(p, 3).points, plain.points) << "no dents: the plain shape's points";
+  p.envelope_dents = 8;
+  const envelope_sample dented = sample_envelope(p, 3);
+  ASSERT_EQ(dented.error, "");
+  ASSERT_EQ(dented.points.size(), 6000u);
+  EXPECT_EQ(sample_envelope(p, 3).points, dented.points) << "seeded";
+  EXPECT_NE(sample_envelope(p, 4).points, dented.points);
+  const glm::vec3 h = p.size * 0.5f;
+  // The outermost normalised radius per direction bin (16 azimuths x 8 heights).
+  auto reach = [&](const std::vector<glm::vec3>& pts) {
+    std::vector<float> r(128, 0.0f);
+    for (const glm::vec3& x : pts) {
+      const glm::vec3 q = (x - p.offset) / h;
+      EXPECT_LE(glm::dot(q, q), 1.0f + 1e-4f);
+      const float len = glm::length(q);
+      const int az = std::clamp(int((std::atan2(q.z, q.x) + 3.14159265f) / 6.2831853f * 16), 0, 15);
+      const int el = std::clamp(int((q.y / std::max(len, 1e-6f) + 1) * 4), 0, 7);
+      r[size_t(el * 16 + az)] = std::max(r[size_t(el * 16 + az)], len);
+    }
+    return r;
+  };
+  const std::vector<float> a = reach(plain.points), b = reach(dented.points);
+  int shallow_plain = 0, shallow_dented = 0;
+  for (size_t i = 0; i < a.size(); ++i) shallow_plain += a[i] < 0.8f, shallow_dented += b[i] < 0.8f;
+  EXPECT_EQ(shallow_plain, 0) << "the plain ellipsoid is filled to its rim in every direction";
+  EXPECT_GE(shallow_dented, 8) << "dents leave directions whose points stop short of the rim";
+  EXPECT_GE(*std::max_element(b.begin(), b.end()), 0.97f) << "undented directions still reach the rim";
 }

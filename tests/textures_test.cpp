@@ -154,6 +154,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.04, 0.30},  // palm frond: three narrow leaflets
       {0.25, 0.75},  // twig cluster
       {0.08, 0.45},  // needle tufts
+      {0.10, 0.45},  // lanceolate: narrow blades on a shoot
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
