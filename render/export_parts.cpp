@@ -156,6 +156,10 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       if (l.born <= step && step < l.died)
         bake_leaf(parts[part_of(l)].leaves[size_t(leaf_slot(l, one_leaf_material))], l, look[part_of(l)]);
   }
+  for (tree_part& p : parts) {   // vertex-cache and fetch order for every exporter (meshoptimizer)
+    optimize_geometry(p.bark);
+    for (geometry& g : p.leaves) optimize_geometry(g);
+  }
   return parts;
 }
 
@@ -172,6 +176,12 @@ void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mes
 }
 
 bool cancelled(const export_options& o) { return o.cancel && o.cancel->load(std::memory_order_relaxed) != 0; }
+
+std::string lod_tree_name(const std::string& stem) {
+  std::string out;
+  for (const unsigned char c : stem) out.push_back(std::isalnum(c) || c == '-' || c == '_' ? char(c) : '_');
+  return out.empty() ? "tree" : out;
+}
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
