@@ -279,6 +279,7 @@ int run_export(const export_args& a) {
   std::map<std::string, manifest_entry> done = manifest ? read_manifest(manifest_file) : std::map<std::string, manifest_entry>{};
   std::vector<manifest_entry> written;
   size_t skipped = 0;
+  auto manifest_saved = clock_type::now();
 
   const fs::path out(a.output);
   if (out.has_parent_path()) {
@@ -367,12 +368,15 @@ int run_export(const export_args& a) {
     std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
                 path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
                 double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
-    if (manifest) {   // rewritten after every file, so a killed job loses at most the one in hand
+    if (manifest) {   // rewritten (atomically, synced) at most once a second: a killed job redoes only the last second's files
       manifest_entry e{i + 1, v.seed, fs::path(path).filename().string(), t.size(), m.leaves.size(),
                        m.triangles() + 2 * m.leaves.size(), r.bytes, sha256_file(path)};
       if (e.sha256.empty()) return fail(cmd, "cannot read back " + path + " to hash it");
       written.push_back(e);
-      if (std::string err = write_manifest(manifest_file, written); !err.empty()) return fail(cmd, err);
+      if (ms_since(manifest_saved) > 1000.0) {
+        if (std::string err = write_manifest(manifest_file, written); !err.empty()) return fail(cmd, err);
+        manifest_saved = clock_type::now();
+      }
     }
   }
   if (manifest) {
