@@ -2,6 +2,7 @@
 #include "app/cli.h"
 #include "app/bench.h"
 #include "app/bench_set.h"
+#include "app/cli_batch.h"
 #include "app/cli_lods.h"
 #include "app/editor_bench.h"
 
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <set>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -185,11 +187,11 @@ int run_params(bool as_json, const std::string& preset_path) {
 // sylva export
 
 struct export_args {
-  std::string preset_path, output, seeds;
+  std::string preset_path, output, seeds, shard;
   uint64_t seed = 1;
   int step = -1, width = 1280, height = 720;
   std::vector<std::string> sets;
-  bool instancing = false, animation = false, lods = false;
+  bool instancing = false, animation = false, lods = false, compact = false;
   float seconds_per_step = 0.5f;
   float wind = 0;                  // --wind SECONDS: glTF loop length, or the .png's moment
   CLI::Option* seed_opt = nullptr;
@@ -221,10 +223,10 @@ int run_export(const export_args& a) {
   std::string ext = fs::path(a.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (std::find(std::begin(export_formats), std::end(export_formats), ext) == std::end(export_formats))
-    return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .json or .png");
+    return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .fbx, .json or .png");
   if (a.step < -1) return usage_error(cmd, "--step must be -1 (final tree) or a step number");
   if (a.seed_opt->count() && !a.seeds.empty()) return usage_error(cmd, "--seed and --seeds exclude each other");
-  if (a.lods && (ext == ".json" || ext == ".png")) return usage_error(cmd, "--lods writes .glb, .gltf or .obj");
+  if (a.lods && (ext == ".json" || ext == ".png")) return usage_error(cmd, "--lods writes .glb, .gltf, .obj or .fbx");
   if (a.lods && (a.animation || a.step >= 0)) return usage_error(cmd, "--lods exports the final tree; drop --animation and --step");
 
   preset base;
@@ -276,6 +278,18 @@ int run_export(const export_args& a) {
     for (const std::string& set : v.sets)
       if (std::string e = set_preset_param(p, set); !e.empty()) return usage_error(cmd, e);
   }
+  // --shard I/N: this job's share of the batch; the manifest records every file written and lets
+  // a rerun skip those still complete (app/cli_batch.h).
+  int shard_index = 1, shard_count = 1;
+  if (!a.shard.empty() && !parse_shard(a.shard, shard_index, shard_count))
+    return usage_error(cmd, "--shard expects I/N with 1 <= I <= N, got \"" + a.shard + "\"");
+  if (!a.shard.empty() && !batch) return usage_error(cmd, "--shard splits a batch: give --seeds A-B or a --set sweep");
+  const bool manifest = batch && ext != ".png";
+  const std::string manifest_file = manifest_path(a.output, shard_index, shard_count);
+  std::map<std::string, manifest_entry> done = manifest ? read_manifest(manifest_file) : std::map<std::string, manifest_entry>{};
+  std::vector<manifest_entry> written;
+  size_t skipped = 0;
+  auto manifest_saved = clock_type::now();
 
   const fs::path out(a.output);
   if (out.has_parent_path()) {
@@ -284,6 +298,7 @@ int run_export(const export_args& a) {
     if (ec) return fail(cmd, "cannot create the folder " + out.parent_path().string() + ": " + ec.message());
   }
   for (size_t i = 0; i < variants.size(); ++i) {
+    if (!in_shard(i, shard_index, shard_count)) continue;
     const variant& v = variants[i];
     preset p = base;
     p.spec.seed = v.seed;
@@ -294,6 +309,14 @@ int run_export(const export_args& a) {
     if (batch) {
       const std::string suffix = swept ? std::to_string(i + 1) : std::to_string(v.seed);
       path = (out.parent_path() / (out.stem().string() + "-" + suffix + out.extension().string())).string();
+    }
+    if (manifest) {   // a rerun: a file the manifest lists with its size and hash is kept
+      const auto it = done.find(fs::path(path).filename().string());
+      if (it != done.end() && it->second.variant == i + 1 && still_complete(it->second, out.parent_path().string())) {
+        written.push_back(it->second);
+        ++skipped;
+        continue;
+      }
     }
     std::string what = "seed " + std::to_string(v.seed);
     for (const std::string& set : v.sets) what += ", " + set;
@@ -331,6 +354,8 @@ int run_export(const export_args& a) {
     export_options o;
     o.step = a.step > t.steps ? -1 : a.step;
     o.gltf_instancing = a.instancing;
+    o.compact = a.compact && (ext == ".glb" || ext == ".gltf");
+    if (a.compact && !o.compact) warn(path, "--compact applies to .glb and .gltf; ignored");
     o.growth_animation = a.animation;
     o.seconds_per_step = a.seconds_per_step;
     o.mesh = p.mesh;
@@ -338,8 +363,8 @@ int run_export(const export_args& a) {
     lod_export_data lods;   // --lods (app/cli_lods.h): LOD1-3 and the impostor
     if (a.lods)
       for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
-    if (wind && (ext == ".glb" || ext == ".gltf")) o.wind_seconds = a.wind;
-    else if (wind && ext != ".png") warn(path, "--wind applies to .glb, .gltf and .png; ignored");
+    if (wind && (ext == ".glb" || ext == ".gltf" || ext == ".fbx")) o.wind_seconds = a.wind;
+    else if (wind && ext != ".png") warn(path, "--wind applies to .glb, .gltf, .fbx and .png; ignored");
     t0 = clock_type::now();
     const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
     const double export_ms = ms_since(t0);
@@ -353,6 +378,20 @@ int run_export(const export_args& a) {
     std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
                 path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
                 double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
+    if (manifest) {   // rewritten (atomically, synced) at most once a second: a killed job redoes only the last second's files
+      manifest_entry e{i + 1, v.seed, fs::path(path).filename().string(), t.size(), m.leaves.size(),
+                       m.triangles() + 2 * m.leaves.size(), r.bytes, sha256_file(path)};
+      if (e.sha256.empty()) return fail(cmd, "cannot read back " + path + " to hash it");
+      written.push_back(e);
+      if (ms_since(manifest_saved) > 1000.0) {
+        if (std::string err = write_manifest(manifest_file, written); !err.empty()) return fail(cmd, err);
+        manifest_saved = clock_type::now();
+      }
+    }
+  }
+  if (manifest) {
+    if (std::string err = write_manifest(manifest_file, written); !err.empty()) return fail(cmd, err);
+    std::printf("%s: %zu files (%zu already complete, skipped)\n", manifest_file.c_str(), written.size(), skipped);
   }
   return 0;
 }
@@ -379,19 +418,25 @@ int run_cli(int argc, char** argv) {
   export_args ex;
   CLI::App* exp = app.add_subcommand("export", "Grow a preset and write it; OUT's extension picks the format");
   exp->add_option("preset", ex.preset_path, "Preset JSON file")->required();
-  exp->add_option("-o,--output", ex.output, "Output file: .glb .gltf .obj .json (skeleton) .png (render)")->required();
+  exp->add_option("-o,--output", ex.output, "Output file: .glb .gltf .obj .fbx .json (skeleton) .png (render)")->required();
   ex.seed_opt = exp->add_option("--seed", ex.seed, "Seed (default: the preset's)");
   exp->add_option("--step", ex.step, "Export the tree as it stood at this growth step (-1: final)");
   exp->add_option("--set", ex.sets, "key=value, key=from:to:count to sweep a number, or key@STEP=value for a keyframe (repeatable)");
-  exp->add_option("--seeds", ex.seeds, "A-B: one file per seed, OUT-A ... OUT-B");
+  exp->add_option("--seeds", ex.seeds, "A-B: one file per seed, OUT-A ... OUT-B, and OUT-manifest.tsv (seed, file, counts, SHA-256)");
+  exp->add_option("--shard", ex.shard,
+                  "I/N: write only variants I, I+N, I+2N ... of the batch (one job of N), manifest OUT-manifest-IofN.tsv; "
+                  "a rerun skips the files its manifest lists as complete");
   exp->add_option("--width", ex.width, ".png width")->check(CLI::Range(16, 8192));
   exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));
   exp->add_flag("--instancing", ex.instancing, "glTF: leaves as EXT_mesh_gpu_instancing instead of baked quads");
+  exp->add_flag("--compact", ex.compact,
+                "glTF: quantized vertices (KHR_mesh_quantization), meshopt-compressed buffers (EXT_meshopt_compression), "
+                "opaque textures as JPEG");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
-  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, OBJ one file per level");
+  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as <name>_LOD0..3 nodes, OBJ one file per level");
   exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
   ex.wind_opt = exp->add_option("--wind", ex.wind,
-                                "glTF: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
+                                "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
                                 "(0.5-60); .png: render the wind's motion at SECONDS");
 
   std::vector<std::string> bench_paths;

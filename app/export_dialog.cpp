@@ -39,6 +39,7 @@ export_options options_for(const export_dialog_state& d, const export_context& c
   o.step = d.final_tree || c.step >= steps ? -1 : c.step;
   const int f = format_of(d.path);
   o.growth_animation = d.animation && (f == 0 || f == 1);
+  o.compact = d.compact && (f == 0 || f == 1);
   o.seconds_per_step = d.seconds_per_step;
   o.mesh = c.tree->mesh_settings;
   apply_render_params(o, c.doc.render);  // the same materials and user textures as `sylva export`
@@ -124,7 +125,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   }
   ImGui::SetNextItemWidth(440);
   ImGui::InputText("Path", &d.path);
-  if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: .glb .gltf .obj .json .png");
+  if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: .glb .gltf .obj .json .png .fbx");
   int scope = d.final_tree ? 1 : 0;
   ImGui::RadioButton("Current step", &scope, 0);
   ImGui::SameLine();
@@ -142,12 +143,19 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   ImGui::SliderFloat("s per step", &d.seconds_per_step, 0.05f, 5, "%.2f s", ImGuiSliderFlags_Logarithmic);
   ImGui::EndDisabled();
   if (d.animation && gltf) ImGui::TextDisabled("Steps 0..N as one mesh each, shown in turn (STEP scale keys).");
+  ImGui::BeginDisabled(!gltf);
+  ImGui::Checkbox("Compact (meshopt)", &d.compact);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("glTF: quantized vertices (KHR_mesh_quantization), EXT_meshopt_compression, opaque textures as JPEG");
 
   // The size estimate: a dry run of the same export, redone whenever an input changes.
-  if (have_tree && f >= 0 && f != 4) {
+  const bool png = f >= 0 && std::string(formats[f]) == ".png";
+  if (have_tree && f >= 0 && !png) {
     char head[160];
-    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,
-                  int(d.animation && gltf), int(d.final_tree), double(d.seconds_per_step), int(c.doc.render.bark));
+    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,
+                  int(d.animation && gltf), int(d.final_tree), double(d.seconds_per_step), int(c.doc.render.bark),
+                  int(d.compact && gltf));
     const render_params& rp = c.doc.render;
     const std::string key = std::string(head) + "|" + rp.bark_texture + "|" + rp.leaf_texture + "|" + rp.leaf_opacity;
     if (key != d.estimate_key && !busy) {
@@ -156,7 +164,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       start_job(d, c, true);
     }
     ImGui::Text("Estimated size: %s", d.estimate.c_str());
-  } else if (f == 4) {
+  } else if (png) {
     ImGui::TextDisabled("A 1280x720 render of the current view.");
   }
 
@@ -174,7 +182,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   } else {
     ImGui::BeginDisabled(!have_tree || f < 0 || d.path.empty());
     if (ImGui::Button("Export")) {
-      if (f == 4) {   // GL: main thread only
+      if (png) {   // GL: main thread only
         std::string err = save_view_png(c.renderer, c.doc.render, c.camera, 1280, 720, d.path);
         error = !err.empty();
         d.failure = err;

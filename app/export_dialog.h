@@ -23,6 +23,7 @@ struct export_dialog_state {
   bool final_tree = false;          // scope: the final tree, or the timeline's current step
   bool animation = false;           // glTF only: steps 0..N as a growth animation
   float seconds_per_step = 0.5f;
+  bool compact = false;             // glTF only: quantized, meshopt-compressed, JPEG textures
   // The exporter runs on its own thread: a dry run for the size estimate, or the real export.
   std::thread thread;
   std::atomic<uint32_t> cancel{0};

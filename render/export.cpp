@@ -1,5 +1,5 @@
 // Exporters' front door: the format dispatch, the season pass, the skeleton JSON and the render
-// parameters an export takes (glTF in export_gltf.cpp, OBJ in export_obj.cpp).
+// parameters an export takes (glTF in export_gltf.cpp, OBJ in export_obj.cpp, FBX in export_fbx.cpp).
 #include "render/export.h"
 #include "render/lod_cards.h"
 #include "render/export_wind.h"
@@ -82,7 +82,7 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   export_result r;
-  if ((ext == ".glb" || ext == ".gltf" || ext == ".obj") && season_changes_leaves(o.season)) {
+  if ((ext == ".glb" || ext == ".gltf" || ext == ".obj" || ext == ".fbx") && season_changes_leaves(o.season)) {
     // Fallen leaves out, spring's smaller: on LOD0 and on every level (their baked cards fall with
     // the leaves they were baked from). The copy's look keeps its colours but no longer drops or
     // scales leaves, so the second pass below writes the seasonal meshes as they are.
@@ -100,6 +100,7 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
     return export_tree(t, seasonal, info, path, so);
   }
   if (ext == ".glb" || ext == ".gltf") return export_gltf(t, m, info, path, o, ext == ".glb");
+  if (ext == ".fbx") return export_fbx(t, m, info, path, o);
   if (ext == ".obj" && !o.lods.empty()) {
     // One OBJ (and MTL) per level, PNGs shared: tree.obj is LOD0, tree_lod1.obj ... All or nothing.
     const std::string stem = stem_path(path), ext_text = std::filesystem::path(path).extension().string();
@@ -125,7 +126,7 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
     r.error = write_all({{path, text}}, r);
     return r;
   }
-  r.error = "cannot export " + path + ": unknown extension \"" + ext + "\" (use .glb, .gltf, .obj or .json)";
+  r.error = "cannot export " + path + ": unknown extension \"" + ext + "\" (use .glb, .gltf, .obj, .fbx or .json)";
   return r;
 }
 

@@ -35,6 +35,9 @@ struct export_impostor {
 struct export_options {
   int step = -1;                        // export the tree as it stood at this step (-1: final)
   bool gltf_instancing = false;         // EXT_mesh_gpu_instancing for leaves instead of baked quads
+  // glTF: KHR_mesh_quantization (16-bit positions on a grid per mesh, 8-bit normals and tangents)
+  // and EXT_meshopt_compression of every buffer view; textures without alpha as JPEG.
+  bool compact = false;
   bool growth_animation = false;        // glTF: steps 0..N as STEP-interpolated scale keyframes
   float seconds_per_step = 0.5f;
   int max_animation_steps = 64;         // caps on the growth animation's size
@@ -64,7 +67,7 @@ struct export_options {
   std::vector<export_lod_level> lods;
   float lod0_coverage = 0;
   const export_impostor* impostor = nullptr;   // glTF only: a textured quad node after the levels
-  // glTF: > 0 bakes the wind (render/export_wind.h) as a skin and a loop of this many seconds.
+  // glTF and FBX: > 0 bakes the wind (render/export_wind.h) as a skin and a loop of this many seconds.
   float wind_seconds = 0;
   wind_params wind;                     // from the preset's render section (apply_render_params)
 };
@@ -88,11 +91,11 @@ struct export_result {
 };
 
 // The extensions `sylva export` and the editor's export dialog accept, in the dialog's order:
-// export_tree's four, and .png, a render of the tree (app/headless.h).
-inline constexpr const char* export_formats[] = {".glb", ".gltf", ".obj", ".json", ".png"};
-inline constexpr int export_format_count = 5;
+// export_tree's formats, .png (a render of the tree, app/headless.h), and .fbx (through assimp).
+inline constexpr const char* export_formats[] = {".glb", ".gltf", ".obj", ".json", ".png", ".fbx"};
+inline constexpr int export_format_count = 6;
 
-// Picks the format from the extension of `path`: .glb .gltf .obj .json. Writes atomically.
+// Picks the format from the extension of `path`: .glb .gltf .obj .fbx .json. Writes atomically.
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info,
                           const std::string& path, const export_options& o = {});
 

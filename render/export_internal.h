@@ -93,6 +93,17 @@ void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mes
 
 bool cancelled(const export_options& o);
 
+// Engine naming of LOD levels (Unity builds an LODGroup from objects named "<name>_LOD0",
+// "<name>_LOD1", ...): the tree's name is the file's stem, with characters other than letters,
+// digits, '-' and '_' replaced by '_' ("tree" when nothing is left).
+std::string lod_tree_name(const std::string& stem);
+struct lod_name {
+  std::string tree;
+  int level = 0;
+  std::string name() const { return tree + "_LOD" + std::to_string(level); }
+  std::string of_tree(size_t k) const { return tree + "_tree_" + std::to_string(k) + "_LOD" + std::to_string(level); }
+};
+
 std::string file_name(const std::string& path);
 
 std::string stem_path(const std::string& path);
@@ -114,8 +125,21 @@ std::string load_user_image(const std::string& path, user_image& out);
 std::shared_ptr<const material_pngs> procedural_pngs(bool bark, int archetype, int size, uint64_t seed,
                                                      const glm::vec3& tint, std::string& error);
 
+// render/export_compact.cpp (meshoptimizer): vertex-cache and fetch order of one primitive (the
+// same triangles); a glTF's buffer views under EXT_meshopt_compression (returns the new binary
+// buffer, `j` gets the views' extensions and the two buffers); an opaque image as JPEG.
+void optimize_geometry(geometry& g);
+void use_extension(json& j, const char* name, bool required);   // listed once in extensionsUsed (/Required)
+std::string meshopt_compress(json& j, const std::string& bin);
+bool jpeg_if_opaque(const std::string& png, std::string& jpeg);
+
 export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
                           const export_options& o, bool binary);
+
+// FBX through assimp (render/export_fbx.cpp): PNGs beside the file, --lods as "<tree>_LOD<k>"
+// nodes, the wind skin and its loop with wind_seconds > 0.
+export_result export_fbx(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                         const export_options& o);
 
 // `collect` (--lods): the files are appended there, not written, for one all-or-nothing write of
 // every level; `png_stem` then names the PNGs (shared by the levels), and `m` is used as is.

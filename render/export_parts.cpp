@@ -70,7 +70,12 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
     const glm::vec4 t(unit(across - nf * glm::dot(nf, across), across), side);
     const glm::vec3 shift = side == outer ? glm::vec3(0) : -outer * n * (leaf_back_offset * l.size);
     const uint32_t base = uint32_t(g.position.size());
-    for (int k = 0; k < 4; ++k) {
+    // The back face's corners go 1, 0, 2, 3 so that both faces' triangles use their vertices in
+    // order (vertex-fetch order, which meshoptimizer's index codec packs best); the base corners
+    // stay the first two of every face.
+    static constexpr int front_order[4] = {0, 1, 2, 3}, back_order[4] = {1, 0, 2, 3};
+    for (int j = 0; j < 4; ++j) {
+      const int k = side > 0 ? front_order[j] : back_order[j];
       g.position.push_back(l.position + q * corner[k] + shift);
       g.normal.push_back(nf);
       g.uv.push_back(uv[k]);
@@ -80,7 +85,7 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
     }
     // Counter-clockwise seen from the side the face looks to.
     if (side > 0) for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
-    else for (uint32_t k : {0u, 2u, 1u, 0u, 3u, 2u}) g.index.push_back(base + k);
+    else for (uint32_t k : {0u, 1u, 2u, 1u, 3u, 2u}) g.index.push_back(base + k);   // corners (1,0,2), (0,3,2)
   };
   face(outer);
   if (b.two_sided) face(-outer);
@@ -156,6 +161,10 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       if (l.born <= step && step < l.died)
         bake_leaf(parts[part_of(l)].leaves[size_t(leaf_slot(l, one_leaf_material))], l, look[part_of(l)]);
   }
+  for (tree_part& p : parts) {   // vertex-cache and fetch order for every exporter (meshoptimizer)
+    optimize_geometry(p.bark);
+    for (geometry& g : p.leaves) optimize_geometry(g);
+  }
   return parts;
 }
 
@@ -172,6 +181,12 @@ void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mes
 }
 
 bool cancelled(const export_options& o) { return o.cancel && o.cancel->load(std::memory_order_relaxed) != 0; }
+
+std::string lod_tree_name(const std::string& stem) {
+  std::string out;
+  for (const unsigned char c : stem) out.push_back(std::isalnum(c) || c == '-' || c == '_' ? char(c) : '_');
+  return out.empty() ? "tree" : out;
+}
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 

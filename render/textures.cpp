@@ -26,6 +26,17 @@ std::string encode_png(const image& img, std::string& out) {
   return "";
 }
 
+std::string encode_jpeg(const image& img, int quality, std::string& out) {
+  out.clear();
+  if (img.width <= 0 || img.height <= 0 || (img.channels != 3 && img.channels != 4) ||
+      img.pixels.size() != size_t(img.width) * img.height * img.channels)
+    return "cannot encode JPEG: malformed image";
+  auto sink = [](void* ctx, void* data, int size) { static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), size_t(size)); };
+  if (!stbi_write_jpg_to_func(sink, &out, img.width, img.height, img.channels, img.pixels.data(), std::clamp(quality, 1, 100)))
+    return "cannot encode JPEG";
+  return "";
+}
+
 std::string decode_png(std::string_view bytes, image& out) {
   int w = 0, h = 0, ch = 0;
   stbi_uc* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch, 4);

@@ -78,7 +78,8 @@ std::string decode_user_texture(std::string_view bytes, image& out);
 
 // PNG through stb. Each returns "" or the error.
 std::string encode_png(const image& img, std::string& out);
-std::string decode_png(std::string_view bytes, image& out);  // always RGBA
+std::string encode_jpeg(const image& img, int quality, std::string& out);  // baseline JPEG, alpha dropped
+std::string decode_png(std::string_view bytes, image& out);  // always RGBA (any format stb reads)
 std::string load_png(const std::string& path, image& out);
 std::string save_png(const image& img, const std::string& path);  // atomic (write_file_atomic)
 

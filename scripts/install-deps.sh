@@ -16,6 +16,7 @@ packages=(
   build-essential cmake pkg-config
   libimgui-dev libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev
   libepoxy-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libmeshoptimizer-dev libassimp-dev
   fonts-dejavu-core xvfb xauth libgl1-mesa-dri imagemagick
 )
 # node + npm for the glTF validator; some node builds bundle npm and conflict with Debian's npm.

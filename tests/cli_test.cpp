@@ -120,7 +120,8 @@ TEST(Cli, BatchSeedsAndSweeps) {
   for (int s = 4; s <= 6; ++s) EXPECT_TRUE(fs::exists(scratch() / "batch" / ("tree-" + std::to_string(s) + ".json")));
   int lines = 0;
   for (char c : r.out) lines += c == '\n';
-  EXPECT_EQ(lines, 3);  // one line per file
+  EXPECT_EQ(lines, 4);  // one line per file, and the manifest's
+  EXPECT_NE(r.out.find("tree-manifest.tsv: 3 files"), std::string::npos) << r.out;
 
   // Sweeping the derivation count 2..4 on tree a (min 0) gives 2^2, 2^3, 2^4 nodes.
   const fs::path sweep = scratch() / "sweep" / "t.json";

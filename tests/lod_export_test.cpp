@@ -87,14 +87,23 @@ TEST(LodExport, GltfHasMsftLodWithCoverageAndAnImpostorQuad) {
   EXPECT_FALSE(j.contains("extensionsRequired"));   // LOD0 alone is a complete tree
   const int lod0 = j["scenes"][0]["nodes"][0];
   const nlohmann::json& n0 = j["nodes"][size_t(lod0)];
-  EXPECT_EQ(n0["name"], "LOD0");
+  // Engine naming (Unity's LODGroup convention): "<file stem>_LOD<k>" on each level's node and mesh,
+  // the mesh holding the bark and every leaf material of the level.
+  EXPECT_EQ(n0["name"], "tree_LOD0");
+  ASSERT_TRUE(n0.contains("mesh"));
+  EXPECT_EQ(j["meshes"][n0["mesh"].get<size_t>()]["name"], "tree_LOD0");
+  EXPECT_GE(j["meshes"][n0["mesh"].get<size_t>()]["primitives"].size(), size_t(2));
   const nlohmann::json& ids = n0["extensions"]["MSFT_lod"]["ids"];
   ASSERT_EQ(ids.size(), size_t(4));   // LOD1..3 and the impostor
   const nlohmann::json& cov = n0["extras"]["MSFT_screencoverage"];
   ASSERT_EQ(cov.size(), size_t(5));
   for (size_t k = 1; k < cov.size(); ++k) EXPECT_LT(cov[k].get<float>(), cov[k - 1].get<float>());
-  const char* names[] = {"LOD1", "LOD2", "LOD3", "impostor"};
+  const char* names[] = {"tree_LOD1", "tree_LOD2", "tree_LOD3", "tree_impostor"};
   for (size_t k = 0; k < 4; ++k) EXPECT_EQ(j["nodes"][ids[k].get<size_t>()]["name"], names[k]);
+  for (size_t k = 0; k < 3; ++k) {
+    const nlohmann::json& n = j["nodes"][ids[k].get<size_t>()];
+    EXPECT_EQ(j["meshes"][n["mesh"].get<size_t>()]["name"], names[k]);
+  }
   // Each level's triangles are recorded and fall level by level.
   size_t prev = j["nodes"][size_t(lod0)]["extras"]["triangles"];
   EXPECT_EQ(prev, exported_triangles(h.m, h.c.triangles[0]));

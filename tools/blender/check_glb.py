@@ -21,7 +21,7 @@ if len(args) < 2:
     print("usage: blender -b --factory-startup --python check_glb.py -- TREE.glb OUT.png [SIZE]")
     sys.exit(2)
 tree_path, out_png = os.path.abspath(args[0]), os.path.abspath(args[1])
-size = int(args[2]) if len(args) > 2 else 480
+size = int(args[2]) if len(args) > 2 and args[2].isdigit() else 480
 
 # An empty scene.
 for obj in list(bpy.data.objects):
@@ -32,9 +32,15 @@ if ext in (".glb", ".gltf"):
     bpy.ops.import_scene.gltf(filepath=tree_path)
 elif ext == ".obj":
     bpy.ops.wm.obj_import(filepath=tree_path)
+elif ext == ".fbx":
+    bpy.ops.import_scene.fbx(filepath=tree_path)
 else:
-    print(f"cannot import {tree_path}: use .glb, .gltf or .obj")
+    print(f"cannot import {tree_path}: use .glb, .gltf, .obj or .fbx")
     sys.exit(2)
+# FBX only: --lods N demands the levels <tree>_LOD0 .. N-1, --wind an armature with an action.
+want_lods = int(args[args.index("--lods") + 1]) if "--lods" in args else 0
+want_wind = "--wind" in args
+args = [a for i, a in enumerate(args) if a not in ("--lods", "--wind") and (i == 0 or args[i - 1] != "--lods")]
 
 
 def upstream_images(socket, seen=None):
@@ -100,9 +106,37 @@ for mat in materials:
             problems.append(f"{mat.name}: alpha not linked to an image")
         # glTF says MASK, which Blender imports as Alpha Clip. MTL cannot say "clip": Blender's OBJ
         # importer makes any material with map_d Alpha Blend, which renders the same in Cycles.
-        wanted = ("CLIP", "BLEND") if ext == ".obj" else ("CLIP",)
+        # Blender's FBX importer, given a TransparentColor texture, makes the material Alpha Blend too.
+        wanted = ("CLIP", "BLEND") if ext in (".obj", ".fbx") else ("CLIP",)
         if mat.blend_method not in wanted:
             problems.append(f"{mat.name}: blend_method {mat.blend_method}, not {' or '.join(wanted)}")
+if ext == ".fbx":
+    import re
+    levels = sorted({int(m.group(1)) for o in bpy.data.objects if (m := re.search(r"_LOD(\d+)$", o.name))})
+    meshes = [o for o in bpy.data.objects if o.type == "MESH"]
+    lo_z = min((o.matrix_world @ Vector(c)).z for o in meshes for c in o.bound_box) if meshes else 0
+    hi_z = max((o.matrix_world @ Vector(c)).z for o in meshes for c in o.bound_box) if meshes else 0
+    print(f"fbx: {len(meshes)} mesh objects, height {hi_z - lo_z:.2f} m, LOD levels {levels}")
+    for lv in levels:
+        node = next(o for o in bpy.data.objects if o.name.endswith(f"_LOD{lv}"))
+        kids = [c for c in node.children_recursive if c.type == "MESH"] + ([node] if node.type == "MESH" else [])
+        tris = sum(len(p.vertices) - 2 for k in kids for p in k.data.polygons)
+        print(f"  {node.name}: {len(kids)} meshes, {tris} triangles")
+    if want_lods and levels != list(range(want_lods)):
+        problems.append(f"LOD levels {levels}, wanted 0..{want_lods - 1}")
+    arms = [o for o in bpy.data.objects if o.type == "ARMATURE"]
+    for a in arms:
+        act = a.animation_data.action if a.animation_data else None
+        print(f"  armature {a.name}: {len(a.data.bones)} bones, action "
+              + (f"{act.name} frames {act.frame_range[0]:.0f}-{act.frame_range[1]:.0f}, {len(act.fcurves)} curves" if act else "none"))
+    skinned = [o for o in meshes if any(m.type == "ARMATURE" for m in o.modifiers)]
+    if want_wind:
+        if not arms or not any(a.animation_data and a.animation_data.action for a in arms):
+            problems.append("no armature with an action")
+        if not skinned:
+            problems.append("no mesh is skinned to the armature")
+    if not (1.0 < hi_z - lo_z < 200.0):
+        problems.append(f"height {hi_z - lo_z:.2f} m: the unit scale is off")
 if not any(m.name.startswith("bark") for m in materials):
     problems.append("no bark material")
 if not any(m.name.startswith("leaves") for m in materials):
@@ -162,4 +196,4 @@ if problems:
     sys.exit(1)
 print("CHECK OK: bark has a base colour image (and a normal map unless it is the user's own); every leaf "
       "material has an image with its alpha "
-      + ("linked (MTL: Alpha Blend)" if ext == ".obj" else "clipped (Alpha Clip)"))
+      + ("linked (MTL, FBX: Alpha Blend)" if ext in (".obj", ".fbx") else "clipped (Alpha Clip)"))

@@ -4,6 +4,7 @@
 // the tree with orbit controls.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { Tree, TreePreset } from '@dgreenheck/ez-tree';
 import { computeCoverage, overlayRGBA } from '../lib/coverage.js';
@@ -64,7 +65,8 @@ function clear() {
 }
 
 async function loadGLB(url) {
-  const gltf = await new GLTFLoader().loadAsync(url);
+  // `sylva export --compact` files are EXT_meshopt_compression: three's decoder unpacks them.
+  const gltf = await new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).loadAsync(url);
   const root = gltf.scene;
   const meshes = meshesOf(root);
   return {
