@@ -43,7 +43,7 @@ inline float ffloor(float x) {
   return t > x ? t - 1 : t;
 }
 inline float fround(float x) { return ffloor(x + 0.5f); }
-inline float clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
+inline float clamp01(float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; }   // NaN -> 0
 inline float smooth(float a, float b, float x) {
   const float t = clamp01((x - a) / (b - a));
   return t * t * (3 - 2 * t);

@@ -76,7 +76,8 @@ struct gltf_doc {
       for (const V& x : v) lo = glm::min(lo, x), hi = glm::max(hi, x);
       json jl = json::array(), jh = json::array();
       for (int k = 0; k < V::length(); ++k) jl.push_back(lo[k]), jh.push_back(hi[k]);
-      extra = {{"min", jl}, {"max", jh}};
+      extra["min"] = std::move(jl);   // set key by key: assigning an initializer list here leaked
+      extra["max"] = std::move(jh);   // the object it replaced (LeakSanitizer, fuzz_export)
     }
     return add_accessor(view, gl_float, v.size(), type, extra);
   }

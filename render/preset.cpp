@@ -317,6 +317,14 @@ std::string cuts_from_json(const json& a, tree_spec& spec, std::vector<std::stri
     for (auto it = o.begin(); it != o.end(); ++it)
       if (it.key() != "step" && it.key() != "shape" && it.key() != "point" && it.key() != "size" && it.key() != "reach")
         warnings.push_back(at + "." + it.key() + ": unknown key, ignored");
+    // A branch cut has a reach and a brush a size; the other is not saved, so it is not kept.
+    const bool branch = c.shape == prune_shape::branch;
+    if (o.contains(branch ? "size" : "reach")) {
+      warnings.push_back(at + (branch ? ".size: a branch cut has a reach, not a size; ignored"
+                                      : ".reach: a brush has a size, not a reach; ignored"));
+      if (branch) c.size = prune_cut{}.size;
+      else c.reach = prune_cut{}.reach;
+    }
     if (std::string e = add_cut(spec, c); !e.empty()) return at + ": " + e;
   }
   return "";

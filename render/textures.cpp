@@ -3,6 +3,7 @@
 #include "render/textures.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -37,7 +38,40 @@ std::string encode_jpeg(const image& img, int quality, std::string& out) {
   return "";
 }
 
+namespace {
+
+// Binary PGM/PPM (P5, P6: the PNM stb reads), checked before stb sees it: Debian's stb reads past
+// the end of a 16-bit one whose pixels are cut short, so only 8-bit files whose pixels are all
+// there go on. "" or why not; other formats pass.
+std::string pnm_problem(std::string_view b) {
+  if (b.size() < 2 || b[0] != 'P' || (b[1] != '5' && b[1] != '6')) return "";
+  size_t at = 2;
+  auto field = [&](uint64_t& v) {
+    for (;;) {  // whitespace and # comments before each field
+      while (at < b.size() && std::isspace(static_cast<unsigned char>(b[at]))) ++at;
+      if (at < b.size() && b[at] == '#') {
+        while (at < b.size() && b[at] != '\n' && b[at] != '\r') ++at;
+        continue;
+      }
+      break;
+    }
+    const size_t start = at;
+    v = 0;
+    while (at < b.size() && at - start < 9 && b[at] >= '0' && b[at] <= '9') v = v * 10 + uint64_t(b[at++] - '0');
+    return at > start && at - start < 9 && at < b.size() && std::isspace(static_cast<unsigned char>(b[at]));
+  };
+  uint64_t w = 0, h = 0, maxval = 0;
+  if (!field(w) || !field(h) || !field(maxval)) return "cannot decode image: malformed PNM header";
+  ++at;  // the one whitespace byte before the pixels
+  if (maxval < 1 || maxval > 255) return "cannot decode image: PNM of " + std::to_string(maxval) + " levels (only 8-bit PNM is read)";
+  if (uint64_t(b.size() - at) < w * h * (b[1] == '5' ? 1 : 3)) return "cannot decode image: the PNM's pixels are cut short";
+  return "";
+}
+
+}  // namespace
+
 std::string decode_png(std::string_view bytes, image& out) {
+  if (std::string e = pnm_problem(bytes); !e.empty()) return e;
   int w = 0, h = 0, ch = 0;
   stbi_uc* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch, 4);
   if (!data) return std::string("cannot decode image: ") + (stbi_failure_reason() ? stbi_failure_reason() : "unknown");
@@ -62,6 +96,7 @@ std::string decode_user_texture(std::string_view bytes, image& out) {
   if (bytes.size() > max_texture_file_bytes || bytes.size() > size_t(std::numeric_limits<int>::max()))
     return "the file is " + std::to_string(bytes.size() >> 20) + " MB, over the limit of " +
            std::to_string(max_texture_file_bytes >> 20) + " MB";
+  if (std::string e = pnm_problem(bytes); !e.empty()) return e;   // before stb reads its header
   int w = 0, h = 0, ch = 0;
   if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &ch))
     return std::string("not a readable image (corrupt, or another format: ") +

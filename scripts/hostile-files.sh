@@ -48,8 +48,9 @@ run() {  # NAME PRESET OUTPUT [PREFIX...]
   after=$(snapshot)
   local rss msg same
   rss=$(grep -o 'Maximum resident set size (kbytes): [0-9]*' "$log/time" | grep -o '[0-9]*$')
-  msg=$(grep -v '^warning' "$log/err" | head -1 | sed "s|$dir/||g" | cut -c1-110)
+  msg=$(grep -v '^warning' "$log/err" | head -1 | sed "s|$dir/||g; s|n\{20,\}|n...n|g" | cut -c1-120)
   same=$([ "$before" = "$after" ] && echo unchanged || echo CHANGED)
+  [ "$rc" = 0 ] && same="(written)"   # a success changes the folder: it adds the export
   printf '%-22s exit %-3s %5s MB  files %-9s %s\n' "$name" "$rc" "$((rss / 1024))" "$same" "$msg"
   rm -f "$log/time" "$log/err"
 }

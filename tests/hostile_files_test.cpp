@@ -234,6 +234,35 @@ TEST(HostileInput, EmptyPgmTextureFallsBackWithTheWarning) {
   }
 }
 
+// Found by fuzz_texture: Debian's stb read past the end of a 16-bit PGM cut short (a crash); such
+// files are refused before stb sees them, 8-bit ones with all their pixels still load.
+TEST(HostileInput, PnmFilesAreCheckedBeforeDecoding) {
+  image img;
+  EXPECT_NE(decode_user_texture("P5999\n589\n999P", img).find("malformed PNM header"), std::string::npos);
+  EXPECT_NE(decode_user_texture("P5 2 2 999\n\x01\x02\x03", img).find("999 levels (only 8-bit PNM"), std::string::npos);
+  EXPECT_NE(decode_user_texture("P5 4 4 255\n\x01\x02", img).find("cut short"), std::string::npos);
+  EXPECT_NE(decode_user_texture("P6 4", img).find("malformed PNM header"), std::string::npos);
+  EXPECT_EQ(decode_user_texture("P5\n# a comment\n2 1\n255\n\x10\x20", img), "");
+  EXPECT_EQ(img.width, 2);
+  EXPECT_EQ(img.pixels[4], 0x20);
+}
+
+// Found by fuzz_keys: a branch cut given a size (or a brush a reach) kept a value it never saves,
+// so the preset did not load back equal. The unused field is now ignored with a warning.
+TEST(HostileInput, CutFieldsOfTheOtherShapeAreIgnoredWithAWarning) {
+  preset p;
+  const load_result r = load_preset_json(R"({"sylva_preset": 1, "generator": "self_organizing", "cuts": [
+      {"step": 2, "point": [0, 1, 0], "size": [2, 3, 2]},
+      {"step": 3, "shape": "outside_box", "point": [0, 2, 0], "size": [1, 1, 1], "reach": 4}]})", p);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_NE(r.warnings[0].find("cuts[0].size: a branch cut has a reach"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[1].find("cuts[1].reach: a brush has a size"), std::string::npos) << r.warnings[1];
+  preset q;
+  ASSERT_TRUE(load_preset_json(save_preset_json(p), q).ok);
+  EXPECT_EQ(p, q);
+}
+
 // ---------------------------------------------------------------- sweeps
 
 // Only later variants (fewer steps) refuse the keyframe: every variant is checked first.

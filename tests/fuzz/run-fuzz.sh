@@ -4,6 +4,7 @@
 #   --if-clang: skip with a message when clang is missing (make test); otherwise it is an error.
 # Seeds: presets/ (preset, set), tests/fuzz/seeds/<harness>/, and every crash kept in
 # tests/fuzz/regressions/<harness>/, which is also replayed first as a regression test.
+# FUZZ_ONLY="texture keys" runs only those harnesses.
 set -euo pipefail
 build=${1:-build-fuzz}
 seconds=${2:-60}
@@ -16,21 +17,22 @@ if ! command -v clang++ >/dev/null 2>&1; then
   exit 1
 fi
 src=$(cd "$(dirname "$0")/../.." && pwd)
+harnesses=${FUZZ_ONLY:-lsystem preset set obj texture keys export settings recovery}
 cmake -S "$src" -B "$build" -DSYLVA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_lsystem fuzz_preset fuzz_set fuzz_obj >/dev/null
+cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $harnesses) >/dev/null
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 status=0
-for h in lsystem preset set obj; do
+for h in $harnesses; do
   bin="$build/tests/fuzz/fuzz_$h"
   corpus="$build/fuzz-corpus/$h"
   crashes="$build/fuzz-crashes/$h"
   mkdir -p "$corpus" "$crashes"
   seeds=()
   [ -d "$src/tests/fuzz/seeds/$h" ] && seeds+=("$src/tests/fuzz/seeds/$h")
-  case $h in preset|set) seeds+=("$src/presets") ;; esac
+  case $h in preset|set|recovery) seeds+=("$src/presets") ;; esac
   if [ $h = lsystem ] && command -v python3 >/dev/null 2>&1; then
     # The L-system texts of presets/, one file each.
     mkdir -p "$build/fuzz-seeds/lsystem"

@@ -158,7 +158,7 @@ TEST_F(RenderTextures, BadUserTexturesSayWhyAndKeepTheProceduralOnes) {
   rp.leaf_texture = wide;
   draw_frame(r, rp, cam, 32, 32);
   EXPECT_NE(r.texture_message.find("corrupt.png"), std::string::npos) << r.texture_message;
-  EXPECT_NE(r.texture_message.find("larger than 8192"), std::string::npos) << r.texture_message;
+  EXPECT_NE(r.texture_message.find("8200x2 pixels, over the limit of 8192"), std::string::npos) << r.texture_message;
   EXPECT_NE(r.texture_message.find("procedural"), std::string::npos) << r.texture_message;
   EXPECT_FALSE(r.user_bark);
   EXPECT_FALSE(r.user_leaf);
