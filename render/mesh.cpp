@@ -9,6 +9,7 @@
 #include <cstring>
 #include <functional>
 
+#include "generators/timing.h"
 #include "generators/vec_util.h"
 
 namespace sylva {
@@ -125,8 +126,17 @@ glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& ro
   return t.position[par] + disp[par] + rotate_by(d, rot[k]);
 }
 
-tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed) {
+tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed, mesh_stage_times* times) {
   tree_mesh m;
+  mesh_stage_times unused;
+  mesh_stage_times& st = times ? *times : unused;
+  st = {};
+  auto lap_start = clock_type::now();
+  auto lap = [&](double& field) {   // adds the time since the last lap to one stage
+    const auto now = clock_type::now();
+    field += ms_between(lap_start, now);
+    lap_start = now;
+  };
   m.steps = std::max(t.steps, 0);
   m.radial_segments = std::clamp(p.radial_segments, 3, 256);
   m.index_end.assign(size_t(m.steps) + 1, 0);
@@ -296,6 +306,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     return uint32_t(at);
   };
 
+  lap(st.frame);
+
   // Hermite form of each internode's centripetal Catmull-Rom segment (Yuksel, Schaefer & Keyser
   // 2011): the end velocities scaled by the segment's knot interval |b - a|^(1/2). A lateral leaves
   // its parent straight along its first internode; the trunk leaves its upright root upright.
@@ -371,6 +383,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
             (pass == 0 ? collar_score[i] > threshold : collar_score[i] == threshold)) { collared[i] = 1; --left; }
       }
   }
+
+  lap(st.budget);
 
   constexpr uint32_t none = UINT32_MAX;
   std::vector<glm::vec3> frame(n);
@@ -498,6 +512,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     if (p.caps && cont[i] < 0) cap_apex[i] = emit_apex(b + tangent[i] * ri, tangent[i], v + ri * uv_repeat, uint32_t(i));
   }
   off[n] = uint32_t(chain.size());
+  lap(st.rings);
 
   // Each node's triangles (its internode through its rings, and its cap) sorted by born step so
   // that step s draws a prefix of the index buffer (DESIGN §5).
@@ -540,11 +555,14 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     }
   }
 
+  lap(st.index);
+
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
     foliage placed;
     const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
     if (!own) placed = place_leaves(t, p.leaves, seed);
+    lap(st.leaf_place);
     const std::vector<leaf>& src = own ? t.leaves : placed.leaves;   // the generator's, uncopied
     const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
@@ -577,6 +595,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     }
   }
 
+  lap(st.leaf_sort);
+
   if (!m.position.empty() || !m.leaves.empty()) {
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const glm::vec3& v : m.position) { lo = glm::min(lo, v); hi = glm::max(hi, v); }
@@ -587,7 +607,9 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     m.bounds_min = lo;
     m.bounds_max = hi;
   }
+  lap(st.bounds);
   bake_crown_occlusion(m);
+  lap(st.occlusion);
   return m;
 }
 

@@ -110,7 +110,17 @@ struct tree_mesh {
   size_t triangles() const { return index.size() / 3; }
 };
 
-tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1);
+// Wall milliseconds of each stage of one mesh_tree call (`sylva bench --stages`): the per-node
+// frame (radii, gnarl, axes, curve velocities, flare, texture wraps), the detail budget (curve,
+// collar and flare rings chosen), the bark rings, the index buffer, leaf placement (the foliage
+// model, or the generator's leaves taken), the leaves sorted by step with their gnarl, the bounds,
+// and the crown occlusion bake.
+struct mesh_stage_times {
+  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, leaf_sort = 0, bounds = 0, occlusion = 0;
+  double total() const { return frame + budget + rings + index + leaf_place + leaf_sort + bounds + occlusion; }
+};
+
+tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1, mesh_stage_times* times = nullptr);
 
 // Crown ambient occlusion (issues 13, 23): bark vertices and leaves deep inside the crown, and
 // inside each clump of it, see less sky. The crown is the ellipsoid spanned by the leaves' box (d:
