@@ -45,6 +45,7 @@ struct bench_result {  // plain bytes: sent from the measuring child through a p
   double grow_ms = 0, mesh_ms = 0, export_ms = 0, peak_rss_mb = 0;
   double grow_peak_rss_mb = 0;   // peak RSS after the first grow, before any mesh (the growth's own peak)
   mesh_stage_times stages;       // medians of each stage (--stages)
+  uint64_t mesh_digest = 0;      // of the last mesh (--stages --json): the same bytes as another build's?
   int steps = 0;
   bool hit_node_cap = false, error = false;
   char message[240] = {};
@@ -105,6 +106,7 @@ bench_result measure(const preset& p, int repeat, bool with_export) {
     fs::remove(tmp, ec);
   }
   r.nodes = t.size();
+  r.mesh_digest = mesh_digest(m);
   r.leaves = m.leaves.size();
   r.triangles = m.triangles() + 2 * m.leaves.size();  // bark plus one quad per leaf, as exported
   r.steps = t.steps;
@@ -238,6 +240,9 @@ int bench_one(const std::string& path, int repeat, bool as_json, bool with_expor
       if (stages) {
         json& st = j["stages_ms"];
         for (const auto& [stage, f] : stage_fields) st[stage] = r.stages.*f;
+        char hex[17];
+        std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)r.mesh_digest);
+        j["mesh_digest"] = hex;
       }
       print_bench_json(j);
     } else {

@@ -116,7 +116,11 @@ void bake_crown_occlusion(tree_mesh& m) {
     const float sky = near ? g.sample(p) : 1.0f;
     return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
   };
-  for (size_t i = 0; i < m.position.size(); ++i) m.occlusion[i] = visibility(m.position[i]);
+  // Visibility is a function of the position alone, and the mesh repeats positions in runs (a ring's
+  // seam vertex is its first one again; a cap's apex ring is one point stride times): a vertex equal
+  // to the one before takes its value instead of sampling again, which changes no bit.
+  for (size_t i = 0; i < m.position.size(); ++i)
+    m.occlusion[i] = i > 0 && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
   for (leaf_instance& l : m.leaves) l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
 }
 

@@ -140,6 +140,10 @@ std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<g
 glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& rot, const std::vector<glm::vec3>& disp,
                         size_t k, const glm::vec3& at);
 
+// FNV-1a over every byte the mesh hands on (vertex arrays, indices, step tables, leaves, radii,
+// bounds): two meshes with one digest are the same bytes, for tests and `bench --stages --json`.
+uint64_t mesh_digest(const tree_mesh& m);
+
 // Checks the mesh invariants (indices in range, offsets monotone, no NaN); "" when valid.
 std::string validate_mesh(const tree_mesh& m);
 
