@@ -41,7 +41,8 @@ struct mesh_params {
 };
 
 template <params_of<mesh_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_remesh);   // mesh_tree alone reads them
   v(p.radial_segments, param_info{"radial_segments", "Radial segments", "", 3, 32, "Vertices around each bark ring", 0, "Bark mesh"});
   v(p.uv_repeat, param_info{"uv_repeat", "Bark UV repeat", "", 0.05f, 20, "Bark texture repeats per metre along a branch", param_log});
   v(p.min_radius, param_info{"min_radius", "Minimum radius", "", 0.00001f, 0.05f, "Thinner branches are drawn at this radius (metres)", param_log});
