@@ -9,6 +9,7 @@
 #include <cstring>
 #include <functional>
 
+#include "generators/job_pool.h"
 #include "generators/timing.h"
 #include "generators/vec_util.h"
 
@@ -533,9 +534,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   for (size_t s = 0; s < item_end.size(); ++s) m.index_end[s] = uint32_t(cum[item_end[s]]);
   const size_t total = cum.back();
   m.index.resize(total);
-  uint32_t* out = m.index.data();
-  for (uint32_t k : perm) {
-    const uint32_t i = item[k];
+  // Each item's triangles go to their own range (cum), so chunks of items fill in parallel.
+  parallel_chunks(perm.size(), 2048, [&](size_t begin, size_t end) {
+  for (size_t pk = begin; pk < end; ++pk) {
+    uint32_t* out = m.index.data() + cum[pk];
+    const uint32_t i = item[perm[pk]];
     for (uint32_t r = off[i]; r + 1 < off[i + 1]; ++r) {
       const uint32_t lo = chain[r], hi = chain[r + 1];
       for (int s = 0; s < seg; ++s) {
@@ -554,6 +557,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       }
     }
   }
+  });
 
   lap(st.index);
 
@@ -585,14 +589,20 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     m.leaves.resize(m.leaf_end.back());
     const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
     const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
-    for (size_t k = 0; k < end; ++k) {
-      const leaf& l = src[k];
-      if (!usable(l)) continue;
-      const glm::quat q = l.orientation;
-      const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
-      m.leaves[cursor[step_of(l)]++] = {gnarled_point(t, rot, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale, l.born, l.died,
-                                        uint32_t(l.node), tex};
-    }
+    // Each leaf's slot first (the counting sort's order), then the slots filled in parallel.
+    std::vector<uint32_t> slot(end, UINT32_MAX);
+    for (size_t k = 0; k < end; ++k)
+      if (usable(src[k])) slot[k] = cursor[step_of(src[k])]++;
+    parallel_chunks(end, 4096, [&](size_t begin, size_t stop) {
+      for (size_t k = begin; k < stop; ++k) {
+        if (slot[k] == UINT32_MAX) continue;
+        const leaf& l = src[k];
+        const glm::quat q = l.orientation;
+        const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
+        m.leaves[slot[k]] = {gnarled_point(t, rot, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
+                             l.born, l.died, uint32_t(l.node), tex};
+      }
+    });
   }
 
   lap(st.leaf_sort);
