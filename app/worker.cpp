@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <optional>
 #include <new>
 
@@ -82,6 +83,18 @@ param_class edit_class(const tree_spec& a, const mesh_params& ma, const tree_spe
   }
   if (!(ma == mb)) c = std::max(c, changed_class(ma, mb).value_or(param_class::remesh));
   return c;
+}
+
+std::string edit_timing_text(param_class edit, const grow_result* r, double upload_ms) {
+  const std::string name = param_class_names[int(edit)];
+  if (edit == param_class::render || !r) return name + ": no grow, no mesh, no upload";
+  char text[160];
+  if (edit == param_class::remesh || !r->regrown)
+    std::snprintf(text, sizeof text, "%s: grow kept, mesh %.1f ms, upload %.1f ms", name.c_str(), r->mesh_ms, upload_ms);
+  else
+    std::snprintf(text, sizeof text, "%s: grow %.1f ms, mesh %.1f ms, upload %.1f ms", name.c_str(), r->grow_ms, r->mesh_ms,
+                  upload_ms);
+  return text;
 }
 
 namespace {

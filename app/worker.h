@@ -64,6 +64,11 @@ struct worker_state {
 // generator, seed, keyframes, cuts) regrows; so does any difference no declared parameter explains.
 param_class edit_class(const tree_spec& a, const mesh_params& ma, const tree_spec& b, const mesh_params& mb);
 
+// The status bar's account of the last edit: which class it needed and what it cost, e.g.
+// "regrow: grow 12.0 ms, mesh 4.1 ms, upload 0.9 ms", "re-mesh: grow kept, mesh 4.1 ms, upload
+// 0.9 ms", "render: no grow, no mesh, no upload" (r: the tree on screen, may be null).
+std::string edit_timing_text(param_class edit, const grow_result* r, double upload_ms);
+
 void start_worker(worker_state& w);
 // Stops the worker, cancelling what it is doing; waits for it (the UI's only wait).
 void stop_worker(worker_state& w);

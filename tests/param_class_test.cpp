@@ -240,3 +240,14 @@ TEST(ParamClass, WorkerRedoesOnlyWhatTheEditNeeds) {
   EXPECT_NE(skeleton_digest(*regrown->skeleton), skeleton_digest(*first->skeleton));
   stop_worker(w);
 }
+
+// The status bar names the class of the last edit and what it cost.
+TEST(ParamClass, StatusTextNamesTheClassAndItsTimes) {
+  grow_result r;
+  r.grow_ms = 12.04, r.mesh_ms = 4.06;
+  EXPECT_EQ(edit_timing_text(param_class::regrow, &r, 0.94), "regrow: grow 12.0 ms, mesh 4.1 ms, upload 0.9 ms");
+  r.regrown = false;
+  EXPECT_EQ(edit_timing_text(param_class::remesh, &r, 0.94), "re-mesh: grow kept, mesh 4.1 ms, upload 0.9 ms");
+  EXPECT_EQ(edit_timing_text(param_class::render, &r, 0.94), "render: no grow, no mesh, no upload");
+  EXPECT_EQ(edit_timing_text(param_class::regrow, nullptr, 0), "regrow: no grow, no mesh, no upload");
+}
