@@ -44,10 +44,19 @@ struct bench_result {  // plain bytes: sent from the measuring child through a p
   uint64_t nodes = 0, leaves = 0, triangles = 0, glb_bytes = 0;
   double grow_ms = 0, mesh_ms = 0, export_ms = 0, peak_rss_mb = 0;
   double grow_peak_rss_mb = 0;   // peak RSS after the first grow, before any mesh (the growth's own peak)
+  mesh_stage_times stages;       // medians of each stage (--stages)
+  uint64_t mesh_digest = 0;      // of the last mesh (--stages --json): the same bytes as another build's?
   int steps = 0;
   bool hit_node_cap = false, error = false;
   char message[240] = {};
 };
+
+// The stages of mesh_tree as `--stages` names them (mesh.h says what each covers).
+constexpr std::pair<const char*, double mesh_stage_times::*> stage_fields[] = {
+    {"frame", &mesh_stage_times::frame},        {"budget", &mesh_stage_times::budget},
+    {"rings", &mesh_stage_times::rings},        {"index", &mesh_stage_times::index},
+    {"leaf_place", &mesh_stage_times::leaf_place}, {"leaf_sort", &mesh_stage_times::leaf_sort},
+    {"bounds", &mesh_stage_times::bounds},      {"occlusion", &mesh_stage_times::occlusion}};
 
 double process_peak_rss_mb() {
   rusage ru{};
@@ -58,6 +67,7 @@ double process_peak_rss_mb() {
 bench_result measure(const preset& p, int repeat, bool with_export) {
   bench_result r;
   std::vector<double> grow_ms, mesh_ms, export_ms;
+  std::vector<mesh_stage_times> stages;
   tree_skeleton t;
   tree_mesh m;
   grow_report report;
@@ -68,8 +78,13 @@ bench_result measure(const preset& p, int repeat, bool with_export) {
     grow_ms.push_back(ms_since(t0));
     if (i == 0) r.grow_peak_rss_mb = process_peak_rss_mb();
     t0 = clock_type::now();
-    m = mesh_tree(t, p.mesh, p.spec.seed);
+    m = mesh_tree(t, p.mesh, p.spec.seed, &stages.emplace_back());
     mesh_ms.push_back(ms_since(t0));
+  }
+  for (const auto& [name, f] : stage_fields) {
+    std::vector<double> v;
+    for (const mesh_stage_times& s : stages) v.push_back(s.*f);
+    r.stages.*f = median(v);
   }
   if (with_export) {
     const fs::path tmp = fs::temp_directory_path() / ("sylva-bench-" + std::to_string(::getpid()) + ".glb");
@@ -91,6 +106,7 @@ bench_result measure(const preset& p, int repeat, bool with_export) {
     fs::remove(tmp, ec);
   }
   r.nodes = t.size();
+  r.mesh_digest = mesh_digest(m);
   r.leaves = m.leaves.size();
   r.triangles = m.triangles() + 2 * m.leaves.size();  // bark plus one quad per leaf, as exported
   r.steps = t.steps;
@@ -151,9 +167,9 @@ bench_result measure_isolated(const preset& p, int repeat, bool with_export, boo
   return r;
 }
 
-int bench_one(const std::string& path, int repeat, bool as_json, bool with_export);
+int bench_one(const std::string& path, int repeat, bool as_json, bool with_export, bool stages);
 
-int bench_presets(std::vector<std::string> paths, int repeat, bool as_json, bool with_export) {
+int bench_presets(std::vector<std::string> paths, int repeat, bool as_json, bool with_export, bool stages) {
   const char* cmd = "bench";
   if (paths.empty()) {
     const fs::path dir = fs::path(SYLVA_SOURCE_DIR) / "bench";
@@ -163,13 +179,17 @@ int bench_presets(std::vector<std::string> paths, int repeat, bool as_json, bool
     if (ec || paths.empty()) return fail(cmd, "no presets given and none found in " + dir.string());
     std::sort(paths.begin(), paths.end());
   }
-  if (!as_json)
-    std::printf("%-36s %-18s %9s %9s %10s %9s %9s %8s %8s%s\n", "preset", "generator", "nodes", "leaves", "triangles",
+  if (!as_json) {
+    std::printf("%-36s %-18s %9s %9s %10s %9s %9s %8s %8s%s", "preset", "generator", "nodes", "leaves", "triangles",
                 "grow_ms", "mesh_ms", "grow_MB", "peak_MB", with_export ? "  glb_ms     glb_MB" : "");
+    if (stages)   // the stage columns continue the line
+      for (const auto& [name, f] : stage_fields) std::printf(" %10s", name);
+    std::printf("\n");
+  }
   int failures = 0;
   for (const std::string& path : paths) {
     try {   // one preset's failure is reported and the rest are still measured
-      failures += bench_one(path, repeat, as_json, with_export);
+      failures += bench_one(path, repeat, as_json, with_export, stages);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "sylva %s: %s: %s\n", cmd, path.c_str(), e.what());
       ++failures;
@@ -178,13 +198,13 @@ int bench_presets(std::vector<std::string> paths, int repeat, bool as_json, bool
   }
   if (!as_json)
     std::printf("medians over %d runs; peak_MB is each preset's own peak RSS (measured in a child process), grow_MB "
-                "that peak right after the first grow, before meshing\n",
-                repeat);
+                "that peak right after the first grow, before meshing%s\n",
+                repeat, stages ? "; stages: ms of each mesh_tree stage, each its own median (render/mesh.h)" : "");
   return failures ? 1 : 0;
 }
 
 // One preset of `sylva bench`: 0 when measured, 1 when it failed (reported on stderr).
-int bench_one(const std::string& path, int repeat, bool as_json, bool with_export) {
+int bench_one(const std::string& path, int repeat, bool as_json, bool with_export, bool stages) {
   {
     preset p;
     if (!load_bench_preset("bench", path, p)) return 1;
@@ -217,12 +237,21 @@ int bench_one(const std::string& path, int repeat, bool as_json, bool with_expor
         j["export_ms"] = r.export_ms;
         j["glb_bytes"] = r.glb_bytes;
       }
+      if (stages) {
+        json& st = j["stages_ms"];
+        for (const auto& [stage, f] : stage_fields) st[stage] = r.stages.*f;
+        char hex[17];
+        std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)r.mesh_digest);
+        j["mesh_digest"] = hex;
+      }
       print_bench_json(j);
     } else {
       std::printf("%-36s %-18s %9llu %9llu %10llu %9.2f %9.2f %8.1f %8.1f", name.c_str(), generator_name(p.spec),
                   (unsigned long long)r.nodes, (unsigned long long)r.leaves, (unsigned long long)r.triangles,
                   r.grow_ms, r.mesh_ms, r.grow_peak_rss_mb, r.peak_rss_mb);
       if (with_export) std::printf(" %8.1f %10.2f", r.export_ms, double(r.glb_bytes) / (1024.0 * 1024.0));
+      if (stages)
+        for (const auto& [stage, f] : stage_fields) std::printf(" %10.2f", r.stages.*f);
       std::printf("%s\n", isolated ? "" : "  (peak of the whole process)");
     }
   }
@@ -412,8 +441,8 @@ int bench_render_presets(std::vector<std::string> paths, int repeat, bool as_jso
 
 }  // namespace
 
-int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool with_export) {
-  return bench_presets(std::move(paths), repeat, as_json, with_export);
+int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool with_export, bool stages) {
+  return bench_presets(std::move(paths), repeat, as_json, with_export, stages);
 }
 
 int run_bench_render(std::vector<std::string> paths, int repeat, bool as_json, int width, int height,

@@ -9,8 +9,9 @@
 namespace sylva {
 
 // Medians over `repeat` runs of each preset (default: every bench/*.json), each measured in a
-// forked child so that its peak RSS is its own. Returns the exit code.
-int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool with_export);
+// forked child so that its peak RSS is its own; with `stages`, also the median of each mesh_tree
+// stage (mesh_stage_times). Returns the exit code.
+int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool with_export, bool stages = false);
 
 // Steady frames of the editor's renderer, pass by pass, and the cost of taking a new tree
 // (default presets: Honda's tree a and one per other generator). Needs a display.

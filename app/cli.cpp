@@ -449,6 +449,8 @@ int run_cli(int argc, char** argv) {
   bench->add_option("--repeat", repeat, "Runs per preset; medians are reported")->check(CLI::Range(1, 1000));
   bench->add_flag("--json", bench_json, "One JSON object per line");
   bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
+  bool bench_stages = false;
+  bench->add_flag("--stages", bench_stages, "Also time each stage of the mesher (frame, budget, rings, index, leaves, occlusion)");
   bench->add_flag("--render", bench_render,
                   "Time rendering instead: frame ms per pass (needs DISPLAY; default: one preset per generator)");
   bench->add_flag("--lods", bench_lods, "LOD triangles against their budgets, LOD build and impostor atlas times (default: every species preset)");
@@ -496,7 +498,7 @@ int run_cli(int argc, char** argv) {
         return run_bench_render_ab(bench_paths, bench_ab, repeat, bench_json, bench_width, bench_height, bench_preset_light);
       return run_bench_render(bench_paths, repeat, bench_json, bench_width, bench_height, bench_preset_light);
     }
-    if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export);
+    if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export, bench_stages);
   } catch (const std::exception& e) {  // last resort: a library threw; still one line and exit 1
     for (CLI::App* sub : {params, exp, bench})
       if (sub->parsed()) return fail(sub->get_name(), e.what());

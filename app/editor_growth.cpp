@@ -1,7 +1,10 @@
 // Growth requests to the worker (app/worker.h) and the trees it sends back.
 #include "app/editor_state.h"
 
+#include "generators/timing.h"
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -52,7 +55,12 @@ void keep_shown_tree(editor_state& e, const std::string& why) {
 // Posts the document when its spec or mesh settings changed; render settings only touch uniforms.
 void post_if_changed(editor_state& e) {
   if (e.hold_post) return;
-  if (e.posted_once && e.doc.spec == e.posted_spec && e.doc.mesh == e.posted_mesh) return;
+  const bool render_changed = !(e.doc.render == e.posted_render);
+  e.posted_render = e.doc.render;
+  if (e.posted_once && e.doc.spec == e.posted_spec && e.doc.mesh == e.posted_mesh) {
+    if (render_changed) e.last_edit = param_class::render;   // nothing to grow or mesh: drawn next frame
+    return;
+  }
   // A new generator (switched, opened or undone) is a new tree: frame it. Edits keep the camera.
   if (e.posted_once && e.doc.spec.params.index() != e.posted_spec.params.index()) e.frame_new = true;
   e.posted_spec = e.doc.spec;
@@ -98,6 +106,8 @@ void take_new_tree(editor_state& e) {
   const int old_steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : -1;
   const bool at_end = !e.shown || e.step >= old_steps;
   e.shown = r;
+  e.last_edit = r->edit;
+  const auto upload_start = std::chrono::steady_clock::now();
   upload_tree(e.renderer, r->mesh);
   editor_lod_new_tree(e.lod);
   upload_wind(e.renderer, *r->skeleton);
@@ -111,6 +121,7 @@ void take_new_tree(editor_state& e) {
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(e.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);
+  e.upload_ms = ms_since(upload_start);
   if (e.frame_generation != 0 && int32_t(r->generation - e.frame_generation) >= 0) {
     frame_view(e.camera, e.renderer.bounds_min, e.renderer.bounds_max, e.view_aspect);
     e.frame_generation = 0;

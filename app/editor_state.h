@@ -49,6 +49,9 @@ struct editor_state {
   std::unique_ptr<worker_state> worker = std::make_unique<worker_state>();   // the selected slot's (A/B)
   tree_spec posted_spec;
   mesh_params posted_mesh;
+  render_params posted_render;    // the render settings the last edit left (a render-only edit posts nothing)
+  param_class last_edit = param_class::regrow;   // what the last edit on screen needed (status bar)
+  double upload_ms = 0;           // the last new tree's upload to the renderer
   bool posted_once = false;
   bool hold_post = false;         // an apply-on-release slider is being dragged
   uint32_t seen_generation = 0;

@@ -177,8 +177,8 @@ void draw_status(editor_state& e, float y, float w) {
     ImGui::Text("   %s   frame %.1f ms", (e.ab.selected == 0 ? ab_compare_text(mine, other) : ab_compare_text(other, mine)).c_str(),
                 e.frame_ms);
   } else {
-    ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   grow %.1f ms   mesh %.1f ms   frame %.1f ms", nodes_at_step(e),
-                e.renderer.leaves_drawn, e.renderer.triangles_drawn, r ? r->grow_ms : 0.0, r ? r->mesh_ms : 0.0, e.frame_ms);
+    ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e), e.renderer.leaves_drawn,
+                e.renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
     // The hidden slot's failure still shows (A/B view off).
     if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text) : ""; !p.empty()) {
       ImGui::SameLine();

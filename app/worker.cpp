@@ -1,7 +1,10 @@
 // Growth worker: grows and meshes off the UI thread; publishes immutable results.
 #include "app/worker.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <optional>
 #include <new>
 
 #include "generators/resume.h"
@@ -50,6 +53,52 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
   w.busy = false;
 }
 
+// The largest class of the parameters of one params struct that differ between a and b, or
+// `none` when none does. Each visited value is a member of a (nested structs included), so the
+// same offset in b holds the other value.
+template <class P>
+std::optional<param_class> changed_class(const P& a, const P& b) {
+  std::optional<param_class> out;
+  visit_params(a, [&](const auto& value, const param_info& info) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    const std::ptrdiff_t at = reinterpret_cast<const char*>(&value) - reinterpret_cast<const char*>(&a);
+    const T& other = *reinterpret_cast<const T*>(reinterpret_cast<const char*>(&b) + at);
+    if (!(value == other)) out = std::max(out.value_or(param_class::render), class_of(info));
+  });
+  return out;
+}
+
+}  // namespace
+
+param_class edit_class(const tree_spec& a, const mesh_params& ma, const tree_spec& b, const mesh_params& mb) {
+  param_class c = param_class::render;
+  if (!(a == b)) {
+    if (a.params.index() != b.params.index() || a.seed != b.seed || a.keyframes != b.keyframes || a.cuts != b.cuts)
+      return param_class::regrow;
+    std::optional<param_class> g = std::visit(
+        [&](const auto& pa) { return changed_class(pa, std::get<std::remove_cvref_t<decltype(pa)>>(b.params)); }, a.params);
+    std::optional<param_class> wd = changed_class(a.wood, b.wood);
+    if (!g && !wd) return param_class::regrow;   // a difference no declared parameter explains
+    c = std::max({c, g.value_or(c), wd.value_or(c)});
+  }
+  if (!(ma == mb)) c = std::max(c, changed_class(ma, mb).value_or(param_class::remesh));
+  return c;
+}
+
+std::string edit_timing_text(param_class edit, const grow_result* r, double upload_ms) {
+  const std::string name = param_class_names[int(edit)];
+  if (edit == param_class::render || !r) return name + ": no grow, no mesh, no upload";
+  char text[160];
+  if (edit == param_class::remesh || !r->regrown)
+    std::snprintf(text, sizeof text, "%s: grow kept, mesh %.1f ms, upload %.1f ms", name.c_str(), r->mesh_ms, upload_ms);
+  else
+    std::snprintf(text, sizeof text, "%s: grow %.1f ms, mesh %.1f ms, upload %.1f ms", name.c_str(), r->grow_ms, r->mesh_ms,
+                  upload_ms);
+  return text;
+}
+
+namespace {
+
 void run_worker(worker_state& w) {
   std::shared_ptr<const grow_result> last;   // the worker's own previous result, for skeleton reuse
   // The states recorded at the keyframe steps of the last growth (Honda, self-organizing, space
@@ -71,8 +120,13 @@ void run_worker(worker_state& w) {
     result->generation = req.generation;
     result->spec = req.spec;
     result->mesh_settings = req.mesh_settings;
-    if (last && last->spec == req.spec && !last->report.cancelled) {
-      // Only mesh settings changed: the tree is the same, so skip growth.
+    // What the edit needs, from the classes its parameters declare (generators/params.h).
+    const param_class need = last && !last->report.cancelled
+                                 ? edit_class(last->spec, last->mesh_settings, req.spec, req.mesh_settings)
+                                 : param_class::regrow;
+    result->edit = need;
+    if (need != param_class::regrow) {
+      // Nothing the generator reads changed: the tree is the same, so skip growth.
       result->skeleton = last->skeleton;
       result->debug = last->debug;
       result->overlays = last->overlays;
@@ -143,12 +197,17 @@ void run_worker(worker_state& w) {
     }
     auto t0 = std::chrono::steady_clock::now();
     try {
-      result->mesh = mesh_tree(*result->skeleton, req.mesh_settings, req.spec.seed);
+      if (need == param_class::render) {   // nothing the mesh reads changed either: keep it
+        result->mesh = last->mesh;
+        result->remeshed = false;
+      } else {
+        result->mesh = mesh_tree(*result->skeleton, req.mesh_settings, req.spec.seed);
+      }
     } catch (const std::bad_alloc&) {
       publish_failure(w, last, req, "out of memory while meshing: lower the radial segments or the node cap");
       continue;
     }
-    result->mesh_ms = ms_since(t0);
+    result->mesh_ms = result->remeshed ? ms_since(t0) : 0.0;
     last = result;
     {
       std::lock_guard<std::mutex> lock(w.mutex);

@@ -27,6 +27,8 @@ struct grow_result {
   grow_report report;
   double grow_ms = 0, mesh_ms = 0;
   bool regrown = true;   // false when only the mesh was rebuilt from the previous skeleton
+  bool remeshed = true;  // false when the previous mesh was kept too (nothing the mesh reads changed)
+  param_class edit = param_class::regrow;   // what the request needed against the previous result
   int resumed_at = 0;    // > 0: only keyframes from this step on changed, and growth resumed there (generators/resume.h)
   // Over the node budget: nothing was grown; the previous tree is re-published with the estimate
   // and the editor asks before growing it (post_request with approved = true).
@@ -56,6 +58,16 @@ struct worker_state {
   std::atomic<int64_t> node_budget{default_node_budget};   // larger requests ask first (issue 14)
   bool quit = false;
 };
+
+// What a change from (a, ma) to (b, mb) needs: the largest declared class (generators/params.h) of
+// the parameters that differ, render when none does. A spec change outside visit_params (the
+// generator, seed, keyframes, cuts) regrows; so does any difference no declared parameter explains.
+param_class edit_class(const tree_spec& a, const mesh_params& ma, const tree_spec& b, const mesh_params& mb);
+
+// The status bar's account of the last edit: which class it needed and what it cost, e.g.
+// "regrow: grow 12.0 ms, mesh 4.1 ms, upload 0.9 ms", "re-mesh: grow kept, mesh 4.1 ms, upload
+// 0.9 ms", "render: no grow, no mesh, no upload" (r: the tree on screen, may be null).
+std::string edit_timing_text(param_class edit, const grow_result* r, double upload_ms);
 
 void start_worker(worker_state& w);
 // Stops the worker, cancelling what it is doing; waits for it (the UI's only wait).

@@ -58,7 +58,8 @@ struct guiding_vectors_params {
 };
 
 template <params_of<guiding_vectors_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_regrow);   // the generator reads them: a change regrows
   v(p.steps, param_info{"steps", "Growth steps", "n", 0, 200, "Number of generation steps; each connects new endpoints to the tree by shortest paths", param_on_release, "Growth"});
   v(p.step_t, param_info{"step_t", "Turn angle per step", "t", -45, 45, "Per step: angle the guiding vector turns per hop about up × g (negative bends up, positive droops); the last entry repeats", param_degrees});
   v(p.step_endpoints, param_info{"step_endpoints", "Endpoints per step", "", 0, 100000, "Per step: how many endpoints (destinations) are sampled; the last entry repeats", param_on_release});

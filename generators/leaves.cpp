@@ -2,6 +2,7 @@
 // generator's own leaves.
 #include "generators/leaves.h"
 
+#include "generators/job_pool.h"
 #include "generators/leaf_clumps.h"
 
 #include <algorithm>
@@ -64,24 +65,20 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
            (from_tip.empty() || from_tip[i] < p.outer_internodes);
   };
   // One cheap forward pass: the distance of each node from the root (leaf nodes counted along each
-  // path give the phyllotactic angle without a sequential placement), and the young shoots' total
-  // length to reserve from, so placement never regrows its vector.
+  // path give the phyllotactic angle without a sequential placement).
   std::vector<float> arc(n, 0);
-  double length = 0;
   const bool clumped = std::isfinite(p.clumping) && p.clumping > 0;
   std::vector<float> bearing(clumped ? n : 0, 0.0f);   // leaf-bearing length per internode
   for (size_t i = 0; i < n; ++i) {
     if (t.parent[i] < 0) continue;
     const float len = glm::length(t.position[i] - t.position[t.parent[i]]);
     arc[i] = arc[t.parent[i]] + (std::isfinite(len) ? len : 0.0f);
-    if (carries(i)) length += std::isfinite(len) ? len : 0.0f;
     if (clumped && carries(i) && std::isfinite(len)) bearing[i] = len;
   }
   // Clumping: a factor per internode on its leaf count (leaf_clumps.h); none when 0, so the
   // placement below is exactly the even one.
   const std::vector<float> density =
       clumped ? clump_density(t, bearing, clump_settings{p.clumping, p.clump_size, p.clump_variation}, seed) : std::vector<float>();
-  out.leaves.reserve(std::min(cap, size_t(length / spacing * per_node / cluster) + n / 8 + 16));
 
   const float spread = glm::radians(std::isfinite(p.spread) ? p.spread : 50.0f);
   const float cs = std::cos(spread), sn = std::sin(spread);
@@ -98,54 +95,73 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
   float taper_pow[9];
   for (int k = 0; k < 9; ++k) taper_pow[k] = std::pow(1 - taper, float(k));
 
-  // Newest nodes first: when the cap is reached it is the oldest history that goes, never the final
-  // crown. Each node draws from its own stream, so the result does not depend on the order.
-  for (size_t i = n; i-- > 0 && !out.capped;) {
+  // Leaf nodes along internode i (the fraction gives one more with its probability), from its own
+  // stream r, whose first draw this takes; 0 for an internode that carries none.
+  auto leaf_nodes = [&](size_t i, rng& r) {
     const int32_t par = t.parent[i];
-    if (par < 0) continue;
-    glm::vec3 d = t.position[i] - t.position[par];
-    const float len = glm::length(d);
-    if (!carries(i) || !(len > 1e-6f)) continue;
-    rng r(seed ^ (uint64_t(i) * 0x9E3779B97F4A7C15ull + 0xf011a9eull));
-    d /= len;
-    // Leaf nodes along the internode; the fraction gives one more with its probability.
+    if (par < 0 || !carries(i)) return 0;
+    const float len = glm::length(t.position[i] - t.position[par]);
+    if (!(len > 1e-6f)) return 0;
+    r = rng(seed ^ (uint64_t(i) * 0x9E3779B97F4A7C15ull + 0xf011a9eull));
     const float want = len / spacing / float(cluster) * (density.empty() ? 1.0f : density[i]);
     int nodes = int(want);
     if (r.uniform() < want - float(nodes)) ++nodes;
-    if (nodes == 0) continue;
-    glm::vec3 e1 = glm::cross(d, up);
-    const float e1len = glm::length(e1);
-    e1 = e1len > 1e-3f ? e1 / e1len : glm::vec3(1, 0, 0);
-    const glm::vec3 e2 = glm::cross(d, e1);
-    const uint16_t died = retention_end(t.born[i], p.retention, t.died[i]);
-    const int above = std::clamp(int(t.order[i]) - p.min_order, 0, 8);
-    const float size = base_size * taper_pow[above] * card_scale;
-    float az = divergence * std::floor(arc[par] / (spacing * float(cluster)));
-    for (int k = 0; k < nodes; ++k) {
-      const float along = (float(k) + 0.5f + 0.3f * r.uniform(-1, 1)) / float(nodes);
-      const glm::vec3 at = t.position[par] + d * (len * along);
-      for (int m = 0; m < per_node; ++m) {
-        if (out.leaves.size() >= cap) { out.capped = true; break; }
-        const float a = az + step_around * float(m) + r.uniform(-0.15f, 0.15f);
-        const glm::vec3 radial = std::cos(a) * e1 + std::sin(a) * e2;
-        glm::vec3 b = cs * d + sn * radial;
-        if (droop > 0) b = glm::normalize(b + droop * 2.0f * (down - b * std::max(glm::dot(b, down), 0.0f)));
-        // Blades turn their upper face outward and to the sky, each a little differently, so a crown
-        // reads as dense from the side as from above.
-        const glm::vec3 wobble(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f));
-        leaf l;
-        l.position = at;
-        l.orientation = blade_frame(b, 0.7f * up + radial + wobble, radial);
-        l.size = size * (1 + jitter * r.uniform(-1, 1));
-        l.born = t.born[i];
-        l.died = died;
-        l.node = int32_t(i);
-        l.archetype = card;
-        out.leaves.push_back(l);
-      }
-      az += divergence;
-    }
+    return nodes;
+  };
+  // Newest nodes first: when the cap is reached it is the oldest history that goes, never the final
+  // crown. Each node draws from its own stream, so the result does not depend on the order: a
+  // first pass counts each node's leaves, so that chunks of nodes then fill their own slots of the
+  // list in parallel (job_pool.h), the bytes those of one thread placing them newest first.
+  std::vector<size_t> first(n + 1, 0);   // first[k]: the slot of node n-1-k's first leaf
+  for (size_t k = 0; k < n; ++k) {
+    rng r(0);
+    first[k + 1] = first[k] + size_t(leaf_nodes(n - 1 - k, r)) * size_t(per_node);
   }
+  out.capped = first[n] > cap;
+  out.leaves.resize(std::min(first[n], cap));
+  parallel_chunks(n, 1024, [&](size_t k0, size_t k1) {
+    for (size_t k = k0; k < k1 && first[k] < cap; ++k) {
+      const size_t i = n - 1 - k;
+      rng r(0);
+      const int nodes = leaf_nodes(i, r);
+      if (nodes == 0) continue;
+      const int32_t par = t.parent[i];
+      glm::vec3 d = t.position[i] - t.position[par];
+      const float len = glm::length(d);
+      d /= len;
+      glm::vec3 e1 = glm::cross(d, up);
+      const float e1len = glm::length(e1);
+      e1 = e1len > 1e-3f ? e1 / e1len : glm::vec3(1, 0, 0);
+      const glm::vec3 e2 = glm::cross(d, e1);
+      const uint16_t died = retention_end(t.born[i], p.retention, t.died[i]);
+      const int above = std::clamp(int(t.order[i]) - p.min_order, 0, 8);
+      const float size = base_size * taper_pow[above] * card_scale;
+      float az = divergence * std::floor(arc[par] / (spacing * float(cluster)));
+      size_t at_slot = first[k];
+      for (int kk = 0; kk < nodes && at_slot < cap; ++kk) {
+        const float along = (float(kk) + 0.5f + 0.3f * r.uniform(-1, 1)) / float(nodes);
+        const glm::vec3 at = t.position[par] + d * (len * along);
+        for (int m = 0; m < per_node && at_slot < cap; ++m) {
+          const float a = az + step_around * float(m) + r.uniform(-0.15f, 0.15f);
+          const glm::vec3 radial = std::cos(a) * e1 + std::sin(a) * e2;
+          glm::vec3 b = cs * d + sn * radial;
+          if (droop > 0) b = glm::normalize(b + droop * 2.0f * (down - b * std::max(glm::dot(b, down), 0.0f)));
+          // Blades turn their upper face outward and to the sky, each a little differently, so a crown
+          // reads as dense from the side as from above.
+          const glm::vec3 wobble(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f));
+          leaf& l = out.leaves[at_slot++];
+          l.position = at;
+          l.orientation = blade_frame(b, 0.7f * up + radial + wobble, radial);
+          l.size = size * (1 + jitter * r.uniform(-1, 1));
+          l.born = t.born[i];
+          l.died = died;
+          l.node = int32_t(i);
+          l.archetype = card;
+        }
+        az += divergence;
+      }
+    }
+  });
   return out;
 }
 

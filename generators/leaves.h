@@ -47,7 +47,8 @@ struct leaf_params {
 };
 
 template <params_of<leaf_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_remesh);   // mesh_tree places the leaves on the kept skeleton
   v(p.mode, param_info{"leaf_mode", "Leaf placement", "", 0, 2, "shoots: along every young shoot (the foliage model); tips: a tuft on each current tip; generator: the generator's own leaf rule (space colonization's spiral, the L-system's L), else shoots", 0, "Leaves", leaf_mode_names});
   v(p.archetype, param_info{"leaf_archetype", "Leaf archetype", "", 0, leaf_archetype_count - 1, "Procedural leaf card: ovate (birch, beech), lobed (oak), palmate (maple), pinnate compound (ash), pine needle fascicles, flat needle spray (spruce, fir), scale spray (cypress), palm leaflets (one card per rachis side), twig cluster, needle tufts (true cedars), lanceolate (willow)", 0, nullptr, leaf_archetype_names});
   v(p.retention, param_info{"leaf_retention", "Leaf retention", "", 0, 64, "Growth steps a shoot keeps its leaves: 1 for deciduous trees (this season's and last season's shoots), 3-7 for conifers' needles"});

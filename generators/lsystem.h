@@ -45,7 +45,8 @@ struct lsystem_params {
 };
 
 template <params_of<lsystem_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_regrow);   // the generator reads them: a change regrows
   v(p.mode, param_info{"mode", "Model", "", 0, 1, "honda: Honda's binary tree (Prusinkiewicz et al. 1996); text: a general L-system", 0, "Model", lsystem_mode_names});
   v(p.derivations, param_info{"derivations", "Derivations", "n", 0, 24, "Number of derivation steps; derivation k is growth step k", param_on_release});
   v(p.s0, param_info{"s0", "Trunk length", "s₀", 1, 1000, "Length of the first internode, in model units (axiom A(s₀,w₀))", 0, "Honda tree"});

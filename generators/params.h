@@ -19,7 +19,16 @@ enum param_flags : unsigned {
   param_multiline = 1u << 4,     // strings: a multi-line text box (L-system source)
   param_path = 1u << 5,          // strings: a file path
   param_direction = 1u << 6,     // vec3: a direction (normalised where used)
+  // The parameter's class: how much of the pipeline a change of it redoes. Exactly one is set on
+  // every parameter (a struct whose parameters share one declares it once, with declare_class).
+  param_regrow = 1u << 7,        // the generator grows the tree again, then it is meshed and drawn
+  param_remesh = 1u << 8,        // the kept skeleton is meshed again; nothing regrows
+  param_render = 1u << 9,        // only drawing changes (uniforms, textures, LODs): no regrow, no re-mesh
 };
+
+// The classes in the order of their cost: an edit of several parameters needs the largest.
+enum class param_class : uint8_t { render = 0, remesh = 1, regrow = 2 };
+inline constexpr const char* param_class_names[] = {"render", "re-mesh", "regrow", nullptr};
 
 // Everything but the value: consumers (editor, preset JSON, CLI --set, `sylva params`, tests)
 // derive their behaviour from this record.
@@ -33,6 +42,25 @@ struct param_info {
   const char* group = nullptr;               // starts a new collapsible group in the editor
   const char* const* options = nullptr;      // enums: nullptr-terminated option names, index = value
 };
+
+// The declared class of a parameter (param_regrow when it declares none, which the parameter walk
+// in tests/param_class_test.cpp refuses).
+inline param_class class_of(const param_info& info) {
+  if (info.flags & param_render) return param_class::render;
+  if (info.flags & param_remesh) return param_class::remesh;
+  return param_class::regrow;
+}
+
+// A visitor passing every parameter on to `v` with `class_flag` (param_regrow, param_remesh or
+// param_render) added to its flags: the first line of a visit_params whose parameters share a class.
+template <class V>
+auto declare_class(V& v, unsigned class_flag) {
+  return [&v, class_flag](auto& value, const param_info& info) {
+    param_info declared = info;
+    declared.flags |= class_flag;
+    v(value, declared);
+  };
+}
 
 // Supported value types: float, int, bool, enum (with options), glm::vec3, std::string,
 // std::vector<float>, std::vector<glm::vec3>. A visitor is called as v(value&, const param_info&).

@@ -78,7 +78,8 @@ struct self_organizing_params {
 };
 
 template <params_of<self_organizing_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_regrow);   // the generator reads them: a change regrows
   v(p.steps, param_info{"steps", "Growth steps", "N", 0, 200, "Number of growth steps (iterations)", param_on_release, "Growth"});
   v(p.internode_length, param_info{"internode_length", "Internode length", "l", 0.005f, 2, "Length of one metamer's internode in metres; a shoot of resource v has ⌊v⌋ internodes of length l·v/⌊v⌋", param_log});
   v(p.environment, param_info{"environment", "Bud environment", "", 0, 1, "shadow_propagation: light from a sparse shadow grid; space_colonization: markers in an envelope (Palubicki 2009 §4)", 0, nullptr, so_environment_names});

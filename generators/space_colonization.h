@@ -61,7 +61,8 @@ struct space_colonization_params {
 };
 
 template <params_of<space_colonization_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_regrow);   // the generator reads them: a change regrows
   v(p.envelope, param_info{"envelope", "Envelope", "", 0, 7, "Shape the attraction points fill uniformly; mesh: a closed OBJ file", param_on_release, "Envelope", envelope_shape_names});
   v(p.points, param_info{"points", "Attraction points", "N", 0, 2000000, "Number of attraction points sampled in the envelope (seeded)", param_log | param_on_release});
   v(p.size, param_info{"size", "Size", "", 0.01f, 1000, "Bounding box of the envelope in metres (x, y up, z); a sphere uses x as its diameter, a slab x and y", param_on_release});

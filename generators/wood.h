@@ -38,7 +38,8 @@ struct wood_params {
 };
 
 template <params_of<wood_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_regrow);   // the wood pass bends the grown tree: a change regrows
   v(p.gravity, param_info{"gravity", "Gravity", "", 0, 10, "Weight of wood and leaves bends every branch (0: off, the generator's own shape; 1: real weight, g = 9.81 m/s²)", param_on_release, "Wood"});
   v(p.density, param_info{"wood_density", "Wood density", "ρ", 100, 1500, "Green wood with its water, kg/m³ (about 1,000 for oak, maple, beech: USDA Wood Handbook 2010, Tables 4-1 and 5-3a)", param_on_release});
   v(p.modulus, param_info{"youngs_modulus", "Young's modulus", "E", 0.5f, 30, "Stiffness of green wood, GPa (8.6 white oak, 9.3 red oak, 10.7 sugar maple: Wood Handbook 2010, Table 5-3a); a branch's stiffness is E·πr⁴/4", param_log | param_on_release});

@@ -13,6 +13,7 @@
 #include <thread>
 #include <tuple>
 
+#include "generators/job_pool.h"
 #include "render/archetype_canvas.h"
 #include "render/textures.h"
 
@@ -115,17 +116,11 @@ const bark_texture_set& bark_archetype_textures(bark_archetype a, int size, uint
 }
 
 namespace {
-// Runs job(0 .. jobs-1) on `threads` threads taking jobs in order from a shared counter.
+// Runs job(0 .. jobs-1) on the calling thread and threads - 1 helpers of the shared pool, in order
+// from a shared counter.
 template <class Job>
 void run_jobs(int jobs, int threads, Job&& job) {
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    for (int j; (j = next.fetch_add(1)) < jobs;) job(j);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  parallel_jobs(size_t(std::max(jobs, 0)), [&](size_t j) { job(int(j)); }, std::max(threads, 1));
 }
 // Jobs 0..leaf_archetype_count-1 are the leaf sets, then the barks; the costliest first (barks
 // rank above every card), so two threads finish close together.

@@ -6,6 +6,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "generators/job_pool.h"
 #include "render/mesh.h"
 
 namespace sylva {
@@ -58,15 +59,18 @@ void bake_sky(leaf_grid& g, float window) {
             const int ax = x + dx, ay = y + 1, az = z + dz;
             prefix[c] = lad[c] + (g.inside(ax, ay, az) ? prefix[g.at(ax, ay, az)] : 0.0f);
           }
-      for (int y = 0; y < g.ny; ++y)
-        for (int z = 0; z < g.nz; ++z)
-          for (int x = 0; x < g.nx; ++x) {
-            const size_t c = g.at(x, y, z);
-            const int bx = x + steps * dx, by = y + steps, bz = z + steps * dz;
-            const float beyond = g.inside(bx, by, bz) ? prefix[g.at(bx, by, bz)] : 0.0f;
-            const float depth = std::max(prefix[c] - beyond - lad[c], 0.0f) * ds;   // the cell's own leaves do not shade it
-            sky[c] += w * std::exp(-0.5f * depth);
-          }
+      // Layers in parallel: each cell gets its directions' terms in the same order as on one thread.
+      parallel_chunks(size_t(g.ny), 4, [&](size_t y0, size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+          for (int z = 0; z < g.nz; ++z)
+            for (int x = 0; x < g.nx; ++x) {
+              const size_t c = g.at(x, y, z);
+              const int bx = x + steps * dx, by = y + steps, bz = z + steps * dz;
+              const float beyond = g.inside(bx, by, bz) ? prefix[g.at(bx, by, bz)] : 0.0f;
+              const float depth = std::max(prefix[c] - beyond - lad[c], 0.0f) * ds;   // the cell's own leaves do not shade it
+              sky[c] += w * std::exp(-0.5f * depth);
+            }
+      });
       weights += w;
     }
   for (float& s : sky) s /= weights;
@@ -116,8 +120,18 @@ void bake_crown_occlusion(tree_mesh& m) {
     const float sky = near ? g.sample(p) : 1.0f;
     return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
   };
-  for (size_t i = 0; i < m.position.size(); ++i) m.occlusion[i] = visibility(m.position[i]);
-  for (leaf_instance& l : m.leaves) l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
+  // Visibility is a function of the position alone, and the mesh repeats positions in runs (a ring's
+  // seam vertex is its first one again; a cap's apex ring is one point stride times): a vertex equal
+  // to the one before takes its value instead of sampling again, which changes no bit.
+  // Chunks of vertices and leaves on the shared pool: each writes only its own, so the bytes are the
+  // single thread's.
+  parallel_chunks(m.position.size(), 8192, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
+  });
+  parallel_chunks(m.leaves.size(), 8192, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) m.leaves[k].occlusion = uint8_t(std::lround(255.0f * visibility(m.leaves[k].position)));
+  });
 }
 
 }  // namespace sylva

@@ -19,7 +19,8 @@ struct lod_params {
 };
 
 template <params_of<lod_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_render);   // LODs are built from the kept mesh
   v(p.lod1_budget, param_info{"lod1_budget", "LOD1 budget", "", 1, 100, "Triangles of LOD1 in percent of LOD0 (fewer radial segments, thin branches dropped, leaves merged into bigger cards)", 0, "Level of detail"});
   v(p.lod2_budget, param_info{"lod2_budget", "LOD2 budget", "", 1, 100, "Triangles of LOD2 in percent of LOD0"});
   v(p.lod3_budget, param_info{"lod3_budget", "LOD3 budget", "", 1, 100, "Triangles of LOD3 in percent of LOD0"});

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <functional>
 
+#include "generators/job_pool.h"
+#include "generators/timing.h"
 #include "generators/vec_util.h"
 
 namespace sylva {
@@ -125,8 +127,17 @@ glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& ro
   return t.position[par] + disp[par] + rotate_by(d, rot[k]);
 }
 
-tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed) {
+tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed, mesh_stage_times* times) {
   tree_mesh m;
+  mesh_stage_times unused;
+  mesh_stage_times& st = times ? *times : unused;
+  st = {};
+  auto lap_start = clock_type::now();
+  auto lap = [&](double& field) {   // adds the time since the last lap to one stage
+    const auto now = clock_type::now();
+    field += ms_between(lap_start, now);
+    lap_start = now;
+  };
   m.steps = std::max(t.steps, 0);
   m.radial_segments = std::clamp(p.radial_segments, 3, 256);
   m.index_end.assign(size_t(m.steps) + 1, 0);
@@ -296,6 +307,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     return uint32_t(at);
   };
 
+  lap(st.frame);
+
   // Hermite form of each internode's centripetal Catmull-Rom segment (Yuksel, Schaefer & Keyser
   // 2011): the end velocities scaled by the segment's knot interval |b - a|^(1/2). A lateral leaves
   // its parent straight along its first internode; the trunk leaves its upright root upright.
@@ -371,6 +384,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
             (pass == 0 ? collar_score[i] > threshold : collar_score[i] == threshold)) { collared[i] = 1; --left; }
       }
   }
+
+  lap(st.budget);
 
   constexpr uint32_t none = UINT32_MAX;
   std::vector<glm::vec3> frame(n);
@@ -498,6 +513,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     if (p.caps && cont[i] < 0) cap_apex[i] = emit_apex(b + tangent[i] * ri, tangent[i], v + ri * uv_repeat, uint32_t(i));
   }
   off[n] = uint32_t(chain.size());
+  lap(st.rings);
 
   // Each node's triangles (its internode through its rings, and its cap) sorted by born step so
   // that step s draws a prefix of the index buffer (DESIGN §5).
@@ -518,9 +534,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
   for (size_t s = 0; s < item_end.size(); ++s) m.index_end[s] = uint32_t(cum[item_end[s]]);
   const size_t total = cum.back();
   m.index.resize(total);
-  uint32_t* out = m.index.data();
-  for (uint32_t k : perm) {
-    const uint32_t i = item[k];
+  // Each item's triangles go to their own range (cum), so chunks of items fill in parallel.
+  parallel_chunks(perm.size(), 2048, [&](size_t begin, size_t end) {
+  for (size_t pk = begin; pk < end; ++pk) {
+    uint32_t* out = m.index.data() + cum[pk];
+    const uint32_t i = item[perm[pk]];
     for (uint32_t r = off[i]; r + 1 < off[i + 1]; ++r) {
       const uint32_t lo = chain[r], hi = chain[r + 1];
       for (int s = 0; s < seg; ++s) {
@@ -539,12 +557,16 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
       }
     }
   }
+  });
+
+  lap(st.index);
 
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
     foliage placed;
     const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
     if (!own) placed = place_leaves(t, p.leaves, seed);
+    lap(st.leaf_place);
     const std::vector<leaf>& src = own ? t.leaves : placed.leaves;   // the generator's, uncopied
     const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
@@ -567,15 +589,23 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     m.leaves.resize(m.leaf_end.back());
     const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
     const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
-    for (size_t k = 0; k < end; ++k) {
-      const leaf& l = src[k];
-      if (!usable(l)) continue;
-      const glm::quat q = l.orientation;
-      const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
-      m.leaves[cursor[step_of(l)]++] = {gnarled_point(t, rot, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale, l.born, l.died,
-                                        uint32_t(l.node), tex};
-    }
+    // Each leaf's slot first (the counting sort's order), then the slots filled in parallel.
+    std::vector<uint32_t> slot(end, UINT32_MAX);
+    for (size_t k = 0; k < end; ++k)
+      if (usable(src[k])) slot[k] = cursor[step_of(src[k])]++;
+    parallel_chunks(end, 4096, [&](size_t begin, size_t stop) {
+      for (size_t k = begin; k < stop; ++k) {
+        if (slot[k] == UINT32_MAX) continue;
+        const leaf& l = src[k];
+        const glm::quat q = l.orientation;
+        const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
+        m.leaves[slot[k]] = {gnarled_point(t, rot, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
+                             l.born, l.died, uint32_t(l.node), tex};
+      }
+    });
   }
+
+  lap(st.leaf_sort);
 
   if (!m.position.empty() || !m.leaves.empty()) {
     glm::vec3 lo(1e30f), hi(-1e30f);
@@ -587,7 +617,9 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed)
     m.bounds_min = lo;
     m.bounds_max = hi;
   }
+  lap(st.bounds);
   bake_crown_occlusion(m);
+  lap(st.occlusion);
   return m;
 }
 

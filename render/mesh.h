@@ -41,7 +41,8 @@ struct mesh_params {
 };
 
 template <params_of<mesh_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_remesh);   // mesh_tree alone reads them
   v(p.radial_segments, param_info{"radial_segments", "Radial segments", "", 3, 32, "Vertices around each bark ring", 0, "Bark mesh"});
   v(p.uv_repeat, param_info{"uv_repeat", "Bark UV repeat", "", 0.05f, 20, "Bark texture repeats per metre along a branch", param_log});
   v(p.min_radius, param_info{"min_radius", "Minimum radius", "", 0.00001f, 0.05f, "Thinner branches are drawn at this radius (metres)", param_log});
@@ -110,7 +111,17 @@ struct tree_mesh {
   size_t triangles() const { return index.size() / 3; }
 };
 
-tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1);
+// Wall milliseconds of each stage of one mesh_tree call (`sylva bench --stages`): the per-node
+// frame (radii, gnarl, axes, curve velocities, flare, texture wraps), the detail budget (curve,
+// collar and flare rings chosen), the bark rings, the index buffer, leaf placement (the foliage
+// model, or the generator's leaves taken), the leaves sorted by step with their gnarl, the bounds,
+// and the crown occlusion bake.
+struct mesh_stage_times {
+  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, leaf_sort = 0, bounds = 0, occlusion = 0;
+  double total() const { return frame + budget + rings + index + leaf_place + leaf_sort + bounds + occlusion; }
+};
+
+tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1, mesh_stage_times* times = nullptr);
 
 // Crown ambient occlusion (issues 13, 23): bark vertices and leaves deep inside the crown, and
 // inside each clump of it, see less sky. The crown is the ellipsoid spanned by the leaves' box (d:
@@ -129,6 +140,10 @@ std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<g
 // Where a point hung on node k (a leaf) goes once the gnarl has turned k's internode.
 glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& rot, const std::vector<glm::vec3>& disp,
                         size_t k, const glm::vec3& at);
+
+// FNV-1a over every byte the mesh hands on (vertex arrays, indices, step tables, leaves, radii,
+// bounds): two meshes with one digest are the same bytes, for tests and `bench --stages --json`.
+uint64_t mesh_digest(const tree_mesh& m);
 
 // Checks the mesh invariants (indices in range, offsets monotone, no NaN); "" when valid.
 std::string validate_mesh(const tree_mesh& m);

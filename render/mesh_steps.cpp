@@ -9,6 +9,30 @@
 
 namespace sylva {
 
+uint64_t mesh_digest(const tree_mesh& m) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto bytes = [&](const void* data, size_t size) {
+    const unsigned char* b = static_cast<const unsigned char*>(data);
+    for (size_t k = 0; k < size; ++k) h = (h ^ b[k]) * 0x100000001b3ull;
+  };
+  auto all = [&](const auto& v) {
+    const uint64_t count = v.size();
+    bytes(&count, sizeof count);
+    if (!v.empty()) bytes(v.data(), v.size() * sizeof v[0]);
+  };
+  all(m.position), all(m.normal), all(m.uv), all(m.node), all(m.occlusion), all(m.index), all(m.index_end);
+  for (const leaf_instance& l : m.leaves) {   // field by field: the struct has padding
+    bytes(&l.position, sizeof l.position), bytes(&l.orientation, sizeof l.orientation), bytes(&l.size, sizeof l.size);
+    bytes(&l.born, sizeof l.born), bytes(&l.died, sizeof l.died), bytes(&l.node, sizeof l.node);
+    bytes(&l.texture, 1), bytes(&l.occlusion, 1);
+  }
+  all(m.leaf_end), all(m.final_radius);
+  bytes(&m.bounds_min, sizeof m.bounds_min), bytes(&m.bounds_max, sizeof m.bounds_max);
+  bytes(&m.steps, sizeof m.steps), bytes(&m.radial_segments, sizeof m.radial_segments);
+  bytes(m.message.data(), m.message.size());
+  return h;
+}
+
 std::string validate_mesh(const tree_mesh& m) {
   const size_t nv = m.position.size();
   if (m.normal.size() != nv || m.uv.size() != nv || m.node.size() != nv) return "vertex arrays differ in size";

@@ -93,7 +93,8 @@ struct render_params {
 };
 
 template <params_of<render_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_render);   // the renderer and exporters read them, mesh_tree never
   v(p.sun_azimuth, param_info{"sun_azimuth", "Sun azimuth", "", -180, 180, "Compass direction of the sun", param_degrees, "Sun and sky"});
   v(p.sun_elevation, param_info{"sun_elevation", "Sun elevation", "", -10, 90, "Height of the sun above the horizon", param_degrees});
   v(p.physical_sky, param_info{"physical_sky", "Physical sky", "", 0, 1, "Analytic daylight sky (Preetham et al. 1999): it also sets the sun's colour and the sky light; off: the colours below"});

@@ -34,7 +34,8 @@ inline constexpr float wind_strength_max = 2.0f;
 inline constexpr float wind_frequency_min = 0.05f, wind_frequency_max = 3.0f;
 
 template <params_of<wind_params> P, class V>
-void visit_params(P& p, V&& v) {
+void visit_params(P& p, V&& visitor) {
+  auto v = declare_class(visitor, param_render);   // wind sways the kept mesh in the vertex shader
   v(p.enabled, param_info{"wind", "Wind", "", 0, 1, "Sway the tree in the wind (viewport; `sylva export --wind SECONDS` bakes it into glTF)", 0, "Wind"});
   v(p.strength, param_info{"wind_strength", "Strength", "", 0, wind_strength_max, "How far the trunk bends and the branches sway (0 calm, 1 a strong breeze, 2 a storm)"});
   v(p.gustiness, param_info{"wind_gustiness", "Gustiness", "", 0, 1, "Slow swells of the wind: 0 steady, 1 from calm to double strength"});

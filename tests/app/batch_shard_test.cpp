@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "app/cli_batch.h"
-#include "run_sylva.h"
+#include "tests/run_sylva.h"
 
 namespace fs = std::filesystem;
 
