@@ -39,7 +39,7 @@ export const SPECIES_NAMES = {
   birch: ['birch', 'betula'],
   poplar: ['poplar', 'populus'],
   sapling: ['sapling', 'maple', 'acer'], // a young maple: its species or what it is
-  bush: ['bush', 'shrub'],
+  bush: ['bush', 'shrub', 'hazel', 'corylus'], // species_bush is a hazel (docs/SPECIES.md)
   pine: ['pine', 'pinus'],
   spruce: ['spruce', 'picea'],
   fir: ['fir', 'abies'],
