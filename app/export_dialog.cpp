@@ -107,6 +107,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   }
   if (!d.open) return;
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+  ImGui::SetNextWindowPos(ImVec2(c.view_left + 24, c.view_top + 24), ImGuiCond_Appearing);
   if (!ImGui::Begin("Export", &d.open, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::End();
     return;
@@ -124,6 +125,8 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   }
   ImGui::SetNextItemWidth(440);
   ImGui::InputText("Path", &d.path);
+  d.path_at[0] = 0.5f * (ImGui::GetItemRectMin().x + ImGui::GetItemRectMax().x);
+  d.path_at[1] = 0.5f * (ImGui::GetItemRectMin().y + ImGui::GetItemRectMax().y);
   if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: .glb .gltf .obj .json .png");
   int scope = d.final_tree ? 1 : 0;
   ImGui::RadioButton("Current step", &scope, 0);
