@@ -274,6 +274,8 @@ void draw_dialogs(editor_state& e) {
     } else if (e.browse == editor_state::browsing::export_to) {
       e.exporter.path = chosen;
       e.exporter.open = true;
+      e.exporter.export_now = true;   // the browser asked about replacing already: write it now
+      e.exporter.failure.clear();
     } else {
       e.screenshot_to = chosen;
     }

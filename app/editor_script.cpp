@@ -142,6 +142,16 @@ bool run_script(editor_state& e, script_state& sc) {
       sc.frames_left = 3;
     } else if (cmd == "export_path") {   // sets the Export dialog's path as if typed in full
       e.exporter.path = arg;
+    } else if (cmd == "export_as") {   // as File > Export as... with PATH chosen (and any replace confirmed)
+      e.exporter.path = arg;
+      e.exporter.open = true;
+      e.exporter.export_now = true;
+      e.exporter.failure.clear();
+      sc.frames_left = 2;
+    } else if (cmd == "expect_file") {   // waits until the file exists
+      std::error_code ec;
+      done = fs::exists(arg, ec) && fs::file_size(arg, ec) > 0;
+      if (!done && waited > 60) return fail("no file " + arg);
     } else if (cmd == "expect_export_path") {
       if (e.exporter.path != arg) return fail("the export path is \"" + e.exporter.path + "\"");
     } else if (cmd == "expect_window") {   // expect_window shortcuts|library 0|1

@@ -35,6 +35,9 @@ struct export_dialog_state {
   std::string estimate;                    // "", "estimating...", "about 1.2 MiB, 34,000 triangles"
   std::string warning;                     // the last export's warning (a user texture it could not use)
   std::string failure;                     // the last export's error, shown in the dialog until the next try
+  bool export_now = false;                 // Export as... chose the path (and confirmed a replace): export at once
+  std::string confirm_replace;             // the existing file the next Export would replace (asked once)
+  std::string shown_path;                  // the path as drawn last frame: an edit clears the old failure
   float path_at[2] = {0, 0};               // the Path field's centre on screen (the scripted test clicks it)
 };
 

@@ -260,7 +260,7 @@ TEST(EditorBench, EditLatencyIsReportedPerPreset) {
 }
 
 // A newcomer on slow frames: a quick click into the Export path and typing straight after it,
-// all queued before the next frame, gives the whole text; a held Ctrl+Z (system repeats) undoes
+// all queued before the next frame, gives the whole text; Export as... writes the file; a held Ctrl+Z (system repeats) undoes
 // one step, not the history; F1 and Ctrl+L open their windows on the first press; Drop B asks
 // only when B has edits of its own.
 TEST(EditorSession, SlowFramesLoseNoTypingAndHeldUndoTakesOneStep) {
@@ -277,6 +277,8 @@ click export_path
 type /proc/x.glb
 frames 4
 expect_export_path /proc/x.glb
+export_as EXPORTED
+expect_file EXPORTED
 show_export 0
 set lambda=0.42
 wait_tree
@@ -310,7 +312,10 @@ answer Drop B
 frames 2
 expect_has_b 0
 )";
-  run_result r = run_script("newcomer", script, preset);
+  std::string with_paths = script;
+  const std::string exported = (test_dir("newcomer") / "home" / "exported.obj").string();
+  for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
+  run_result r = run_script("newcomer", with_paths, preset);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok expect_export_path /proc/x.glb"), std::string::npos) << r.output;
