@@ -151,7 +151,7 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "expect_file") {   // waits until the file exists
       std::error_code ec;
       done = fs::exists(arg, ec) && fs::file_size(arg, ec) > 0;
-      if (!done && waited > 60) return fail("no file " + arg);
+      if (!done && waited > 180) return fail("no file " + arg);
     } else if (cmd == "expect_export_path") {
       if (e.exporter.path != arg) return fail("the export path is \"" + e.exporter.path + "\"");
     } else if (cmd == "expect_window") {   // expect_window shortcuts|library 0|1

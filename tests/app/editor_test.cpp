@@ -277,6 +277,8 @@ click export_path
 type /proc/x.glb
 frames 4
 expect_export_path /proc/x.glb
+show_export 0
+frames 3
 export_as EXPORTED
 expect_file EXPORTED
 show_export 0
@@ -313,7 +315,7 @@ frames 2
 expect_has_b 0
 )";
   std::string with_paths = script;
-  const std::string exported = (test_dir("newcomer") / "home" / "exported.obj").string();
+  const std::string exported = (test_dir("newcomer") / "home" / "exported.json").string();
   for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
   run_result r = run_script("newcomer", with_paths, preset);
   EXPECT_EQ(r.code, 0) << r.output;
