@@ -320,7 +320,8 @@ int run_editor(const editor_options& o) {
       pick_view.w = float(std::max(1, int(view.w) / 2));
       if (e->ab.selected == 1) pick_view.x += pick_view.w, pick_view.w = view.w - pick_view.w;
     }
-    const bool on_gizmo = draw_view_gizmo(e->camera, view);
+    // The gizmo sits in the view's corner; with A and B on screen it would cover one slot's tree only.
+    const bool on_gizmo = !ab_showing(e->ab) && draw_view_gizmo(e->camera, view);
     if (!ab_drag && !on_gizmo) handle_mouse(*e, pick_view);
     draw_prune_overlay(e->prune, e->shown && e->shown->skeleton ? e->shown->skeleton.get() : nullptr, e->step,
                        e->camera, pick_view);

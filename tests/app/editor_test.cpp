@@ -261,8 +261,7 @@ TEST(EditorBench, EditLatencyIsReportedPerPreset) {
 
 // A newcomer on slow frames: a quick click into the Export path and typing straight after it,
 // all queued before the next frame, gives the whole text; Export as... writes the file; a held Ctrl+Z (system repeats) undoes
-// one step, not the history; F1 and Ctrl+L open their windows on the first press; Drop B asks
-// only when B has edits of its own.
+// one step, not the history; F1 and Ctrl+L open their windows on the first press.
 TEST(EditorSession, SlowFramesLoseNoTypingAndHeldUndoTakesOneStep) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   sylva::preset bush;
@@ -295,14 +294,33 @@ key f1
 expect_window shortcuts 1
 key ctrl+l
 expect_window library 1
+)";
+  std::string with_paths = script;
+  const std::string exported = (test_dir("newcomer") / "home" / "exported.json").string();
+  for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
+  run_result r = run_script("newcomer", with_paths, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok expect_export_path /proc/x.glb"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok expect_window library 1"), std::string::npos) << r.output;
+}
+
+// Drop B throws B away at once while B holds nothing of its own, and asks once B has edits.
+TEST(EditorSession, DropBAsksOnlyWhenBHasEdits) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = test_dir("dropb_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string script = R"(wait_tree
 ab_duplicate
-ab_wait
 ab_drop
+expect_no_prompt
 expect_has_b 0
 ab_duplicate
-ab_wait
 set lambda=0.5
-wait_tree
+frames 2
 ab_drop
 expect_prompt Drop slot B?
 answer Keep B
@@ -314,12 +332,8 @@ answer Drop B
 frames 2
 expect_has_b 0
 )";
-  std::string with_paths = script;
-  const std::string exported = (test_dir("newcomer") / "home" / "exported.json").string();
-  for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
-  run_result r = run_script("newcomer", with_paths, preset);
+  run_result r = run_script("dropb", script, preset);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("ok expect_export_path /proc/x.glb"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("ok expect_window library 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok answer Keep B"), std::string::npos) << r.output;
 }
