@@ -197,7 +197,7 @@ bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std
   if (!ImGui::CollapsingHeader("Growth phases", ImGuiTreeNodeFlags_DefaultOpen)) return false;
   bool changed = false;
   ImGui::TextWrapped("Keyframes change a generator parameter from a step on: tick \"From this step on\" on the Tree "
-                     "tab at a step, then move a slider. %s.", keyframe_step_meaning(spec));
+                     "tab at a step, then move a slider (%s).", keyframe_step_meaning(spec));
   int remove = -1;
   if (!spec.keyframes.empty() && ImGui::BeginTable("##keys", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("step", ImGuiTableColumnFlags_WidthFixed, 44);
