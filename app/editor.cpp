@@ -21,6 +21,7 @@
 #include "app/editor_settings.h"
 #include "app/editor_state.h"
 #include "app/headless.h"
+#include "app/view_gizmo.h"
 
 namespace sylva {
 
@@ -33,11 +34,18 @@ void handle_keys(editor_state& e) {
   if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
   if (io.WantTextInput) return;
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z)) {
+  // Undo and redo take one step per press: a held Ctrl+Z does not run through the history.
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z) && !e.input.is_repeat(GLFW_KEY_Z)) {
     if (shift) apply_undo(e, e.redo, e.undo);
     else apply_undo(e, e.undo, e.redo);
   }
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y)) apply_undo(e, e.redo, e.undo);
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.redo, e.undo);
+  // Front, right side and top views (Blender's numpad keys; Ctrl: the opposite side).
+  const struct { int kp, row; view_axis axis, opposite; } views[] = {{GLFW_KEY_KP_1, GLFW_KEY_1, view_axis::front, view_axis::back},
+                                                                     {GLFW_KEY_KP_3, GLFW_KEY_3, view_axis::right, view_axis::left},
+                                                                     {GLFW_KEY_KP_7, GLFW_KEY_7, view_axis::top, view_axis::bottom}};
+  for (const auto& v : views)
+    if (ImGui::IsKeyPressed(v.kp) || ImGui::IsKeyPressed(v.row)) snap_view(e.camera, ctrl ? v.opposite : v.axis);
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
@@ -61,8 +69,9 @@ void handle_mouse(editor_state& e, const view_rect& view) {
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 9 && e.shown && e.shown->skeleton)
     pick_in_view(e.prune, *e.shown->skeleton, e.step, e.camera, view, io.MousePos.x, io.MousePos.y);
   const ImVec2 d = io.MouseDelta;
-  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) orbit_camera_rotate(e.camera, d.x, d.y);
-  if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0))
+  // A drag starts past three pixels from the press (the pick's slack), so a click never orbits.
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 3)) orbit_camera_rotate(e.camera, d.x, d.y);
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 3) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 3))
     orbit_camera_pan(e.camera, d.x, d.y, viewport_height);
   if (io.MouseWheel != 0) orbit_camera_zoom(e.camera, io.MouseWheel);
 }
@@ -140,6 +149,17 @@ int run_editor(const editor_options& o) {
       e->doc = loaded;
       e->path = o.preset_path;
       if (!r.warnings.empty()) set_status(*e, r.warnings.front());
+    }
+  }
+  // With no preset named, a newcomer meets a species tree (the oak), not an abstract L-system.
+  if (o.preset_path.empty() && o.screenshot_path.empty() && !std::getenv("SYLVA_SCRIPT")) {
+    for (const fs::path& d : preset_dirs()) {
+      preset oak;
+      if (const fs::path p = d / "species_oak.json"; fs::exists(p) && load_preset_file(p.string(), oak).ok) {
+        e->doc = oak;
+        e->path = p.string();
+        break;
+      }
     }
   }
   e->undo_base = e->doc;
@@ -261,6 +281,7 @@ int run_editor(const editor_options& o) {
     feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    feed_mouse(e->input, ImGui::GetIO());   // after the backend's poll: buttons and position in order
     ImGui::NewFrame();
 
     int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
@@ -269,7 +290,7 @@ int run_editor(const editor_options& o) {
 
     // Build the UI first; only then read the state for drawing (DESIGN §9).
     e->hold_post = false;
-    timeline_markers = !e->doc.spec.keyframes.empty();
+    timeline_markers = !e->doc.spec.keyframes.empty() || !e->doc.spec.cuts.empty();
     e->prompts_shown.clear();
     if (e->close_requested) {
       e->close_requested = false;
@@ -288,7 +309,7 @@ int run_editor(const editor_options& o) {
     draw_shortcuts(*e);
     draw_dialogs(*e);
     if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
-    draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera}, e->message, e->message_is_error);
+    draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera, left, top}, e->message, e->message_is_error);
     handle_keys(*e);
     const view_rect view{left, top, float(win_w) - left, bottom - top};
     // A slot whose growth failed or waits marks its (older) tree stale.
@@ -303,7 +324,9 @@ int run_editor(const editor_options& o) {
       pick_view.w = float(std::max(1, int(view.w) / 2));
       if (e->ab.selected == 1) pick_view.x += pick_view.w, pick_view.w = view.w - pick_view.w;
     }
-    if (!ab_drag) handle_mouse(*e, pick_view);
+    // The gizmo sits in the view's corner; with A and B on screen it would cover one slot's tree only.
+    const bool on_gizmo = !ab_showing(e->ab) && draw_view_gizmo(e->camera, view);
+    if (!ab_drag && !on_gizmo) handle_mouse(*e, pick_view);
     draw_prune_overlay(e->prune, e->shown && e->shown->skeleton ? e->shown->skeleton.get() : nullptr, e->step,
                        e->camera, pick_view);
     record_undo(*e);

@@ -155,8 +155,8 @@ bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std:
   const ImU32 sel = IM_COL32(255, 200, 80, 255);
   // The stale mark goes first so that a long name cannot clip it off.
   const char* stale = "stale (last tree, see the status bar) - ";
-  const std::string a = std::string("A: ") + (a_stale ? stale : "") + a_label + (s.selected == 0 ? "  (edited)" : "");
-  const std::string b = std::string("B: ") + (b_stale ? stale : "") + b_label + (s.selected == 1 ? "  (edited)" : "");
+  const std::string a = std::string("A: ") + (a_stale ? stale : "") + a_label + (s.selected == 0 ? "  (selected)" : "");
+  const std::string b = std::string("B: ") + (b_stale ? stale : "") + b_label + (s.selected == 1 ? "  (selected)" : "");
   const ImU32 red = IM_COL32(255, 115, 100, 255);
   const ImVec4 clip_a(x, y, mid - pad, y + h), clip_b(mid, y, x + w - pad, y + h);   // each label stays in its part
   // A dark band under each label keeps it readable over a bright sky.

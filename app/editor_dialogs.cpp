@@ -1,5 +1,6 @@
 // The menu bar and the dialogs: file browsers, unsaved changes, large tree, recovery, shortcuts, messages.
 #include "app/editor_state.h"
+#include "app/editor_undo_names.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,16 +45,19 @@ void draw_menu(editor_state& e) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open preset...", "Ctrl+O")) e.open_picker = true;
+    const std::vector<std::string> recent = recent_presets(e.recent);
+    if (ImGui::BeginMenu("Open recent", !recent.empty())) {
+      for (const std::string& p : recent)
+        if (ImGui::MenuItem(fs::path(p).filename().string().c_str())) request(e, editor_state::then::open, p);
+        else if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.c_str());
+      ImGui::EndMenu();
+    }
     ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_command(e);
     if (ImGui::MenuItem("Save as...")) e.open_save_as = true;
     if (ImGui::MenuItem("Export...", nullptr, e.exporter.open)) {
-      e.exporter.open = !e.exporter.open;
-      // Exports land in the user's folder, named after the tree, unless a place was chosen already.
-      std::error_code ec;
-      if (e.exporter.open) fs::create_directories(e.home, ec);
-      if (e.exporter.open && fs::path(e.exporter.path).is_relative())
-        e.exporter.path = (fs::path(e.home) / (fs::path(default_save_path(e)).stem().string() + fs::path(e.exporter.path).extension().string())).string();
+      if (e.exporter.open) e.exporter.open = false;
+      else open_export_dialog(e);
     }
     if (ImGui::MenuItem("Export as...")) e.browse_export = true;
     if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
@@ -64,15 +68,24 @@ void draw_menu(editor_state& e) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
-    if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !e.undo.empty())) apply_undo(e, e.undo, e.redo);
-    if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, !e.redo.empty())) apply_undo(e, e.redo, e.undo);
+    // Each entry says what it undoes ("Undo Influence radius").
+    const std::string undo_label = "Undo " + (e.undo.empty() ? std::string() : change_name(e.undo.back(), e.doc)) + "##undo";
+    const std::string redo_label = "Redo " + (e.redo.empty() ? std::string() : change_name(e.doc, e.redo.back())) + "##redo";
+    if (ImGui::MenuItem(undo_label.c_str(), "Ctrl+Z", false, !e.undo.empty())) apply_undo(e, e.undo, e.redo);
+    if (ImGui::MenuItem(redo_label.c_str(), "Ctrl+Shift+Z", false, !e.redo.empty())) apply_undo(e, e.redo, e.undo);
+    if (!e.undo.empty() && ImGui::BeginMenu("Undo history")) {   // newest first; a click goes back to it
+      int go_back = -1;
+      for (size_t k = e.undo.size(); k-- > 0 && e.undo.size() - k <= 20;) {
+        const preset& after = k + 1 < e.undo.size() ? e.undo[k + 1] : e.doc;
+        ImGui::PushID(int(k));
+        if (ImGui::MenuItem(change_name(e.undo[k], after).c_str())) go_back = int(e.undo.size() - k);
+        ImGui::PopID();
+      }
+      ImGui::EndMenu();
+      for (int i = 0; i < go_back; ++i) apply_undo(e, e.undo, e.redo);
+    }
     ImGui::Separator();
-    int64_t budget = e.worker->node_budget.load();
-    const int64_t lo = 1000, hi = 50000000;
-    ImGui::SetNextItemWidth(160);
-    if (ImGui::SliderScalar("Node budget", ImGuiDataType_S64, &budget, &lo, &hi, "%lld", ImGuiSliderFlags_Logarithmic))
-      e.worker->node_budget = std::clamp(budget, lo, hi);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A request estimated to grow more nodes than this asks before growing");
+    draw_node_budget(e);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -93,6 +106,51 @@ void draw_menu(editor_state& e) {
   ImGui::EndMainMenuBar();
 }
 
+void open_export_dialog(editor_state& e) {
+  e.exporter.open = true;
+  // Exports land in the user's folder, named after the tree, unless a place was chosen already.
+  std::error_code ec;
+  fs::create_directories(e.home, ec);
+  if (fs::path(e.exporter.path).is_relative())
+    e.exporter.path = (fs::path(e.home) / (fs::path(default_save_path(e)).stem().string() + fs::path(e.exporter.path).extension().string())).string();
+}
+
+void draw_node_budget(editor_state& e) {
+  // Typed and applied on Enter (a half-typed number is not clamped under the cursor), or picked.
+  static int64_t typed = 0;
+  static bool editing = false;
+  constexpr int64_t lo = 1000, hi = 50000000;
+  if (!editing) typed = e.worker->node_budget.load();
+  ImGui::SetNextItemWidth(130 * ui_scale);
+  if (ImGui::InputScalar("Node budget", ImGuiDataType_S64, &typed, nullptr, nullptr, "%lld",
+                         ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CharsDecimal))
+    e.worker->node_budget = std::clamp(typed, lo, hi);
+  editing = ImGui::IsItemActive();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A request estimated to grow more nodes than this asks before growing (%s to %s; Enter applies)",
+                      count_text(double(lo)).c_str(), count_text(double(hi)).c_str());
+  for (const int64_t v : {int64_t(100000), int64_t(1000000), int64_t(10000000)}) {
+    ImGui::SameLine();
+    ImGui::PushID(int(v / 1000));
+    if (ImGui::SmallButton(v >= 1000000 ? (std::to_string(v / 1000000) + "M").c_str() : (std::to_string(v / 1000) + "k").c_str()))
+      e.worker->node_budget = v;
+    ImGui::PopID();
+  }
+}
+
+void draw_output_extras(editor_state& e) {
+  ImGui::Separator();
+  ImGui::TextUnformatted("Growth");
+  draw_node_budget(e);
+  ImGui::Separator();
+  ImGui::TextUnformatted("Files");
+  if (ImGui::Button("Export...")) open_export_dialog(e);
+  ImGui::SameLine();
+  if (ImGui::Button("Export as...")) e.browse_export = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot (F12)")) e.screenshot_requested = true;
+}
+
 void draw_shortcuts(editor_state& e) {
   if (!e.show_shortcuts) return;
   ImGui::SetNextWindowSize(ImVec2(560 * ui_scale, 0), ImGuiCond_Appearing);
@@ -103,6 +161,9 @@ void draw_shortcuts(editor_state& e) {
         {"Ctrl+O", "open a preset"}, {"Ctrl+L", "preset library"}, {"Ctrl+Q", "quit (asks about unsaved changes)"},
         {"Space", "play / pause the growth"}, {"Home, End", "first / last step"}, {"Left, Right", "one step back / forward"},
         {"Esc", "cancel a long regrow; close a dialog"}, {"F12", "screenshot of the 3D view"}, {"F1", "this list"},
+        {"Numpad 1, 3, 7 (or 1, 3, 7)", "front, right, top view (Ctrl: the opposite side)"},
+        {"Click the axis gizmo", "view along that axis"},
+        {"Drag a slider", "change it; Shift: fine steps; Ctrl+click: type a value"},
         {"Right-click a slider", "reset it to its default"}};
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
       for (const auto& r : rows) {
@@ -213,6 +274,8 @@ void draw_dialogs(editor_state& e) {
     } else if (e.browse == editor_state::browsing::export_to) {
       e.exporter.path = chosen;
       e.exporter.open = true;
+      e.exporter.export_now = true;   // the browser asked about replacing already: write it now
+      e.exporter.failure.clear();
     } else {
       e.screenshot_to = chosen;
     }
@@ -284,7 +347,7 @@ void draw_dialogs(editor_state& e) {
       ImGui::Text("This will grow about %s nodes, ~%s, ~%.1f GB.", count_text(b->estimated_nodes).c_str(),
                   seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
       if (!b->estimate_note.empty()) ImGui::TextDisabled("Keyframes and cuts after the trial's reach are %s.", b->estimate_note.c_str());
-      ImGui::Text("The node budget is %s (Edit > Preferences).", count_text(double(e.worker->node_budget.load())).c_str());
+      ImGui::Text("The node budget is %s (the Edit menu or the Output tab).", count_text(double(e.worker->node_budget.load())).c_str());
       ImGui::TextDisabled("The tree on screen stays until you choose.");
     }
     if (scripted_button(e, "Grow anyway") && b) {
@@ -299,6 +362,22 @@ void draw_dialogs(editor_state& e) {
       e.budget_answer.reset();
       ImGui::CloseCurrentPopup();
     }
+    ImGui::EndPopup();
+  }
+  if (e.ab.ask_drop) {
+    ImGui::OpenPopup("Drop slot B?");
+    e.ab.ask_drop = false;
+  }
+  if (ImGui::BeginPopupModal("Drop slot B?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Drop slot B?");
+    ImGui::TextUnformatted("Slot B has edits of its own. Dropping it throws them away (Save B first to keep them).");
+    if (scripted_button(e, "Drop B")) {
+      e.ab.drop_confirmed = true;
+      handle_ab(e, ab_action::drop);
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (scripted_button(e, "Keep B") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
   if (e.open_recovery) {

@@ -1,6 +1,7 @@
 // The document: presets opened and saved, unsaved work (the quit and open prompts, recovery), undo.
 #include "app/editor_state.h"
 #include "app/editor_settings.h"
+#include "app/editor_undo_names.h"
 
 #include <algorithm>
 #include <cmath>
@@ -234,10 +235,13 @@ void save_command(editor_state& e) {
 
 void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>& to) {
   if (from.empty()) return;
+  const bool undoing = &from == &e.undo;
+  const std::string what = undoing ? change_name(from.back(), e.doc) : change_name(e.doc, from.back());
   to.push_back(e.doc);
   e.doc = from.back();
   from.pop_back();
   e.undo_base = e.doc;
+  if (!what.empty()) set_status(e, (undoing ? "Undone: " : "Redone: ") + what);
 }
 
 // One undo step per completed edit: nothing is recorded while a widget is held.

@@ -42,6 +42,15 @@ void note_recent(std::vector<std::string>& recent, const std::string& path) {
   if (recent.size() > 10) recent.resize(10);
 }
 
+std::vector<std::string> recent_presets(const std::vector<std::string>& recent) {
+  std::vector<std::string> out;
+  for (const std::string& p : recent) {
+    std::error_code ec;
+    if (fs::path(p).extension() == ".json" && fs::is_regular_file(p, ec)) out.push_back(p);
+  }
+  return out;
+}
+
 namespace {
 
 void refresh(file_browser& b) { b.error = list_folder(b.folder, b.extensions, b.all_files, b.entries); }

@@ -43,5 +43,7 @@ std::string draw_file_browser(file_browser& b, const std::vector<std::string>& r
 
 // Adds `path` to the front of the recent list (at most 10, no duplicates).
 void note_recent(std::vector<std::string>& recent, const std::string& path);
+// The presets among the recent files (newest first) that still exist: File > Open recent.
+std::vector<std::string> recent_presets(const std::vector<std::string>& recent);
 
 }  // namespace sylva

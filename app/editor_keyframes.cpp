@@ -9,6 +9,18 @@
 
 namespace sylva {
 
+bool follow_step(keyframe_panel_state& s, int step) {
+  if (!s.from_step) {
+    s.from_step_at = -1;
+    return false;
+  }
+  if (s.from_step_at < 0) s.from_step_at = step;
+  if (step == s.from_step_at && step >= 1) return false;
+  s.from_step = false;
+  s.from_step_at = -1;
+  return true;
+}
+
 generator_params params_at_step(const tree_spec& spec, int step) {
   return std::visit([&](const auto& p) -> generator_params { return params_at_step(p, spec.keyframes, step); },
                     spec.params);
@@ -159,14 +171,12 @@ bool edit_keyframe_value(tree_spec& spec, keyframe& k, std::string& error) {
 
 }  // namespace
 
-bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std::string& error) {
-  if (!ImGui::CollapsingHeader("Growth phases", spec.keyframes.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen)) return false;
-  bool changed = false;
+void draw_from_step_switch(keyframe_panel_state& s, const tree_spec& spec, int step) {
   const char* meaning = keyframe_step_meaning(spec);
   const auto* l = std::get_if<lsystem_params>(&spec.params);
-  const bool available = !(l && l->mode == lsystem_mode::text);
+  const bool available = !(l && l->mode == lsystem_mode::text) && step >= 1;
   if (!available) ImGui::BeginDisabled();
-  ImGui::Checkbox("From this step on", &s.from_step);
+  if (ImGui::Checkbox("From this step on", &s.from_step) && s.from_step) s.from_step_at = step;
   if (!available) {
     ImGui::EndDisabled();
     s.from_step = false;
@@ -174,11 +184,20 @@ bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("On: moving a generator slider keys its new value from the timeline's step on (a growth\n"
                       "phase); the tree before that step stays exactly as it is. Off: the slider sets the value\n"
-                      "for the whole growth.\n\n%s",
-                      meaning);
-  ImGui::TextWrapped("%s.", meaning);
-  if (s.from_step && step < 1) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "Scrub to step 1 or later to key a value.");
-  else if (s.from_step) ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "Slider edits are keyed at step %d (marked •).", step);
+                      "for the whole growth. It switches itself off when the timeline moves to another step.%s\n\n%s",
+                      step < 1 ? "\n\nScrub to step 1 or later first." : "", meaning);
+  if (s.from_step) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.5f, 0.85f, 1, 1), "edits are keyed at step %d (•)", step);
+  }
+}
+
+bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std::string& error) {
+  (void)s;
+  if (!ImGui::CollapsingHeader("Growth phases", ImGuiTreeNodeFlags_DefaultOpen)) return false;
+  bool changed = false;
+  ImGui::TextWrapped("Keyframes change a generator parameter from a step on: tick \"From this step on\" on the Tree "
+                     "tab at a step, then move a slider (%s).", keyframe_step_meaning(spec));
   int remove = -1;
   if (!spec.keyframes.empty() && ImGui::BeginTable("##keys", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("step", ImGuiTableColumnFlags_WidthFixed, 44);

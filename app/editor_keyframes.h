@@ -10,12 +10,18 @@ namespace sylva {
 
 struct keyframe_panel_state {
   bool from_step = false;   // slider edits of generator parameters become keyframes at the current step
+  int from_step_at = -1;    // the step "from this step on" was switched on at
   int drag_from = -1;       // the step of the marker being dragged (-1: none)
   int drag_to = -1;         // where it would land
   int popup_step = -1;      // the marker whose popup is open
 };
 
 // ---------------------------------------------------------------- display-free (tested)
+
+// "From this step on" keys edits at the step where it was switched on, and only there: moving the
+// timeline to another step switches it off, so that later edits are not keyed without notice.
+// Returns true when it switched off.
+bool follow_step(keyframe_panel_state& s, int step);
 
 // The generator params in effect during growth step `step`.
 generator_params params_at_step(const tree_spec& spec, int step);
@@ -34,9 +40,11 @@ std::string keyframe_text(const tree_spec& spec, const keyframe& k);
 
 // ---------------------------------------------------------------- ImGui
 
-// The "Growth phases" section of the parameter panel: the "from this step on" switch, what a step
-// means for this generator, and the list (step, key, value, delete). Returns true when the spec
-// changed; `error` gets a message for the status bar.
+// The "From this step on" switch, drawn above the generator's sliders it applies to.
+void draw_from_step_switch(keyframe_panel_state& s, const tree_spec& spec, int step);
+// The "Growth phases" section of the parameter panel: what a step means for this generator, and
+// the list (step, key, value, delete). Returns true when the spec changed; `error` gets a message
+// for the status bar.
 bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std::string& error);
 // Markers under the timeline's step slider, spanning [x0, x1] on screen at height y: click jumps to
 // the step, drag moves the step's keyframes, right-click edits or deletes them.

@@ -91,11 +91,14 @@ void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, c
   const glm::vec3 eye = camera_eye(cam) - centre;
   const float azimuth = glm::degrees(std::atan2(eye.x, eye.z));   // from +Z toward +X, as the atlas's views
   const float sun = impostor_sun_azimuth(rp);
-  // A new atlas when what it was (or is being) rendered with changes (its views, size, tints or cut-off).
+  // A new atlas when what it was (or is being) rendered with changes (its views, size, tints, cut-off or season).
   const render_params& ip = s.impostor_params;
   const bool atlas_started = s.impostor || s.build.st != impostor_build::state::idle;
   if (atlas_started && (ip.lod.impostor_views != p.impostor_views || ip.lod.impostor_size != p.impostor_size ||
-                        ip.leaf_color != rp.leaf_color || ip.bark_color != rp.bark_color || ip.alpha_cutoff != rp.alpha_cutoff)) {
+                        ip.leaf_color != rp.leaf_color || ip.bark_color != rp.bark_color || ip.alpha_cutoff != rp.alpha_cutoff ||
+                        // the season colours, thins and shrinks the leaves the atlas shows
+                        ip.season != rp.season || ip.habit != rp.habit || ip.autumn_color != rp.autumn_color ||
+                        ip.autumn_color_2 != rp.autumn_color_2)) {
     drop_impostor(s);
     if (s.uploaded == lod_levels) s.uploaded = -1;
   }

@@ -1,5 +1,7 @@
 // The parameter panel: one slider per declared parameter (visit_params), grouped as declared.
 #include "app/editor_state.h"
+#include "app/editor_panel_tabs.h"
+#include "app/editor_sliders.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +33,20 @@ std::vector<const void*> default_pointers(const P& defaults) {
   return out;
 }
 
+// A thin bar under a drag field: where the value sits in its range (on the log scale when log).
+void range_bar(float value, const param_info& info) {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  const float w = std::min(ImGui::CalcItemWidth(), hi.x - lo.x);
+  float f = 0;
+  if (slider_is_log(info) && info.min > 0)
+    f = std::log(std::max(value, info.min) / info.min) / std::log(info.max / info.min);
+  else if (info.max > info.min)
+    f = (value - info.min) / (info.max - info.min);
+  f = std::clamp(f, 0.0f, 1.0f);
+  ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(lo.x, hi.y - 2 * ui_scale), ImVec2(lo.x + w * f, hi.y),
+                                            IM_COL32(90, 150, 230, 255));
+}
+
 struct param_drawer {
   const std::vector<const void*>& defaults;
   const char* section;     // header for parameters before the first group
@@ -47,6 +63,9 @@ struct param_drawer {
   int keyed_step = -1;
   bool steps_drawn = false;
   size_t index = 0;
+  const char* group_now = nullptr;             // the group of the parameter being visited
+  const std::vector<const char*>* groups = nullptr;   // only these groups (nullptr: all)
+  const std::string* filter = nullptr;         // the search box's text (nullptr or empty: no search)
 
   // "symbol  label##key" in a fixed buffer: building the panel allocates nothing per frame.
   char buffer[256];
@@ -61,19 +80,26 @@ struct param_drawer {
     const T& def = *static_cast<const T*>(defaults[index++]);
     if (info.group || !header_drawn) {
       pending_header = info.group ? info.group : section;
+      group_now = pending_header;
       header_drawn = true;
     }
     // Hidden in the current mode; multi-line texts get their own panel (draw_generator_panel).
     if (!relevant || (info.flags & param_multiline)) return;
+    // Another tab's group, or not what the search asks for.
+    if (groups && std::none_of(groups->begin(), groups->end(), [&](const char* g) { return std::strcmp(g, group_now) == 0; }))
+      return;
+    const bool searching = filter && !filter->empty();
+    if (searching && !param_matches(info, group_now, *filter)) return;
     // A group that continues the one just drawn (nested structs may both name "Leaves") gets no
     // second header.
     if (pending_header && last_header && std::strcmp(pending_header, last_header) == 0) pending_header = nullptr;
     if (pending_header) {
+      if (searching) ImGui::SetNextItemOpen(true);
       open = ImGui::CollapsingHeader(pending_header, ImGuiTreeNodeFlags_DefaultOpen);
       last_header = pending_header;
       pending_header = nullptr;
     }
-    if (!open || ((info.flags & param_advanced) && !show_advanced)) return;
+    if (!open || ((info.flags & param_advanced) && !show_advanced && !searching)) return;
     if constexpr (std::is_same_v<T, std::vector<float>>) {
       if (steps && !steps->empty()) {   // all schedules in one table, where the first one is declared
         if (!steps_drawn) draw_step_table(*steps, hold);
@@ -83,12 +109,24 @@ struct param_drawer {
     }
     ImGui::PushID(info.key);
     const char* l = label(info);
-    const int slider_flags = (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0;
+    const int slider_flags = slider_is_log(info) ? ImGuiSliderFlags_Logarithmic : 0;
     if constexpr (std::is_same_v<T, float>) {
-      const char* fmt = (info.flags & param_degrees) ? "%.1f°" : (info.flags & param_log) ? "%.4g" : "%.3f";
-      ImGui::SliderFloat(l, &value, info.min, info.max, fmt, slider_flags);
+      // A drag, not a jump to the pointer: the whole range takes ~600 pixels, Shift a tenth of
+      // that (ImGui speeds Shift drags up tenfold, hence the extra tenth); Ctrl+click types.
+      const bool fine = ImGui::GetIO().KeyShift;
+      const std::string fmt = slider_format(info);
+      ImGui::DragFloat(l, &value, drag_speed(info, fine) * (fine ? 0.1f : 1.0f), info.min, info.max, fmt.c_str(),
+                       slider_flags | ImGuiSliderFlags_AlwaysClamp);
+      range_bar(value, info);
     } else if constexpr (std::is_same_v<T, int>) {
-      ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
+      if (info.max - info.min > 200) {   // wide integer ranges drag too (point counts, caps)
+        const bool fine = ImGui::GetIO().KeyShift;
+        ImGui::DragInt(l, &value, std::max(drag_speed(info, fine) * (fine ? 0.1f : 1.0f), 0.02f), int(info.min),
+                       int(info.max), "%d", slider_flags | ImGuiSliderFlags_AlwaysClamp);
+        range_bar(float(value), info);
+      } else {
+        ImGui::SliderInt(l, &value, int(info.min), int(info.max), "%d", slider_flags);
+      }
     } else if constexpr (std::is_same_v<T, bool>) {
       ImGui::Checkbox(l, &value);
     } else if constexpr (std::is_enum_v<T>) {
@@ -131,8 +169,17 @@ struct param_drawer {
       ImGui::SameLine();
       if (ImGui::SmallButton("-") && !value.empty()) value.pop_back();
     }
-    if (ImGui::IsItemHovered() && info.help && *info.help)
-      ImGui::SetTooltip("%s\n%s%s(right-click: reset to default)", info.help, source ? "Source: " : "", source ? source : "");
+    // The help beside the panel, not over it, and not while the slider is dragged: the tooltip
+    // must not cover the sliders next to this one.
+    if (ImGui::IsItemHovered() && !ImGui::IsItemActive() && !ImGui::IsMouseDown(ImGuiMouseButton_Left) && info.help && *info.help) {
+      ImGui::SetNextWindowPos(ImVec2(panel_width() + 8 * ui_scale, ImGui::GetItemRectMin().y));
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30);
+      ImGui::Text("%s\n%s%s(drag; Shift: fine; Ctrl+click: type; right-click: reset to default)", info.help,
+                  source ? "Source: " : "", source ? source : "");
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
     if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && !(value == def)) value = def;
     if ((info.flags & param_on_release) && ImGui::IsItemActive()) hold = true;
     if (keyed_spec && keyed_at(*keyed_spec, info.key, keyed_step)) {
@@ -181,10 +228,13 @@ const char* param_source() {
 
 // Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
 template <class P>
-void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr) {
+void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr,
+                 const std::vector<const char*>* groups = nullptr) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
+  d.groups = groups;
+  d.filter = &e.panel_search;
   std::vector<step_column> steps = collect_step_columns(p);
   d.steps = &steps;
   d.keyed_spec = keyed;
@@ -199,39 +249,36 @@ void draw_params(P& p, const char* section, editor_state& e, const tree_spec* ke
 
 }  // namespace
 
-void draw_panel(editor_state& e, float top, float bottom) {
-  ImGui::SetNextWindowPos(ImVec2(0, top));
-  ImGui::SetNextWindowSize(ImVec2(panel_width(), bottom - top));
-  ImGui::Begin("Parameters", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoTitleBar);
-  ImGui::PushItemWidth(-205 * ui_scale);
-  if (const ab_action a = draw_ab_controls(e.ab); a != ab_action::none) handle_ab(e, a);
+namespace {
+
+// The Tree tab: the generator, its seed and its parameters (keyed at the step with "From this
+// step on"), and its own panels (L-system text, envelope mesh...).
+void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
   tree_spec& spec = e.doc.spec;
-  int g = int(spec.params.index());
-  if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
-    spec.params = default_params(g);
-    spec.keyframes.clear();   // they name the old generator's parameters
-    e.frame_new = true;
+  if (!searching) {
+    int g = int(spec.params.index());
+    if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
+      spec.params = default_params(g);
+      spec.keyframes.clear();   // they name the old generator's parameters
+      e.frame_new = true;
+    }
+    int seed = int(spec.seed & 0x7fffffff);
+    if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
+    ImGui::SameLine();
+    // Randomize only where the seed changes something: Honda's model and L-systems without
+    // stochastic productions or rand() are deterministic; then only the leaf scatter uses the seed.
+    const bool random_tree = !skeleton_is_deterministic(spec);
+    const bool random_leaves = e.doc.mesh.leaves_enabled;
+    if (!random_tree && !random_leaves) ImGui::BeginDisabled();
+    if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
+    if (!random_tree && !random_leaves) ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && !random_tree)
+      ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
+                                      : "This generator is deterministic and leaves are off: the seed changes nothing");
+    // Growth phases: with "from this step on", the panel shows the values in effect at the scrubbed
+    // step and an edit keys the new value there (app/editor_keyframes.h).
+    draw_from_step_switch(e.keys, spec, e.step);
   }
-  int seed = int(spec.seed & 0x7fffffff);
-  if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
-  ImGui::SameLine();
-  // Randomize only where the seed changes something: Honda's model and L-systems without
-  // stochastic productions or rand() are deterministic; then only the leaf scatter uses the seed.
-  const bool random_tree = !skeleton_is_deterministic(spec);
-  const bool random_leaves = e.doc.mesh.leaves_enabled;
-  if (!random_tree && !random_leaves) ImGui::BeginDisabled();
-  if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
-  if (!random_tree && !random_leaves) ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) && !random_tree)
-    ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
-                                    : "This generator is deterministic and leaves are off: the seed changes nothing");
-  // Growth phases: with "from this step on", the panel shows the values in effect at the scrubbed
-  // step and an edit keys the new value there (app/editor_keyframes.h).
-  std::string key_error;
-  if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
-  if (draw_prune_panel(e.prune, spec, e.shown.get(), e.step, key_error)) clear_error(e);
   if (e.keys.from_step && e.step >= 1) {
     const generator_params before = params_at_step(spec, e.step);
     generator_params shown = before;
@@ -240,11 +287,11 @@ void draw_panel(editor_state& e, float top, float bottom) {
   } else {
     std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, spec.params);
   }
-  if (!key_error.empty()) set_status(e, key_error, true);
-  draw_generator_panel(e.generator_panels, spec, e.shown.get());
-  draw_params(spec.wood, "Wood", e);
-  draw_params(e.doc.mesh, "Mesh", e);
-  // Time-of-day presets: a starting point for the lighting sliders below.
+  if (!searching) draw_generator_panel(e.generator_panels, spec, e.shown.get());
+}
+
+// Time-of-day presets: a starting point for the lighting sliders.
+void draw_time_of_day(editor_state& e) {
   render_params& rp = e.doc.render;
   ImGui::Separator();
   ImGui::TextUnformatted("Time of day");
@@ -267,7 +314,69 @@ void draw_panel(editor_state& e, float top, float bottom) {
     if (rp.shafts == light_shafts::off) rp.shafts = light_shafts::volumetric;
     rp.fog_density = std::max(rp.fog_density, 0.025f);   // enough air for the shafts to show
   }
-  draw_params(e.doc.render, "Render", e);
+}
+
+bool begin_tab(panel_tab t) { return ImGui::BeginTabItem(panel_tab_label(t)); }
+
+}  // namespace
+
+void draw_panel(editor_state& e, float top, float bottom) {
+  ImGui::SetNextWindowPos(ImVec2(0, top));
+  ImGui::SetNextWindowSize(ImVec2(panel_width(), bottom - top));
+  ImGui::Begin("Parameters", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar);
+  ImGui::PushItemWidth(-205 * ui_scale);
+  if (const ab_action a = draw_ab_controls(e.ab); a != ab_action::none) handle_ab(e, a);
+  tree_spec& spec = e.doc.spec;
+  if (follow_step(e.keys, e.step)) set_status(e, "\"From this step on\" is off again: the timeline moved to another step");
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputTextWithHint("##search", "Search parameters: name, symbol or help", &e.panel_search);
+  const bool searching = !e.panel_search.empty();
+  std::string key_error;
+  // The groups of the shared parameters each tab shows, in the order shown (editor_panel_tabs.h).
+  static const std::vector<const char*> leaves{"Leaves"}, bark_mesh{"Mesh", "Bark mesh", "Bark shape"},
+      materials{"Materials", "Textures"}, season_wind{"Season", "Wind"}, sky{"Sun and sky", "Shadows", "Light shafts and fog"},
+      output{"Level of detail"};
+  if (searching) {   // every tab's parameters at once, only those that match
+    draw_tree_tab(e, key_error, true);
+    draw_params(e.doc.mesh, "Mesh", e);
+    draw_params(spec.wood, "Wood", e);
+    draw_params(e.doc.render, "Render", e);
+  } else if (ImGui::BeginTabBar("##panel_tabs")) {
+    if (begin_tab(panel_tab::tree)) {
+      draw_tree_tab(e, key_error, false);
+      ImGui::EndTabItem();
+    }
+    if (begin_tab(panel_tab::leaves)) {
+      draw_params(e.doc.mesh, "Mesh", e, nullptr, &leaves);
+      ImGui::EndTabItem();
+    }
+    if (begin_tab(panel_tab::wood)) {
+      draw_params(spec.wood, "Wood", e);
+      draw_params(e.doc.mesh, "Mesh", e, nullptr, &bark_mesh);
+      draw_params(e.doc.render, "Render", e, nullptr, &materials);
+      ImGui::EndTabItem();
+    }
+    if (begin_tab(panel_tab::scene)) {
+      draw_params(e.doc.render, "Render", e, nullptr, &season_wind);
+      draw_time_of_day(e);
+      draw_params(e.doc.render, "Render", e, nullptr, &sky);
+      ImGui::EndTabItem();
+    }
+    if (begin_tab(panel_tab::output)) {
+      draw_params(e.doc.render, "Render", e, nullptr, &output);
+      draw_output_extras(e);
+      ImGui::EndTabItem();
+    }
+    if (begin_tab(panel_tab::pruning)) {
+      if (draw_prune_panel(e.prune, spec, e.shown.get(), e.step, key_error)) clear_error(e);
+      if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
+  if (!key_error.empty()) set_status(e, key_error, true);
   ImGui::PopItemWidth();
   ImGui::End();
 }

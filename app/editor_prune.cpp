@@ -73,24 +73,42 @@ void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const 
   s.picked_step = step;
 }
 
+std::string cut_refusal(const tree_spec& spec, int grown_steps, int step, const char* what) {
+  const int last = grown_steps >= 0 ? std::min(last_keyframe_step(spec), grown_steps) : last_keyframe_step(spec);
+  if (step + 1 <= last) return "";
+  return std::string(what) + " at step " + std::to_string(step) + " of " + std::to_string(last) +
+         ": the tree grows no step after this one, so the cut would change nothing; scrub back to an earlier step first";
+}
+
 bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* shown, int& step, std::string& error) {
-  if (!ImGui::CollapsingHeader("Pruning", spec.cuts.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen)) return false;
+  s.brush_open = false;
+  if (!ImGui::CollapsingHeader("Pruning", ImGuiTreeNodeFlags_DefaultOpen)) return false;
   const tree_skeleton* t = shown && shown->skeleton ? shown->skeleton.get() : nullptr;
   if (s.picked_in != t || s.picked_step != step) s.selected = -1;   // a new tree or step: pick again
   bool changed = false;
   ImGui::TextWrapped("Click a branch in the view, then cut it: %s.", cut_response(spec));
-  const int last = last_keyframe_step(spec);
+  const int grown = t ? t->steps : -1;
   if (t && s.selected >= 0 && size_t(s.selected) < t->size()) {
     const size_t i = size_t(s.selected);
     const glm::vec3 a = t->position[size_t(t->parent[i])], b = t->position[i];
     ImGui::Text("Branch: node %d, order %d, born in step %d (picked in %.2f ms)", s.selected, int(t->order[i]),
                 int(t->born[i]), s.pick_ms);
+    // What the cut takes: the picked internode and everything it carries at this step (drawn in
+    // orange over the view).
+    size_t below = 0;
+    std::vector<uint8_t> in(t->size(), 0);
+    for (size_t j = i; j < t->size(); ++j) {
+      in[j] = j == i || (t->parent[j] >= 0 && in[size_t(t->parent[j])]);
+      below += in[j] && t->alive(j, step);
+    }
+    ImGui::TextDisabled("The cut takes %zu of the %zu nodes shown (orange in the view); the tree then regrows.", below,
+                        [&] { size_t n = 0; for (size_t j = 0; j < t->size(); ++j) n += t->alive(j, step); return n; }());
     if (ImGui::Button("Cut here")) {
       prune_cut c;
       c.step = step + 1;   // made before the next step grows: the tree of this step keeps it
       c.point = b;
       c.reach = std::clamp(1.5f * glm::length(b - a), 0.02f, 1.0f);
-      if (c.step > last) error = "cut at step " + std::to_string(step) + ": this is the last step, so nothing would regrow; scrub back first";
+      if (std::string why = cut_refusal(spec, grown, step, "A cut"); !why.empty()) error = why;
       else if (std::string e = add_cut(spec, c); !e.empty()) error = e;
       else step = c.step, s.selected = -1, changed = true;
     }
@@ -130,7 +148,8 @@ bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* 
   if (remove >= 0) spec.cuts.erase(spec.cuts.begin() + remove), changed = true;
 
   ImGui::Separator();
-  ImGui::TextUnformatted("Brush (topiary, hedges)");
+  if (!ImGui::TreeNode("Brush (topiary, hedges)")) return changed;
+  s.brush_open = true;
   int shape = std::clamp(int(s.brush_shape) - 1, 0, 1);
   if (ImGui::Combo("Shape##brush", &shape, brush_labels, 2)) s.brush_shape = prune_shape(shape + 1);
   ImGui::DragFloat3("Centre##brush", &s.brush_centre.x, 0.02f, -100, 100, "%.2f");
@@ -150,11 +169,31 @@ bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* 
     c.shape = s.brush_shape;
     c.point = s.brush_centre;
     c.size = s.brush_size;
-    if (c.step > last) error = "brush at step " + std::to_string(step) + ": this is the last step; scrub back first";
+    if (std::string why = cut_refusal(spec, grown, step, "The brush"); !why.empty()) error = why;
     else if (std::string e = add_cut(spec, c); !e.empty()) error = e;
     else step = c.step, changed = true;
   }
+  ImGui::TreePop();
   return changed;
+}
+
+void draw_cut_markers(const tree_spec& spec, int steps, float x0, float x1, float y, int& step) {
+  if (spec.cuts.empty() || steps <= 0) return;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  for (size_t k = 0; k < spec.cuts.size(); ++k) {
+    const prune_cut& c = spec.cuts[k];
+    const float x = x0 + (x1 - x0) * float(std::clamp(c.step, 0, steps)) / float(steps);
+    ImGui::PushID(int(k) + 100000);
+    ImGui::SetCursorScreenPos(ImVec2(x - 4, y));
+    if (ImGui::InvisibleButton("##cut", ImVec2(8, 14))) step = std::clamp(c.step, 0, steps);
+    const bool hovered = ImGui::IsItemHovered();
+    dl->AddTriangleFilled(ImVec2(x - 4, y + 13), ImVec2(x + 4, y + 13), ImVec2(x, y + 1),
+                          hovered ? IM_COL32(255, 150, 130, 255) : IM_COL32(230, 70, 60, 255));
+    if (hovered)
+      ImGui::SetTooltip("Cut at step %d: %s (click to go there; delete it under Pruning)", c.step,
+                        c.shape == prune_shape::branch ? "a branch" : brush_labels[std::clamp(int(c.shape) - 1, 0, 1)]);
+    ImGui::PopID();
+  }
 }
 
 void draw_prune_overlay(prune_panel_state& s, const tree_skeleton* t, int step, const orbit_camera& cam,
@@ -172,7 +211,7 @@ void draw_prune_overlay(prune_panel_state& s, const tree_skeleton* t, int step, 
              int32_t(i) == s.selected ? 4.0f : 1.5f);
     }
   }
-  if (!s.brush_preview) return;
+  if (!s.brush_preview || !s.brush_open) return;   // the brush shows only while its section is open
   const ImU32 col = IM_COL32(120, 255, 160, 200);
   const glm::vec3 c = s.brush_centre, h = s.brush_size;
   if (s.brush_shape == prune_shape::outside_box) {

@@ -19,6 +19,7 @@ struct prune_panel_state {
   prune_shape brush_shape = prune_shape::outside_ellipsoid;
   glm::vec3 brush_centre{0, 3, 0}, brush_size{2, 2, 2};
   bool brush_preview = false;
+  bool brush_open = false;               // the brush's section is open in the panel (this frame)
 };
 
 // The view rectangle in window pixels (origin top left), for rays and overlays.
@@ -33,10 +34,20 @@ void view_ray(const orbit_camera& cam, const view_rect& v, float mx, float my, g
 void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const orbit_camera& cam, const view_rect& v,
                   float mx, float my);
 
+// Why a cut made while the timeline shows `step` cannot be made ("" when it can). A cut acts from
+// the next step on, so it needs a step after `step` both in the spec and in the tree that grew
+// (`grown_steps`: the steps the shown tree grew, which can stop well before the Growth steps
+// setting; -1 when no tree is shown). `what` names the tool in the message ("cut", "brush").
+std::string cut_refusal(const tree_spec& spec, int grown_steps, int step, const char* what);
+
 // The "Pruning" section of the parameter panel: the picked branch and "Cut here", the cut list
 // (with the cuts the last growth could not find), the brush. Returns true when the spec changed;
 // `step` may move to show a new cut; `error` gets a message for the status bar.
 bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* shown, int& step, std::string& error);
+
+// The cuts as red ticks under the timeline's step slider, spanning [x0, x1] at height y (the
+// keyframe markers' row): hovering names the cut, a click jumps to its step.
+void draw_cut_markers(const tree_spec& spec, int steps, float x0, float x1, float y, int& step);
 
 // The picked internode and the brush outline, drawn over the view.
 void draw_prune_overlay(prune_panel_state& s, const tree_skeleton* shown, int step, const orbit_camera& cam,

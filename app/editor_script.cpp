@@ -19,6 +19,12 @@ int glfw_key(const std::string& name) {
   if (name == "backspace") return GLFW_KEY_BACKSPACE;
   if (name == "space") return GLFW_KEY_SPACE;
   if (name == "f12") return GLFW_KEY_F12;
+  if (name == "f1") return GLFW_KEY_F1;
+  if (name == "end") return GLFW_KEY_END;
+  if (name == "home") return GLFW_KEY_HOME;
+  if (name == "kp1") return GLFW_KEY_KP_1;
+  if (name == "kp3") return GLFW_KEY_KP_3;
+  if (name == "kp7") return GLFW_KEY_KP_7;
   return GLFW_KEY_UNKNOWN;
 }
 
@@ -97,6 +103,69 @@ bool run_script(editor_state& e, script_state& sc) {
       if (shift) e.input.push_key(GLFW_KEY_LEFT_SHIFT, GLFW_RELEASE);
       if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE);
       sc.frames_left = 2 * taps + 3;   // let the queued events drain before the next command
+    } else if (cmd == "hold") {   // hold [ctrl+]NAME N: a press, N system repeats and a release, queued at once
+      std::string name = arg.substr(0, arg.find(' '));
+      const int repeats = std::atoi(arg.substr(std::min(arg.size(), arg.find(' ') + 1)).c_str());
+      const bool ctrl = name.rfind("ctrl+", 0) == 0;
+      if (ctrl) name = name.substr(5);
+      const int k = glfw_key(name);
+      if (k == GLFW_KEY_UNKNOWN) return fail("unknown key");
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS);
+      e.input.push_key(k, GLFW_PRESS);
+      for (int i = 0; i < repeats; ++i) e.input.push_key(k, GLFW_REPEAT);
+      e.input.push_key(k, GLFW_RELEASE);
+      if (ctrl) e.input.push_key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE);
+      sc.frames_left = repeats + 6;
+    } else if (cmd == "type") {   // type TEXT: every key press, character and release queued at once (a slow frame)
+      for (char c : arg) {
+        const int k = std::isalpha(static_cast<unsigned char>(c)) ? GLFW_KEY_A + (std::tolower(c) - 'a')
+                      : c == '/'                                  ? GLFW_KEY_SLASH
+                      : c == '.'                                  ? GLFW_KEY_PERIOD
+                      : std::isdigit(static_cast<unsigned char>(c)) ? GLFW_KEY_0 + (c - '0')
+                                                                  : GLFW_KEY_SPACE;
+        e.input.push_key(k, GLFW_PRESS);
+        e.input.push_char(static_cast<unsigned char>(c));
+        e.input.push_key(k, GLFW_RELEASE);
+      }
+      sc.frames_left = 2 * int(arg.size()) + 4;
+    } else if (cmd == "click") {   // click TARGET: a move onto it, a press and a release, queued at once
+      float x = 0, y = 0;
+      if (arg == "export_path") x = e.exporter.path_at[0], y = e.exporter.path_at[1];
+      else if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail("click export_path or click X Y");
+      if (x <= 0 && y <= 0) return fail("the target is not on screen");
+      e.input.push_move(x, y);
+      e.input.push_button(0, true, x, y);
+      e.input.push_button(0, false, x, y);
+      sc.frames_left = 6;
+    } else if (cmd == "show_export") {
+      e.exporter.open = arg != "0";
+      sc.frames_left = 3;
+    } else if (cmd == "export_path") {   // sets the Export dialog's path as if typed in full
+      e.exporter.path = arg;
+    } else if (cmd == "export_as") {   // as File > Export as... with PATH chosen (and any replace confirmed)
+      e.exporter.path = arg;
+      e.exporter.open = true;
+      e.exporter.export_now = true;
+      e.exporter.failure.clear();
+      sc.frames_left = 2;
+    } else if (cmd == "expect_file") {   // waits until the file exists
+      std::error_code ec;
+      done = fs::exists(arg, ec) && fs::file_size(arg, ec) > 0;
+      if (!done && waited > 180) return fail("no file " + arg);
+    } else if (cmd == "expect_export_path") {
+      if (e.exporter.path != arg) return fail("the export path is \"" + e.exporter.path + "\"");
+    } else if (cmd == "expect_window") {   // expect_window shortcuts|library 0|1
+      const std::string which = arg.substr(0, arg.find(' '));
+      const bool want = arg.substr(arg.find(' ') + 1) == "1";
+      const bool open = which == "shortcuts" ? e.show_shortcuts : which == "library" ? e.browser.open : !want;
+      if (open != want) return fail(which + (open ? " is open" : " is not open"));
+    } else if (cmd == "expect_message") {   // the status bar's text contains ARG ("" for an empty status)
+      if (arg.empty() ? !e.message.empty() : e.message.find(arg) == std::string::npos) return fail("the status reads \"" + e.message + "\"");
+    } else if (cmd == "step") {
+      e.step = std::atoi(arg.c_str());
+      sc.frames_left = 2;
+    } else if (cmd == "expect_step") {
+      if (e.step != std::atoi(arg.c_str())) return fail("the step is " + std::to_string(e.step));
     } else if (cmd == "answer") {
       e.script_answer = arg;
       sc.frames_left = 2;
@@ -127,6 +196,11 @@ bool run_script(editor_state& e, script_state& sc) {
       handle_ab(e, ab_action::duplicate);
       if (!e.ab.has_b) return fail("no slot B: " + e.message);
       sc.frames_left = 2;
+    } else if (cmd == "ab_drop") {
+      handle_ab(e, ab_action::drop);
+      sc.frames_left = 2;
+    } else if (cmd == "expect_has_b") {
+      if (e.ab.has_b != (arg == "1")) return fail(e.ab.has_b ? "slot B is there" : "there is no slot B");
     } else if (cmd == "ab_select") {
       handle_ab(e, arg == "b" ? ab_action::select_b : ab_action::select_a);
       sc.frames_left = 2;

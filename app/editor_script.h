@@ -28,6 +28,14 @@ namespace sylva::ed {
 //   expect_recovery_b 0|1      whether slot B's autosaved recovery file exists (waits for it)
 //   wait_growing S             until the growth in progress has run S seconds (fails if it ends first)
 //   frame_median N             prints the median (and the longest) time of the next N frames
+//   hold [ctrl+]NAME N         a press, N system repeats (a held key) and a release, queued at once
+//   type TEXT                  each character's press, character and release, all queued at once
+//   click export_path | X Y    a move, a press and a release queued at once (a quick click on a slow frame)
+//   show_export 0|1 / export_path P / expect_export_path P   the Export dialog
+//   export_as P / expect_file P   Export as... with P chosen, which writes it; waits for the file
+//   expect_window shortcuts|library 0|1 / expect_message TEXT (contained; empty: no message)
+//   step N / expect_step N     the timeline's step
+//   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;

@@ -101,11 +101,18 @@ void handle_ab(editor_state& e, ab_action a) {
       e.ab.other.growth_text = e.growth_text;
       if (e.ab.mode == ab_mode::off) e.ab.mode = ab_mode::side_by_side;
       select_slot(e, 1);
-      return set_status(e, "Duplicated to slot B, now edited; the generator combo, Save and Export act on B");
+      return set_status(e, "Duplicated to slot B and selected it: the panel, Save and Export act on B");
     }
     case ab_action::select_a: return select_slot(e, 0);
     case ab_action::select_b: return select_slot(e, 1);
     case ab_action::drop: {
+      // Edits made in B are lost with it: ask first (B's own undo history holds them).
+      const bool b_edited = e.ab.selected == 1 ? !e.undo.empty() : !e.ab.other_doc.undo.empty();
+      if (b_edited && !e.ab.drop_confirmed) {
+        e.ab.ask_drop = true;
+        return;
+      }
+      e.ab.drop_confirmed = false;
       select_slot(e, 0);
       ab_doc cur = take_doc(e);
       ab_drop_doc(e.ab, cur);

@@ -71,6 +71,7 @@ struct editor_state {
   int overlay_generator = -1;     // the generator whose default overlay layer is selected
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
+  std::string panel_search;       // the parameter panel's search box
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
   file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as
@@ -81,6 +82,10 @@ struct editor_state {
   // Status.
   std::string message;
   bool message_is_error = false;
+  // A plain message goes stale: once the document is edited after it ("Saved" while modified) or
+  // after half a minute ("Slot B dropped" minutes later). Errors stay until a success clears them.
+  size_t message_edits = 0;                           // undo + redo depth when it was set
+  std::chrono::steady_clock::time_point message_at;
   std::string toast;              // the last error in full, until dismissed or a success
   uint32_t error_after = 0;       // a tree from a newer request clears the error
   struct log_line { std::string time, text; bool error; };
@@ -190,6 +195,9 @@ std::string screenshot_name();
 void draw_menu(editor_state& e);
 void draw_dialogs(editor_state& e);
 void draw_shortcuts(editor_state& e);
+void open_export_dialog(editor_state& e);   // File > Export...: in the user's folder, named after the tree
+void draw_node_budget(editor_state& e);     // the node budget: typed (Enter applies) or picked
+void draw_output_extras(editor_state& e);   // the Output tab: node budget and export
 void draw_message_log(editor_state& e);
 
 // A/B slots (editor_slots.cpp).

@@ -19,6 +19,8 @@ namespace sylva::ed {
 void set_status(editor_state& e, const std::string& m, bool error) {
   e.message = m;
   e.message_is_error = error;
+  e.message_edits = e.undo.size() + e.redo.size();
+  e.message_at = std::chrono::steady_clock::now();
   if (error) std::fprintf(stderr, "sylva: %s\n", m.c_str());
   e.toast = error ? m : "";
   // A tree from a later request is a successful action that clears this error (the first request
@@ -189,6 +191,9 @@ void draw_status(editor_state& e, float y, float w) {
     ImGui::SameLine();
     ImGui::Text("   %s", lod.c_str());
   }
+  if (!e.message.empty() && !e.message_is_error &&
+      (e.undo.size() + e.redo.size() != e.message_edits || seconds_since(e.message_at) > 30))
+    e.message.clear();   // stale: the document changed since, or it is old news
   if (!e.message.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(e.message_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", e.message.c_str());

@@ -41,13 +41,17 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::SliderFloat("##speed", &e.speed, 0.25f, 30, "%.2g steps/s", ImGuiSliderFlags_Logarithmic);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
-  ImGui::SliderInt("##step", &e.step, 0, std::max(steps, 0), "step %d");
-  if (timeline_markers) {   // growth phases: a marker per keyed step under the slider
+  char step_format[48];
+  std::snprintf(step_format, sizeof step_format, "step %%d / %d", std::max(steps, 0));
+  ImGui::SliderInt("##step", &e.step, 0, std::max(steps, 0), step_format);
+  if (timeline_markers) {   // growth phases and cuts: markers under the slider
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
     const float grab = ImGui::GetStyle().GrabMinSize * 0.5f + ImGui::GetStyle().FramePadding.x;
+    // Scaled to the steps the tree grew, which can be far fewer than the Growth steps setting.
+    const int span = steps > 0 ? steps : last_keyframe_step(e.doc.spec);
     std::string key_error;
-    draw_keyframe_markers(e.keys, e.doc.spec, std::max(steps, last_keyframe_step(e.doc.spec)), lo.x + grab,
-                          hi.x - grab, hi.y + 2, e.step, key_error);
+    draw_cut_markers(e.doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step);
+    draw_keyframe_markers(e.keys, e.doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step, key_error);
     if (!key_error.empty()) set_status(e, key_error, true);
   }
   ImGui::End();

@@ -108,6 +108,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   }
   if (!d.open) return;
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+  ImGui::SetNextWindowPos(ImVec2(c.view_left + 24, c.view_top + 24), ImGuiCond_Appearing);
   if (!ImGui::Begin("Export", &d.open, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::End();
     return;
@@ -125,6 +126,13 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   }
   ImGui::SetNextItemWidth(440);
   ImGui::InputText("Path", &d.path);
+  d.path_at[0] = 0.5f * (ImGui::GetItemRectMin().x + ImGui::GetItemRectMax().x);
+  d.path_at[1] = 0.5f * (ImGui::GetItemRectMin().y + ImGui::GetItemRectMax().y);
+  if (d.path != d.shown_path) {   // a new path: the old failure and replace question were about another file
+    if (!d.shown_path.empty()) d.failure.clear();
+    if (d.confirm_replace != d.path) d.confirm_replace.clear();
+    d.shown_path = d.path;
+  }
   if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: .glb .gltf .obj .json .png .fbx");
   int scope = d.final_tree ? 1 : 0;
   ImGui::RadioButton("Current step", &scope, 0);
@@ -181,7 +189,19 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
     if (ImGui::Button("Cancel")) d.cancel = 1;
   } else {
     ImGui::BeginDisabled(!have_tree || f < 0 || d.path.empty());
-    if (ImGui::Button("Export")) {
+    std::error_code ec;
+    const bool exists = !d.path.empty() && fs::exists(d.path, ec);
+    const bool asking = exists && d.confirm_replace == d.path;
+    if (asking) ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s exists. Replace it?", fs::path(d.path).filename().c_str());
+    bool go = ImGui::Button(asking ? "Replace" : "Export");
+    if (d.export_now && have_tree && f >= 0) go = true, d.confirm_replace = d.path;   // Export as... asked already
+    d.export_now = false;
+    if (go && exists && d.confirm_replace != d.path) {   // an existing file: ask before writing over it
+      d.confirm_replace = d.path;
+      go = false;
+    }
+    if (go) {
+      d.confirm_replace.clear();
       if (png) {   // GL: main thread only
         std::string err = save_view_png(c.renderer, c.doc.render, c.camera, 1280, 720, d.path);
         error = !err.empty();

@@ -36,6 +36,10 @@ struct export_dialog_state {
   std::string estimate;                    // "", "estimating...", "about 1.2 MiB, 34,000 triangles"
   std::string warning;                     // the last export's warning (a user texture it could not use)
   std::string failure;                     // the last export's error, shown in the dialog until the next try
+  bool export_now = false;                 // Export as... chose the path (and confirmed a replace): export at once
+  std::string confirm_replace;             // the existing file the next Export would replace (asked once)
+  std::string shown_path;                  // the path as drawn last frame: an edit clears the old failure
+  float path_at[2] = {0, 0};               // the Path field's centre on screen (the scripted test clicks it)
 };
 
 struct export_context {
@@ -44,6 +48,8 @@ struct export_context {
   const preset& doc;
   renderer_gpu& renderer;                  // .png renders the current view (main thread)
   const orbit_camera& camera;
+  float view_left = 0;                     // the 3D view's left edge: the dialog opens there, not over the panel
+  float view_top = 0;
 };
 
 // Draws the window when open. When an export ends, sets `status` (and `error` on failure).

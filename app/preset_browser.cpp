@@ -11,6 +11,7 @@
 #include <imgui_stdlib.h>
 
 #include "app/headless.h"
+#include "render/file_io.h"
 
 namespace sylva {
 
@@ -62,12 +63,17 @@ unsigned upload_thumbnail(const std::string& png) {
 
 void scan(preset_browser_state& b) {
   b.entries.clear();
-  std::set<std::string> seen;
+  std::set<std::string> seen, same_file;
   for (const std::string& f : b.folders) {
     for (preset_entry& e : scan_preset_folder(f, thumbnail_size)) {
       std::error_code ec;
       const std::string canonical = fs::weakly_canonical(e.path, ec).string();
       if (!seen.insert(canonical).second) continue;   // the same folder reached twice
+      // The same preset shipped twice (the binary's tree and the working folder both hold
+      // presets/): one card, from the first folder.
+      std::string bytes;
+      if (read_file(canonical, bytes).empty() && !same_file.insert(fs::path(canonical).filename().string() + '\n' + bytes).second)
+        continue;
       e.path = canonical;
       b.entries.push_back(std::move(e));
     }
@@ -264,7 +270,7 @@ std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }
-    if (pressed && e.error.empty()) clicked = e.path;
+    if (pressed && e.error.empty()) clicked = e.path, b.open = false;   // the library gets out of the way
     // The name under the thumbnail, wrapped to the cell's width; a * marks the open preset's unsaved changes.
     const std::string label = (current && modified ? "* " : "") + e.name;
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x + 8);

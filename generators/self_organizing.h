@@ -111,14 +111,14 @@ void visit_params(P& p, V&& visitor) {
   v(p.priority_rank, param_info{"priority_rank", "Rank buds by", "", 0, 1, "Priority model: average: rank by the average light of the buds each candidate supports (seed 000); summed: by its total flow, which favours big lateral branches", 0, nullptr, so_priority_rank_names});
   v(p.w_default, param_info{"w_default", "Default weight", "ξ", 0, 4, "Weight of the default direction (previous internode or lateral bud)", 0, "Shoots"});
   v(p.w_optimal, param_info{"w_optimal", "Optimal weight", "ζ", 0, 4, "Weight of the optimal direction (least shadow / towards markers)"});
-  v(p.w_tropism, param_info{"w_tropism", "Tropism weight", "η", 0, 4, "Weight of the tropism vector (seed 001's τ)"});
+  v(p.w_tropism, param_info{"w_tropism", "Tropism weight", "τ", 0, 4, "Weight of the tropism vector: τ as seed 001 names it (η in Palubicki et al. 2009)"});
   v(p.tropism, param_info{"tropism", "Tropism", "g", -1, 1, "Tropism vector: (0,-1,0) bends towards gravity, (0,1,0) towards the light above"});
   v(p.branch_angle, param_info{"branch_angle", "Branching angle", "β", 0, 120, "Angle between an axis and its lateral buds", param_degrees});
   v(p.divergence, param_info{"divergence", "Divergence", "φ", 0, 360, "Phyllotactic angle between successive lateral buds", param_degrees});
   v(p.phyllotaxis, param_info{"phyllotaxis", "Phyllotaxis", "", 0, 1, "spiral: lateral buds turn by φ; planar: seed 000's ±β in one plane (flat trees)", 0, nullptr, so_phyllotaxis_names});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1.5f, 4, "Pipe model r^n = Σ r_i^n", 0, "Radii"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of a branch tip in metres", param_log});
-  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
   v(p.tree_count, param_info{"tree_count", "Trees", "", 1, 400, "Trees growing together in one environment", param_on_release, "Forest"});
   v(p.placement, param_info{"placement", "Placement", "", 0, 2, "grid, random in a square, or the explicit positions", 0, nullptr, so_placement_names});
   v(p.spacing, param_info{"spacing", "Spacing", "", 0.1f, 100, "Distance between grid neighbours; random placement uses a square of side spacing·√count"});

@@ -2,6 +2,7 @@
 #include "generators/space_colonization.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -39,6 +40,7 @@ struct colonization_state {
   std::vector<int32_t> nearest;   // nearest node within d_i, or -1
   std::vector<float> nearest_d2;
   std::vector<int32_t> killed;    // step a point was removed in, or -1 while alive
+  std::vector<int32_t> dropped_by;   // a point dropped unreached: the node it was nearest to (else -1)
   std::vector<int32_t> active;    // points with a nearest node (may hold dead ones until compacted)
   size_t alive = 0;
 };
@@ -51,6 +53,7 @@ void init_state(colonization_state& s, const std::vector<glm::vec3>& pts, float 
   s.nearest.assign(n, -1);
   s.nearest_d2.assign(n, 0.0f);
   s.killed.assign(n, -1);
+  s.dropped_by.assign(n, -1);
   s.cell_of.assign(n, -1);
   s.slot_of.assign(n, -1);
   glm::vec3 lo(0), hi(0);
@@ -327,13 +330,23 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // The top of each step: growth phases (new segment length or tropism from this step on), then
   // cuts. A cut gives back the points its branch had killed: the point state is rebuilt from the
   // remaining nodes, so other branches take the freed points (Runions 2007's competition for space).
+  // Only those: a point the rest of the tree had dropped unreached (nearest to a stuck node, old
+  // wood or a forked apex that survives the cut) stays dropped, so a cut does not hand the rest of
+  // the crown its dropped points again.
   auto key_step = [&](int k) {
     if (apply_keyframes(p, o.keyframes, k)) clamp_all_params(p), D = p.segment_length;
     if (apply_cuts(t, o.cuts, k, rep).empty()) return;
+    const std::vector<int32_t> was_dropped_by = std::move(s.dropped_by), was_killed = std::move(s.killed);
     s = colonization_state{};
     init_state(s, pts, d_i, d_k);
     for (size_t j = 0; j < t.size(); ++j)
       if (t.died[j] == never_died) visit_new_node(s, t.position[j], int32_t(j), k);
+    for (size_t i = 0; i < was_dropped_by.size() && i < s.killed.size(); ++i) {
+      const int32_t by = was_dropped_by[i];
+      if (by < 0 || s.killed[i] >= 0 || size_t(by) >= t.size() || t.died[size_t(by)] != never_died) continue;
+      s.dropped_by[i] = by;
+      kill_point(s, int32_t(i), was_killed[i]);
+    }
     while (t.died[size_t(tip)] != never_died) tip = t.parent[size_t(tip)];   // a cut trunk regrows from below
   };
   // Resuming (generators/resume.h): the crown loop starts at the recorded step.
@@ -492,7 +505,10 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
     if (any_stuck)
       for (int32_t i : s.active)
-        if (s.killed[size_t(i)] < 0 && stuck[size_t(s.nearest[size_t(i)])]) kill_point(s, i, step);
+        if (s.killed[size_t(i)] < 0 && stuck[size_t(s.nearest[size_t(i)])]) {
+          s.dropped_by[size_t(i)] = s.nearest[size_t(i)];
+          kill_point(s, i, step);
+        }
     for (int32_t v : touched) acc[size_t(v)] = glm::vec3(0), acc_count[size_t(v)] = 0, stuck[size_t(v)] = 0;
     for (size_t k = first_new; k < t.size(); ++k) {
       visit_new_node(s, t.position[k], int32_t(k), step);
@@ -508,9 +524,12 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
                   "; raise node_cap or lower the point count";
   else if (pts.empty())
     rep.message = "no attraction points: only the trunk grew; raise the point count N";
-  else if (!rep.error && p.kill_distance > d_k)
+  else if (!rep.error && p.kill_distance > d_k) {
+    char used[32];
+    std::snprintf(used, sizeof used, "%.3g", double(d_k));
     rep.message = "kill distance dₖ ≥ influence radius dᵢ: points would die before they could attract, so dₖ = 0.9·dᵢ = " +
-                  std::to_string(d_k) + " m was used; lower dₖ below dᵢ";
+                  std::string(used) + " m was used; lower dₖ below dᵢ";
+  }
 
   // Widths: pipe model r^n = Σ rᵢ^n, tips at W (seed 003's Da Vinci rule; Shinozaki 1964), capped at
   // max_width·W. While the cap does not bind, the radii stay time-varying pipe radii

@@ -2,11 +2,15 @@
 // then on, and each generator answers it (Palubicki 2009's bud break, freed points and vertices).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include <glm/geometric.hpp>
 
+#include <cstdio>
+
+#include "render/preset.h"
 #include "tests/generator_cases.h"
 #include "generators/pruning.h"
 #include "generators/tree_spec.h"
@@ -228,4 +232,51 @@ TEST(Pruning, BadCutsAreRefusedAndLeaveTheSpecAsItWas) {
   text.params = l;
   EXPECT_NE(add_cut(text, {1, prune_shape::branch, glm::vec3(0), glm::vec3(1), 0.25f}).find("text L-systems"),
             std::string::npos);
+}
+
+// One small cut on the oak (space colonization) takes an order-3 branch and the tree regrows into
+// the points that branch had killed. The regrowth is bounded: at most a fifth more nodes than the
+// uncut tree. (The leaves rise much more, by about 84%: the new shoots are short and each ends in
+// a leaf-bearing tip; the Pruning panel says so.)
+TEST(Pruning, OneSmallCutOnTheOakRegrowsBoundedly) {
+  preset oak;
+  ASSERT_TRUE(load_preset_file(SYLVA_SOURCE_DIR "/presets/species_oak.json", oak).ok);
+  const tree_skeleton plain = grow(oak.spec, {});
+  const int k = std::min(45, plain.steps - 2);
+  int32_t victim = -1;
+  std::vector<int> below(plain.size(), 0);
+  for (size_t i = plain.size(); i-- > 0;)
+    if (plain.alive(i, k - 1)) {
+      ++below[i];
+      if (plain.parent[i] >= 0) below[size_t(plain.parent[i])] += below[i];
+    }
+  for (size_t i = 0; i < plain.size(); ++i)   // the biggest order-3 branch alive before the cut
+    if (plain.alive(i, k - 1) && plain.order[i] == 3 && plain.parent[i] >= 0 && plain.order[size_t(plain.parent[i])] == 2 &&
+        (victim < 0 || below[i] > below[size_t(victim)]))
+      victim = int32_t(i);
+  ASSERT_GE(victim, 0);
+  tree_spec cut = oak.spec;
+  // As the editor's "Cut here" makes it: the reach is 1.5 internodes.
+  const float reach = std::clamp(
+      1.5f * glm::length(plain.position[size_t(victim)] - plain.position[size_t(plain.parent[size_t(victim)])]), 0.02f, 1.0f);
+  ASSERT_EQ(add_cut(cut, {k, prune_shape::branch, plain.position[size_t(victim)], glm::vec3(1), reach}), "");
+  grow_report rep;
+  const tree_skeleton pruned = grow(cut, {}, &rep);
+  ASSERT_TRUE(rep.missed_cuts.empty()) << rep.message;
+  auto nodes_alive = [](const tree_skeleton& t) {
+    size_t n = 0;
+    for (size_t i = 0; i < t.size(); ++i) n += t.alive(i, t.steps);
+    return n;
+  };
+  auto leaves_alive = [](const tree_skeleton& t) {
+    size_t n = 0;
+    for (const leaf& l : t.leaves) n += l.died > t.steps;
+    return n;
+  };
+  const size_t plain_nodes = nodes_alive(plain), pruned_nodes = nodes_alive(pruned);
+  std::printf("oak: %zu nodes and %zu leaves uncut; %zu and %zu after cutting an order-3 branch of %d nodes at step %d\n",
+              plain_nodes, leaves_alive(plain), pruned_nodes, leaves_alive(pruned), below[size_t(victim)], k);
+  EXPECT_GT(pruned_nodes + size_t(below[size_t(victim)]), plain_nodes);   // it regrows
+  EXPECT_LT(pruned_nodes, plain_nodes + plain_nodes / 5);                 // boundedly
+  EXPECT_EQ(pruned.steps, plain.steps);
 }

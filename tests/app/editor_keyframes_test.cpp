@@ -65,3 +65,25 @@ TEST(EditorKeyframes, MovingAMarkerMovesItsKeyframesOrRefuses) {
   EXPECT_EQ(s, was);
   EXPECT_EQ(keyframe_text(s, s.keyframes[0]), "alpha = 3");
 }
+
+// "From this step on" keys the edits at the step where it was switched on; once the timeline
+// moves it switches off, so a later edit elsewhere is not keyed without notice.
+TEST(EditorKeyframes, FromThisStepOnSwitchesOffWhenTheTimelineMoves) {
+  keyframe_panel_state s;
+  EXPECT_FALSE(follow_step(s, 12));
+  s.from_step = true;
+  s.from_step_at = 12;
+  EXPECT_FALSE(follow_step(s, 12));
+  EXPECT_TRUE(s.from_step);
+  EXPECT_TRUE(follow_step(s, 13));
+  EXPECT_FALSE(s.from_step);
+  EXPECT_FALSE(follow_step(s, 12));   // off stays off
+  EXPECT_FALSE(s.from_step);
+  // Switched on without a recorded step (a script or a test): the current step is taken.
+  s.from_step = true;
+  EXPECT_FALSE(follow_step(s, 30));
+  EXPECT_EQ(s.from_step_at, 30);
+  // Step 0 has nothing before it to keep: it cannot hold a keyframe.
+  s.from_step = true, s.from_step_at = 0;
+  EXPECT_TRUE(follow_step(s, 0));
+}

@@ -5,6 +5,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "app/editor_prune.h"
+#include "generators/keyframes.h"
+#include "generators/space_colonization.h"
 #include "render/pick.h"
 
 using namespace sylva;
@@ -34,4 +36,20 @@ TEST(EditorPrune, RayThroughAProjectedPointPassesThroughIt) {
   prune_panel_state s;
   pick_in_view(s, t, 1, cam, v, v.x + (c.x + 1) * 0.5f * v.w, v.y + (1 - c.y) * 0.5f * v.h);
   EXPECT_EQ(s.selected, 1);
+}
+
+// A cut acts from the step after the one shown: at the last step the tree grew it would change
+// nothing, even when the Growth steps setting allows many more steps (the oak stops at 56 of 400).
+TEST(EditorPrune, CutAtTheLastGrownStepIsRefusedWithTheStepsItGrew) {
+  tree_spec spec;   // space colonization, as the oak: its Growth steps are far more than 56
+  spec.params = space_colonization_params{};
+  ASSERT_GT(last_keyframe_step(spec), 57);
+  EXPECT_EQ(cut_refusal(spec, 56, 45, "A cut"), "");
+  EXPECT_EQ(cut_refusal(spec, 56, 55, "A cut"), "");
+  const std::string why = cut_refusal(spec, 56, 56, "A cut");
+  EXPECT_NE(why.find("step 56 of 56"), std::string::npos) << why;
+  EXPECT_NE(cut_refusal(spec, 56, 57, "The brush").find("The brush"), std::string::npos);
+  // Without a shown tree the spec's own last step is the limit.
+  EXPECT_EQ(cut_refusal(spec, -1, 56, "A cut"), "");
+  EXPECT_NE(cut_refusal(spec, -1, last_keyframe_step(spec), "A cut"), "");
 }

@@ -258,3 +258,82 @@ TEST(EditorBench, EditLatencyIsReportedPerPreset) {
   EXPECT_NE(out.find("\"nodes\":1024"), std::string::npos) << out;
   EXPECT_NE(out.find("\"edit_ms\":"), std::string::npos) << out;
 }
+
+// A newcomer on slow frames: a quick click into the Export path and typing straight after it,
+// all queued before the next frame, gives the whole text; Export as... writes the file; a held Ctrl+Z (system repeats) undoes
+// one step, not the history; F1 and Ctrl+L open their windows on the first press.
+TEST(EditorSession, SlowFramesLoseNoTypingAndHeldUndoTakesOneStep) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = test_dir("newcomer_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string script = R"(wait_tree
+show_export 1
+export_path 
+click export_path
+type /proc/x.glb
+frames 4
+expect_export_path /proc/x.glb
+show_export 0
+frames 3
+export_as EXPORTED
+expect_file EXPORTED
+show_export 0
+set lambda=0.42
+wait_tree
+set lambda=0.43
+wait_tree
+set lambda=0.44
+wait_tree
+hold ctrl+z 8
+wait_tree
+expect_param lambda=0.43
+key f1
+expect_window shortcuts 1
+key ctrl+l
+expect_window library 1
+)";
+  std::string with_paths = script;
+  const std::string exported = (test_dir("newcomer") / "home" / "exported.json").string();
+  for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
+  run_result r = run_script("newcomer", with_paths, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok expect_export_path /proc/x.glb"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok expect_window library 1"), std::string::npos) << r.output;
+}
+
+// Drop B throws B away at once while B holds nothing of its own, and asks once B has edits.
+TEST(EditorSession, DropBAsksOnlyWhenBHasEdits) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = test_dir("dropb_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string script = R"(wait_tree
+ab_duplicate
+ab_drop
+expect_no_prompt
+expect_has_b 0
+ab_duplicate
+set lambda=0.5
+frames 2
+ab_drop
+expect_prompt Drop slot B?
+answer Keep B
+frames 2
+expect_has_b 1
+ab_drop
+expect_prompt Drop slot B?
+answer Drop B
+frames 2
+expect_has_b 0
+)";
+  run_result r = run_script("dropb", script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok answer Keep B"), std::string::npos) << r.output;
+}

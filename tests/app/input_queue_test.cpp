@@ -105,3 +105,109 @@ TEST(InputQueue, CharactersKeepTheirPlaceAmongKeys) {
   EXPECT_EQ(ImGui::GetIO().InputQueueCharacters.Size, 1);
   EXPECT_TRUE(q.events.empty());
 }
+
+namespace {
+
+// One frame with the mouse: the backend's poll (here: the pointer already at its final place and
+// the buttons up), then the queue, then ImGui.
+struct mouse_frame {
+  bool clicked = false, dragging = false;
+  ImVec2 pos, delta;
+};
+mouse_frame frame_mouse(input_queue& q, ImVec2 polled) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = polled;
+  for (bool& b : io.MouseDown) b = false;
+  feed_mouse(q, io);
+  ImGui::NewFrame();
+  mouse_frame f{ImGui::IsMouseClicked(0), ImGui::IsMouseDragging(0, 3), io.MousePos, io.MouseDelta};
+  ImGui::EndFrame();
+  return f;
+}
+
+}  // namespace
+
+// On a slow frame the pointer moves onto the tree and clicks before the next frame: the move is
+// a frame of its own, the press lands where it happened with no motion in its frame, and nothing
+// counts as a drag (the view must not orbit; the click picks).
+TEST(InputQueue, AMoveThenAQuickClickIsAClickNotADrag) {
+  imgui_context ctx;
+  input_queue q;
+  frame_mouse(q, ImVec2(100, 100));
+  q.push_move(100, 100);
+  frame_mouse(q, ImVec2(100, 100));
+  for (int x = 110; x <= 400; x += 10) q.push_move(float(x), 300);
+  q.push_button(0, true, 400, 300);
+  q.push_button(0, false, 400, 300);
+  const mouse_frame moved = frame_mouse(q, ImVec2(400, 300));
+  EXPECT_FALSE(moved.clicked);
+  EXPECT_EQ(moved.pos.x, 400);
+  const mouse_frame pressed = frame_mouse(q, ImVec2(400, 300));
+  EXPECT_TRUE(pressed.clicked);
+  EXPECT_EQ(pressed.delta.x, 0);
+  EXPECT_EQ(pressed.delta.y, 0);
+  EXPECT_FALSE(pressed.dragging);
+  const mouse_frame released = frame_mouse(q, ImVec2(400, 300));
+  EXPECT_FALSE(released.clicked);
+  EXPECT_FALSE(ImGui::GetIO().MouseDown[0]);
+  EXPECT_TRUE(q.mouse.empty());
+  EXPECT_LT(ImGui::GetIO().MouseDragMaxDistanceSqr[0], 9);
+}
+
+// Two quick clicks inside one frame are two clicks, one per frame pair, never one.
+TEST(InputQueue, TwoClicksInOneFrameAreTwoClicks) {
+  imgui_context ctx;
+  input_queue q;
+  q.push_move(50, 50);
+  frame_mouse(q, ImVec2(50, 50));
+  for (int i = 0; i < 2; ++i) q.push_button(0, true, 50, 50), q.push_button(0, false, 50, 50);
+  int clicks = 0;
+  for (int frame = 0; frame < 8; ++frame) clicks += frame_mouse(q, ImVec2(50, 50)).clicked;
+  EXPECT_EQ(clicks, 2);
+}
+
+// A held key's system repeats are marked, so that undo can take one step per press.
+TEST(InputQueue, SystemRepeatsAreMarked) {
+  imgui_context ctx;
+  input_queue q;
+  q.push_key(GLFW_KEY_Z, GLFW_PRESS);
+  q.push_key(GLFW_KEY_Z, GLFW_REPEAT);
+  EXPECT_TRUE(frame_presses(q, GLFW_KEY_Z));
+  EXPECT_FALSE(q.is_repeat(GLFW_KEY_Z));
+  EXPECT_TRUE(frame_presses(q, GLFW_KEY_Z));
+  EXPECT_TRUE(q.is_repeat(GLFW_KEY_Z));
+  EXPECT_FALSE(frame_presses(q, GLFW_KEY_Z));
+  EXPECT_FALSE(q.is_repeat(GLFW_KEY_Z));
+}
+
+// A quick click into a text field and typing straight after it, all before the next frame: the
+// characters wait until the click has reached ImGui, so the field is active when they arrive.
+TEST(InputQueue, TypingAfterAClickWaitsForTheClick) {
+  imgui_context ctx;
+  input_queue q;
+  q.push_move(10, 10);
+  frame_mouse(q, ImVec2(10, 10));
+  q.push_move(120, 40);
+  q.push_button(0, true, 120, 40);
+  q.push_button(0, false, 120, 40);
+  q.push_key(GLFW_KEY_K, GLFW_PRESS);
+  q.push_char('k');
+  q.push_key(GLFW_KEY_K, GLFW_RELEASE);
+  int frames_before_the_char = 0;
+  for (int frame = 0; frame < 10; ++frame) {
+    ImGuiIO& io = ImGui::GetIO();
+    feed_imgui(q, io);
+    const bool got_char = io.InputQueueCharacters.Size > 0;
+    io.MousePos = ImVec2(120, 40);
+    for (bool& b : io.MouseDown) b = false;
+    feed_mouse(q, io);
+    if (got_char) {
+      EXPECT_TRUE(q.mouse.empty());   // the press and the release went first
+      break;
+    }
+    ++frames_before_the_char;
+    ImGui::NewFrame();
+    ImGui::EndFrame();
+  }
+  EXPECT_EQ(frames_before_the_char, 3);   // the move, the press, the release
+}

@@ -71,6 +71,14 @@ TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
   EXPECT_NE(s.impostor, nullptr);
   EXPECT_NE(s.impostor, before);
   EXPECT_EQ(s.uploaded, lod_levels);
+  // Autumn renders it again too: the impostor shows the season's leaves, not summer's.
+  const auto summer = s.impostor;
+  rp.season = leaf_season::autumn;
+  editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_EQ(s.impostor, nullptr);
+  for (int k = 0; k < 20 && !s.impostor; ++k) editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);
+  EXPECT_NE(s.impostor, nullptr);
+  EXPECT_NE(s.impostor, summer);
   // Near the tree LOD0 returns; "Show LOD" 4 brings the impostor back at any distance.
   cam.distance = 2 * glm::length(m.bounds_max - m.bounds_min);
   editor_lod_update(s, r, t, m, p.mesh, rp, cam, t.steps);

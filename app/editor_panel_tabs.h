@@ -1,0 +1,24 @@
+// How the parameter panel is organised for a newcomer: tabs in the order one meets a tree (Tree,
+// Leaves, Wood and bark, Scene, Output, then Pruning with the growth phases), and a search box that
+// filters every parameter by name, symbol, key or help. Display-free, so it is tested.
+#pragma once
+
+#include <string>
+
+#include "generators/params.h"
+
+namespace sylva {
+
+enum class panel_tab : int { tree, leaves, wood, scene, output, pruning, count };
+const char* panel_tab_label(panel_tab t);
+
+// The tab of a group of the shared (not generator) parameters: mesh, wood and render. Every group
+// they declare has one; `known` is false for a group this table does not list (a test keeps the
+// table complete), which then shows under Scene.
+panel_tab tab_of_group(const char* group, bool* known = nullptr);
+
+// Whether a parameter matches the search text: every word of `filter` occurs, ignoring ASCII
+// case, in its label, symbol, key, help or group. An empty filter matches everything.
+bool param_matches(const param_info& info, const char* group, const std::string& filter);
+
+}  // namespace sylva
