@@ -1,4 +1,4 @@
-// `sylva export --lods` and `sylva bench --lods` (issue 17).
+// `sylva export --lods` and `sylva bench --lods`.
 #include "app/cli_lods.h"
 
 #include <algorithm>

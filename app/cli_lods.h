@@ -1,4 +1,4 @@
-// `sylva export --lods` and `sylva bench --lods` (issue 17): the LOD chain and the impostor for
+// `sylva export --lods` and `sylva bench --lods`: the LOD chain and the impostor for
 // the CLI.
 #pragma once
 

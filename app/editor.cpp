@@ -91,7 +91,7 @@ void load_fonts() {
   io.Fonts->AddFontDefault();
 }
 
-// The style and the font at a content scale (fonts and sizes follow the monitor, issue 14).
+// The style and the font at a content scale (fonts and sizes follow the monitor).
 void apply_ui_scale(float scale) {
   ui_scale = std::clamp(scale, 1.0f, 4.0f);
   ImGuiStyle& style = ImGui::GetStyle();
@@ -225,7 +225,7 @@ int run_editor(const editor_options& o) {
     return 1;
   }
   e->window = window;
-  // Closing the window asks first when there are unsaved changes (issue 14).
+  // Closing the window asks first when there are unsaved changes.
   glfwSetWindowUserPointer(window, e.get());
   glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
     auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w));

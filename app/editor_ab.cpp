@@ -1,4 +1,4 @@
-// A/B comparison, the GL, worker and ImGui part (issue 18). See app/editor_ab.h.
+// A/B comparison, the GL, worker and ImGui part. See app/editor_ab.h.
 #include "app/editor_ab.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// A/B comparison (issue 18): a second document slot B beside the edited tree A, shown side by side
+// A/B comparison: a second document slot B beside the edited tree A, shown side by side
 // or as a split view with the same camera, sun and timeline step.
 //
 // The editor keeps the *selected* slot in its own fields (document, undo, worker, renderer, shown

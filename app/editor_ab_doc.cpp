@@ -1,4 +1,4 @@
-// A/B comparison, the display-free part: the two slots' documents (issue 18).
+// A/B comparison, the display-free part: the two slots' documents.
 #include "app/editor_ab.h"
 
 #include <cstdio>

@@ -1,4 +1,4 @@
-// `sylva bench --edit`: the time from a slider release to the new tree on screen (issue 14).
+// `sylva bench --edit`: the time from a slider release to the new tree on screen.
 #pragma once
 
 #include <string>

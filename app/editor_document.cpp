@@ -71,7 +71,7 @@ bool save_to(editor_state& e, const std::string& path) {
   return true;
 }
 
-// ---------------------------------------------------------------- unsaved work (issue 14)
+// ---------------------------------------------------------------- unsaved work
 
 // The user's own folder for saves, exports, screenshots and the recovery file: $SYLVA_HOME, else ~/Sylva.
 std::string user_folder() {

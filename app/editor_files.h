@@ -1,4 +1,4 @@
-// The editor's in-app file browser (issue 14): folders, an extension filter, recent files and an
+// The editor's in-app file browser: folders, an extension filter, recent files and an
 // overwrite confirmation, for Open, Save as and Screenshot.
 #pragma once
 

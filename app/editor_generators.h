@@ -107,7 +107,7 @@ void draw_step_table(std::vector<step_column>& cols, bool& hold);
 // View-menu items: one toggle per overlay kind, and the shadow-grid slice.
 void draw_overlay_menu(overlay_view& view, const overlay_gpu& gpu);
 
-// A growth that failed to parse is not shown: the last good tree stays on screen (issue 6).
+// A growth that failed to parse is not shown: the last good tree stays on screen.
 inline bool keeps_last_tree(const grow_result& r) { return r.report.stop == grow_stop::parse_error; }
 
 }  // namespace sylva

@@ -1,4 +1,4 @@
-// The editor's LOD choice (issue 17).
+// The editor's LOD choice.
 #include "app/editor_lod.h"
 
 #include <chrono>

@@ -1,4 +1,4 @@
-// The editor's level of detail (issue 17): builds the LOD chain of the shown tree, picks the level
+// The editor's level of detail: builds the LOD chain of the shown tree, picks the level
 // by the tree's size on screen (or the "Show LOD" override) and keeps that level uploaded.
 #pragma once
 

@@ -220,7 +220,7 @@ bool run_script(editor_state& e, script_state& sc) {
         std::vector<double> ms;
         for (size_t i = 1; i < sc.frame_times.size(); ++i)
           ms.push_back(std::chrono::duration<double, std::milli>(sc.frame_times[i] - sc.frame_times[i - 1]).count());
-        const double worst = *std::max_element(ms.begin(), ms.end());   // the impostor atlas's hitch (issue 17)
+        const double worst = *std::max_element(ms.begin(), ms.end());   // the impostor atlas's hitch
         std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
         std::printf("sylva script: frame median %.2f ms over %zu frames (A/B %s)\n", ms[ms.size() / 2], ms.size(),
                     ab_showing(e.ab) ? ab_mode_label(e.ab.mode) : "off");

@@ -103,7 +103,7 @@ struct editor_state {
   prune_panel_state prune;                  // app/editor_prune.h: picking, cuts, the brush
   GLFWwindow* window = nullptr;
   float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
-  // Growth state (issue 14): the status bar shows exactly one of these.
+  // Growth state: the status bar shows exactly one of these.
   enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;   // = ab_growth
   std::string growth_text;        // detail for done / cancelled / failed
   uint32_t posted_generation = 0; // the newest request

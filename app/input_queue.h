@@ -1,6 +1,6 @@
 // Keyboard input queue: ImGui 1.86 samples io.KeysDown once per frame, so a press and a release
 // inside one frame (a quick tap on a slow frame) vanish. We queue GLFW's key and character events
-// ourselves and feed ImGui at most one transition per key per frame, as newer ImGui does (issue 14).
+// ourselves and feed ImGui at most one transition per key per frame, as newer ImGui does.
 #pragma once
 
 #include <bitset>

@@ -154,7 +154,7 @@ void run_worker(worker_state& w) {
           have_resume = !result->report.cancelled;
           result->resumed_at = resume.resumed_at;
         } else {
-          // A capped trial first: small trees are done by it, large ones get an estimate (issue 14).
+          // A capped trial first: small trees are done by it, large ones get an estimate.
           growth_estimate est = estimate_growth(req.spec, o);
           if (est.cancelled) {
             w.busy = false;

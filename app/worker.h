@@ -55,7 +55,7 @@ struct worker_state {
   std::atomic<uint32_t> generation{0};            // moves on with every edit; cancels older growth
   std::atomic<bool> busy{false};
   std::atomic<float> progress{0};                 // of the growth in progress, 0..1 (grow_options::progress)
-  std::atomic<int64_t> node_budget{default_node_budget};   // larger requests ask first (issue 14)
+  std::atomic<int64_t> node_budget{default_node_budget};   // larger requests ask first
   bool quit = false;
 };
 

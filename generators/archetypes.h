@@ -1,4 +1,4 @@
-// Leaf and bark archetypes: the procedural texture sets species choose from (issue 11).
+// Leaf and bark archetypes: the procedural texture sets species choose from.
 // Plain enums with their option names, shared by the foliage model (sylva_core), the texture
 // generator, the renderer and the exporters.
 //

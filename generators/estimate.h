@@ -1,4 +1,4 @@
-// Growth budgets (issue 14): how large will a request grow, before growing it? A cheap trial grows
+// Growth budgets: how large will a request grow, before growing it? A cheap trial grows
 // the spec with a small node cap and a time limit; when the trial finishes under both it is the
 // tree itself, otherwise the per-step node counts it reached are extrapolated to the full step count.
 #pragma once
@@ -24,7 +24,7 @@ struct growth_estimate {
   grow_report report;      // the trial's report
   growth_debug debug;      // the trial's debug output
   double trial_ms = 0;
-  // Keyframes and cuts the trial did not reach (issue 18), counted conservatively; `note` says how
+  // Keyframes and cuts the trial did not reach, counted conservatively; `note` says how
   // ("" when there were none): see estimate_growth.
   int phase_trials = 0;    // extra trials, one per growth phase the trial did not reach
   int cut_steps = 0;       // steps with cuts the trial did not reach

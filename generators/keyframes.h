@@ -1,4 +1,4 @@
-// Growth phases (issue 18): a generator parameter that takes a new value from growth step k on.
+// Growth phases: a generator parameter that takes a new value from growth step k on.
 #pragma once
 
 #include <string>

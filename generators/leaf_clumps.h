@@ -1,4 +1,4 @@
-// Foliage clumping (issue 23): leaves gather on the outer shoots of each limb mass, so a crown
+// Foliage clumping: leaves gather on the outer shoots of each limb mass, so a crown
 // breaks into clumps with gaps between them instead of an even fill.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The foliage model shared by all four generators (issue 11): leaves along every young shoot, in
+// The foliage model shared by all four generators: leaves along every young shoot, in
 // the species' arrangement, kept for the species' leaf retention; the older tip-only placement and
 // each generator's own leaf rule stay available as modes.
 #pragma once

@@ -1,4 +1,4 @@
-// The documented peak memory of one growth (issue 15 item 10): every generator's memory is held by
+// The documented peak memory of one growth: every generator's memory is held by
 // caps, so no parameter combination grows past the bound below. The bound covers the growth itself
 // (the generator's state and the tree it returns, with its debug overlay); the process, the mesh
 // and the renderer come on top (README "Memory").

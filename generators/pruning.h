@@ -1,4 +1,4 @@
-// Pruning (issue 18): cuts made during growth, which the generators answer by regrowing.
+// Pruning: cuts made during growth, which the generators answer by regrowing.
 #pragma once
 
 #include <cstdint>

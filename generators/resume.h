@@ -1,4 +1,4 @@
-// Resuming a regrow (issue 18): when only keyframes from step k on changed, a generator that keeps
+// Resuming a regrow: when only keyframes from step k on changed, a generator that keeps
 // its state at the top of every step can start at step k from the state it recorded there, instead
 // of growing steps 1..k-1 again. The result is the full regrow's, bit for bit (tests/resume_test.cpp).
 //

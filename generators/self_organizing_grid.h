@@ -17,7 +17,7 @@ struct shadow_grid {
   static constexpr int chunk_cells = chunk_side * chunk_side * chunk_side;
   static constexpr uint64_t empty_key = ~uint64_t(0);
 
-  // Memory cap (issue 15 item 10): at most this many chunks (2 KiB of cells each, 256 MiB in
+  // Memory cap: at most this many chunks (2 KiB of cells each, 256 MiB in
   // all); writes past it go to a scratch chunk and set `full`, and the generator stops there.
   static constexpr size_t default_chunk_cap = size_t(1) << 17;
   size_t chunk_cap = default_chunk_cap;

@@ -403,7 +403,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
   }
 
-  // Sympodial forking (issue 23): the length an apex's axis has grown since its last fork (or the
+  // Sympodial forking: the length an apex's axis has grown since its last fork (or the
   // root), walked down at most fork_length / D nodes; and the fork itself, where the apex stops and
   // two shoots fork_angle apart, in a seeded plane through its course, take over, each turned off
   // course by up to `crook` (Hallé, Oldeman & Tomlinson 1978: sympodial growth, the leader's

@@ -38,7 +38,7 @@ struct space_colonization_params {
   int max_branches = 100000;
   int steps = 400;
   int node_cap = 2000000;
-  // Branching habit (issue 23): bud life, sympodial forks and crooks; all off by default (Runions 2007).
+  // Branching habit: bud life, sympodial forks and crooks; all off by default (Runions 2007).
   int bud_life = 0;            // steps a node may sprout laterals after its birth (0: always)
   float fork_length = 0.0f;    // metres an axis grows before its apex forks sympodially (0: never)
   float fork_angle = 50.0f;    // degrees between the two shoots of a fork

@@ -1,4 +1,4 @@
-// The wood pass (issue 12): every generator's skeleton bends under its own load, step by step, and
+// The wood pass: every generator's skeleton bends under its own load, step by step, and
 // young shoots curve back toward their set direction (reaction wood). DESIGN §3 "shared passes".
 #pragma once
 

@@ -1,4 +1,4 @@
-// Bark archetypes (issue 11): periodic height and colour fields that tile both ways (u around the
+// Bark archetypes: periodic height and colour fields that tile both ways (u around the
 // branch, v along it), from value noise, cellular noise and wandering lines.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Internal to the archetype textures (render/archetype_*.cpp, issue 11): the shared drawing kit.
+// Internal to the archetype textures (render/archetype_*.cpp): the shared drawing kit.
 // Noise and colour helpers, the leaf canvas with its primitives (blades, strokes), the bark field,
 // and the draw / fill functions each file defines. Not part of the public API (render/textures.h).
 #pragma once

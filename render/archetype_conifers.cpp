@@ -1,4 +1,4 @@
-// Conifer foliage cards (issue 11): pine needle fascicles, flat needle sprays (spruce, fir) and
+// Conifer foliage cards: pine needle fascicles, flat needle sprays (spruce, fir) and
 // scale-leaf sprays (cypress, thuja) and the needle rosettes of true cedars (Cedrus), drawn with the strokes and blades of render/archetype_canvas.h.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Broadleaf cards and the palm frond (issue 11): blades and strokes on the leaf canvas
+// Broadleaf cards and the palm frond: blades and strokes on the leaf canvas
 // (render/archetype_canvas.h). Each card: petiole at the bottom edge's centre, blade up the image.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Archetype texture sets (issue 11): leaf cards drawn from analytic primitives (blades, strokes)
+// Archetype texture sets: leaf cards drawn from analytic primitives (blades, strokes)
 // into float layers, and periodic bark height/colour fields; normal maps from the height fields.
 // The drawing lives in render/archetype_canvas.h (shared kit), archetype_leaves.cpp,
 // archetype_conifers.cpp and archetype_bark.cpp; this file holds the tables, the cache and the

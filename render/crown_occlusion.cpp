@@ -1,4 +1,4 @@
-// Crown ambient occlusion (issue 13, issue 23): the crown's ellipsoid for its depth, times the sky
+// Crown ambient occlusion: the crown's ellipsoid for its depth, times the sky
 // a point sees through the leaves around it, so each clump is darker inside as well as the crown.
 #include <algorithm>
 #include <cmath>

@@ -16,7 +16,7 @@
 
 namespace sylva {
 
-// Level of detail (issue 17, render/lod.h): the lower levels written beside the main mesh (LOD0).
+// Level of detail (render/lod.h): the lower levels written beside the main mesh (LOD0).
 struct export_lod_level {
   const tree_mesh* mesh = nullptr;   // node ids of the exported skeleton, final tree
   float coverage = 0;                // screen coverage down to which this level is shown

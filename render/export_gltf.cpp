@@ -210,7 +210,7 @@ struct gltf_doc {
               {"NORMAL", add_vectors(g.normal, "VEC3", array_buffer)},
               {"TEXCOORD_0", add_vectors(g.uv, "VEC2", array_buffer)}};
       if (tangents && !g.tangent.empty()) attr["TANGENT"] = add_vectors(g.tangent, "VEC4", array_buffer);
-      // Crown occlusion (issue 13), so the tree's inside is darker in other tools too.
+      // Crown occlusion, so the tree's inside is darker in other tools too.
       if (g.color.size() == g.position.size()) attr["COLOR_0"] = add_vectors(g.color, "VEC3", array_buffer);
     }
     if (wind && g.node.size() == g.position.size()) attr.update(wind_skin_attributes(j, bin, *wind, g.node));
@@ -450,7 +450,7 @@ std::string glb_container(std::string js, std::string& b) {
   return out;
 }
 
-// --lods (issue 17): one root node per level, LOD0 carrying MSFT_lod with the lower levels' ids and
+// --lods: one root node per level, LOD0 carrying MSFT_lod with the lower levels' ids and
 // MSFT_screencoverage in its extras; the impostor a textured quad after them. Scene 0 shows LOD0
 // (the levels hang off it through the extension), scene 1 lists every level as its own root, so a
 // viewer without the extension still finds each one. "" or the error.
@@ -554,7 +554,7 @@ export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const expo
     wind_bake wind;
     int skin = -1;
     json wind_channels = json::array(), wind_samplers = json::array();
-    if (o.wind_seconds > 0) {   // issue 17: the wind as a skin and a seamless loop
+    if (o.wind_seconds > 0) {   // the wind as a skin and a seamless loop
       wind = bake_wind(*v.skeleton, o.wind, o.wind_seconds);
       d.wind = &wind;
       skin = wind_add_skin(d.j, d.bin, wind, "", roots, wind_channels, wind_samplers);

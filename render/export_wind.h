@@ -1,4 +1,4 @@
-// `sylva export … --wind SECONDS` (issue 17): the wind baked into glTF as a skin (joints on the
+// `sylva export … --wind SECONDS`: the wind baked into glTF as a skin (joints on the
 // trunk and the major branches, weights from the branch hierarchy) and a seamless looping animation.
 // Used by render/export.cpp; kept apart so that the exporter only carries small hooks.
 #pragma once

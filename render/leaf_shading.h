@@ -1,4 +1,4 @@
-// Leaves shaded as a volume (issue 23): a crown of cards lit card by card shows black slivers
+// Leaves shaded as a volume: a crown of cards lit card by card shows black slivers
 // wherever a card turns its back or its edge to the light. Foliage is instead lit as the volume it
 // forms: each side of a card is a single-sided face of its own with its own normal (not one
 // double-sided face, whose normal a viewer turns over on the back), and each normal is bent toward

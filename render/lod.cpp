@@ -1,4 +1,4 @@
-// LOD1-LOD3 from the final tree (issue 17): a tolerance-driven bark simplifier and a leaf-card merger,
+// LOD1-LOD3 from the final tree: a tolerance-driven bark simplifier and a leaf-card merger,
 // each searched for the largest mesh within its share of the triangle budget.
 #include "render/lod.h"
 
@@ -19,7 +19,7 @@ namespace sylva {
 namespace {
 
 constexpr float pi = 3.14159265f;
-// Below this many triangles LOD0 is already cheap: the levels keep it (issue 17, bad input).
+// Below this many triangles LOD0 is already cheap: the levels keep it (bad input).
 constexpr size_t min_reducible_triangles = 200;
 
 

@@ -1,4 +1,4 @@
-// Level of detail (issue 17): LOD1-LOD3 built from the final tree's LOD0 mesh at triangle budgets,
+// Level of detail: LOD1-LOD3 built from the final tree's LOD0 mesh at triangle budgets,
 // the screen coverage at which each level takes over, and the choice of level for a view.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Cluster cards baked from the tree's own leaves (issue 17).
+// Cluster cards baked from the tree's own leaves.
 #include "render/lod_cards.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Cluster cards baked from the tree's own leaves (issue 17, LOD silhouette): a merged card of a LOD
+// Cluster cards baked from the tree's own leaves (LOD silhouette): a merged card of a LOD
 // level shows, in its alpha, the pattern of real leaves (with their gaps) projected orthographically
 // onto its plane, instead of a generic cluster texture scaled to the same area.
 #pragma once

@@ -1,4 +1,4 @@
-// Level-of-detail settings (issue 17), plain data saved in presets under "render" (render/lod.h).
+// Level-of-detail settings, plain data saved in presets under "render" (render/lod.h).
 #pragma once
 
 #include "generators/params.h"
@@ -7,7 +7,7 @@ namespace sylva {
 
 // Render-side settings (saved in presets under "render"): changing them never regrows or re-meshes.
 struct lod_params {
-  // Triangle budgets of LOD1..LOD3 in percent of LOD0 (issue 17 defaults: 40 %, 15 %, 5 %).
+  // Triangle budgets of LOD1..LOD3 in percent of LOD0 (defaults: 40 %, 15 %, 5 %).
   float lod1_budget = 40, lod2_budget = 15, lod3_budget = 5;
   // Viewport: log2 scale on the screen coverage before the level is picked (> 0: coarser sooner).
   float bias = 0;

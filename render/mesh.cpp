@@ -156,7 +156,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     m.final_radius[i] = r >= min_radius ? r : min_radius;  // NaN lands here too
   }
 
-  // Gnarl (issue 12): every internode turned by seeded angular noise, its subtree carried along.
+  // Gnarl: every internode turned by seeded angular noise, its subtree carried along.
   const std::vector<glm::vec3> rot = gnarl_rotations(t, p);
   const std::vector<glm::vec3> disp = gnarl_offsets(t, rot);
   std::vector<glm::vec3> q(n);
@@ -199,7 +199,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     tangent[i] = len > 1e-12f && std::isfinite(len) ? v / len : (par >= 0 ? dir[i] : up_axis);
   }
 
-  // Root flare (issue 12): arc length up the trunk from its root (-1 off the trunk) and the flare's
+  // Root flare: arc length up the trunk from its root (-1 off the trunk) and the flare's
   // height for that tree (flare_height, at most 6 root radii so a sapling's flare stays low).
   const float flare_strength = std::isfinite(p.flare_strength) ? std::clamp(p.flare_strength, 0.0f, 4.0f) : 0.0f;
   // Lobes need two ring vertices each; rings too coarse for three (a reduced LOD) flare round.

@@ -20,7 +20,7 @@ struct mesh_params {
   int radial_segments = 8;      // vertices per ring
   float uv_repeat = 2.0f;       // bark texture repeats per metre along a branch
   float min_radius = 0.0005f;   // radii below this are raised to it (keeps thin twigs visible)
-  // Bark shape (issue 12): curved axes, gnarl, twist, collars, root flare, caps.
+  // Bark shape: curved axes, gnarl, twist, collars, root flare, caps.
   float curve_angle = 12.0f;    // degrees the curve may turn between two rings of an internode
   int curve_rings = 2;          // at most this many rings inserted per internode (0: polyline)
   float detail_budget = 1.45f;  // curve and collar rings stop at this x the triangles of one ring per node
@@ -132,7 +132,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed 
 // about 40 along the crown's longest side). mesh_tree calls it.
 void bake_crown_occlusion(tree_mesh& m);
 
-// Gnarl (issue 12): per node, the rotation vector (axis * angle) of its internode, from seeded noise
+// Gnarl: per node, the rotation vector (axis * angle) of its internode, from seeded noise
 // scaled by age and order; and the offset of every node once each internode is turned and its
 // subtree carried along (O(n)). mesh_tree moves bark and leaves by them.
 std::vector<glm::vec3> gnarl_rotations(const tree_skeleton& t, const mesh_params& p);

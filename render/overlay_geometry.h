@@ -38,7 +38,7 @@ struct overlay_view {
   float slice_height = -1;     // metres; < 0: the middle of the grid once it is known
 };
 
-// High-contrast colours that read against both the sky and the ground (issue 14).
+// High-contrast colours that read against both the sky and the ground.
 glm::vec3 overlay_ramp(float x);   // low to high: deep violet, magenta, orange, yellow (plasma-like)
 inline const glm::vec3 overlay_marker_colour(1.0f, 0.25f, 0.95f), overlay_killed_colour(1.0f, 0.1f, 0.05f),
     overlay_source_colour(0.0f, 0.85f, 1.0f), overlay_endpoint_colour(1.0f, 0.55f, 0.0f);

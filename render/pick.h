@@ -1,4 +1,4 @@
-// Picking a branch under the mouse (issue 18): a ray against the bark tubes of the tree at a step.
+// Picking a branch under the mouse: a ray against the bark tubes of the tree at a step.
 #pragma once
 
 #include <cstdint>

@@ -445,7 +445,7 @@ load_result load_preset_doc(json& doc, preset& out) {
   if (!e.empty()) return fail(e);
   if (e = params_from_json(section("mesh"), "mesh", p.mesh, r.warnings); !e.empty()) return fail(e);
   if (e = params_from_json(section("render"), "render", p.render, r.warnings); !e.empty()) return fail(e);
-  // A preset without a "wood" section (every preset before issue 12) loads with the pass off.
+  // A preset without a "wood" section (every preset older than the bending pass) loads with the pass off.
   if (e = params_from_json(section("wood"), "wood", p.spec.wood, r.warnings); !e.empty()) return fail(e);
 
   if (auto it = doc.find("keyframes"); it != doc.end())

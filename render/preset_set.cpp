@@ -173,7 +173,7 @@ std::string set_preset_define(preset& p, std::string_view key, std::string_view 
 }
 }  // namespace
 
-// `--set key@step=value`: a keyframe of the generator's parameter `key` (issue 18).
+// `--set key@step=value`: a keyframe of the generator's parameter `key`.
 static std::string set_preset_keyframe(preset& p, std::string_view key_at, std::string_view text) {
   const size_t at = key_at.find('@');
   std::string_view key = key_at.substr(0, at);

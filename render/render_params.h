@@ -22,7 +22,7 @@ inline constexpr const char* shadow_filter_names[] = {"3x3", "5x5", "poisson", n
 enum class light_shafts : int { off = 0, radial = 1, volumetric = 2 };
 inline constexpr const char* light_shafts_names[] = {"off", "radial", "volumetric", nullptr};
 
-// The season of the leaves (issue 12; render/season.h turns it into colours, sizes and bare twigs).
+// The season of the leaves (render/season.h turns it into colours, sizes and bare twigs).
 // It never regrows: only the leaves' look and which of them are drawn or exported change.
 enum class leaf_season : int { spring = 0, summer = 1, autumn = 2, winter = 3 };
 inline constexpr const char* leaf_season_names[] = {"spring", "summer", "autumn", "winter", nullptr};
@@ -33,7 +33,7 @@ inline constexpr const char* leaf_habit_names[] = {"by_archetype", "deciduous", 
 
 struct render_params {
   // The first view: a low sun behind the tree, 15° to the side of the default camera's line of sight
-  // (yaw 35°), so that long shadows come toward the viewer and shafts fan out under the crown (issue 13).
+  // (yaw 35°), so that long shadows come toward the viewer and shafts fan out under the crown.
   float sun_azimuth = -160;     // degrees, from +Z toward +X
   float sun_elevation = 9;      // degrees above the horizon
   // Physical sky (Preetham et al. 1999): the sky, the sun's colour and the ambient light all follow
@@ -88,7 +88,7 @@ struct render_params {
   std::string leaf_texture;
   std::string leaf_opacity;
   lod_params lod;                 // level of detail (render/lod.h): budgets, viewport choice, impostor
-  wind_params wind;   // issue 17: sway in the viewport, baked by `sylva export --wind` (render/wind.h)
+  wind_params wind;   // sway in the viewport, baked by `sylva export --wind` (render/wind.h)
   bool operator==(const render_params&) const = default;
 };
 

@@ -1,4 +1,4 @@
-// The season control (issue 12): how a render_params' season turns into leaf colours, sizes and
+// The season control: how a render_params' season turns into leaf colours, sizes and
 // fallen leaves, shared by the viewport's leaf shader and the exporters. Leaves only: no regrow.
 #pragma once
 

@@ -20,7 +20,7 @@ struct image {
   std::vector<uint8_t> pixels;  // width * height * channels
 };
 
-// ---- Archetype texture sets (issue 11) -------------------------------------------------------
+// ---- Archetype texture sets -------------------------------------------------------
 // Each is generated deterministically from (archetype, size, seed) and cached for the life of the
 // process: the first call makes it, later calls return the same object (thread-safe; different
 // archetypes can be made in parallel). size is clamped to 8..4096; the renderer uses 512.

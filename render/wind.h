@@ -1,4 +1,4 @@
-// Wind (issue 17): hierarchical sway as real-time engines do it (trunk bend, branches swaying
+// Wind: hierarchical sway as real-time engines do it (trunk bend, branches swaying
 // around their bases, leaf flutter), the per-node data the vertex shader reads, the CPU reference
 // of the shader's motion, and the skin + looping animation that the glTF export bakes.
 #pragma once

@@ -1,4 +1,4 @@
-// `sylva bench --render --ab PRESET_B` (issue 18): the A/B view's frame timed against a single
+// `sylva bench --render --ab PRESET_B`: the A/B view's frame timed against a single
 // tree's, with the ratio printed. Only that the numbers are there and sane is checked here: the
 // timings themselves are reported as medians, never asserted.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// `sylva bench --set KEY=VALUE` (issue 17, to time the wind's cost): export's assignments, applied
+// `sylva bench --set KEY=VALUE` (to time the wind's cost): export's assignments, applied
 // to every preset benched; a bad key, a sweep or a malformed assignment is refused with a message.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Foliage clumping (generators/leaf_clumps.h, issue 23): clumping 0 is the even placement exactly;
+// Foliage clumping (generators/leaf_clumps.h): clumping 0 is the even placement exactly;
 // with clumping the leaves gather in limb masses (a variance-of-counts statistic) and the crown
 // occlusion darkens each mass's inside (render/crown_occlusion.cpp).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// A/B comparison in the real editor (issue 18): under Xvfb, a scripted session duplicates the tree
+// A/B comparison in the real editor: under Xvfb, a scripted session duplicates the tree
 // into slot B and shows both side by side. Right after the duplicate the two halves of the view are
 // the same picture; after an edit of B they differ, and A's document kept its value.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Growth budgets: the trial estimate is exact for small trees, flags runaway requests, and does
-// not flag the shipped presets (issue 14).
+// not flag the shipped presets.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,7 +37,7 @@ TEST(GrowthEstimate, SmallTreesAreGrownExactlyByTheTrial) {
 TEST(GrowthEstimate, ARunawaySelfOrganizingTreeIsOverTheBudget) {
   tree_spec spec;
   self_organizing_params p;
-  p.lambda = 1.0f;   // everything to the main axes: the growth runs away (issue 14)
+  p.lambda = 1.0f;   // everything to the main axes: the growth runs away
   spec.params = p;
   const auto t0 = std::chrono::steady_clock::now();
   growth_estimate e = estimate_growth(spec, {});

@@ -1,4 +1,4 @@
-// Nothing below the ground (issue 23): no exported leaf of any species reaches below y = 0, no stem
+// Nothing below the ground: no exported leaf of any species reaches below y = 0, no stem
 // runs along the ground, the leaf ground rule turns up or drops a card, and the guiding-vector
 // ground rise keeps every graph path climbing from the base.
 #include <gtest/gtest.h>

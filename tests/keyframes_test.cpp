@@ -1,4 +1,4 @@
-// Growth phases (issue 18): keyframes leave the tree before their step untouched, bit for bit,
+// Growth phases: keyframes leave the tree before their step untouched, bit for bit,
 // for every generator and every keyable parameter; bad keyframes are refused with a message.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Leaves shaded as a volume (issue 23, render/leaf_shading.h): the crown's outward direction, the
+// Leaves shaded as a volume (render/leaf_shading.h): the crown's outward direction, the
 // bent normals, and the two-sided cards every export writes.
 #include <gtest/gtest.h>
 

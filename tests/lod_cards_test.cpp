@@ -1,4 +1,4 @@
-// Cluster cards baked from the tree's own leaves (issue 17, render/lod_cards.h): the raster keeps a
+// Cluster cards baked from the tree's own leaves (render/lod_cards.h): the raster keeps a
 // leaf's cut-out, the LOD levels share one set of baked textures, and the exports carry them.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// `--lods` exports (issue 17): MSFT_lod nodes with screen coverage, the impostor quad, the Khronos
+// `--lods` exports: MSFT_lod nodes with screen coverage, the impostor quad, the Khronos
 // validator, and one OBJ per level written all or nothing.
 #include <gtest/gtest.h>
 

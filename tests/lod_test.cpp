@@ -1,4 +1,4 @@
-// Level of detail (issue 17): budgets, mesh invariants, node ids, and bad input.
+// Level of detail: budgets, mesh invariants, node ids, and bad input.
 #include <gtest/gtest.h>
 
 #include <string>

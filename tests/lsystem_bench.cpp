@@ -1,4 +1,4 @@
-// L-system derivation speed (issue 6): a bracketed D0L and a parametric system with conditions.
+// L-system derivation speed: a bracketed D0L and a parametric system with conditions.
 #include <benchmark/benchmark.h>
 
 #include "generators/lsystem_engine.h"

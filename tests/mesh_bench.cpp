@@ -1,4 +1,4 @@
-// Mesher speed: Honda tree f (issue 2's goal: grow + mesh well under 5 ms median).
+// Mesher speed: Honda tree f (goal: grow + mesh well under 5 ms median).
 #include <benchmark/benchmark.h>
 
 #include "generators/lsystem.h"

@@ -27,7 +27,7 @@ tree_skeleton small_tree() {
   return t;
 }
 
-// The mesher as it was before issue 12's shape details: one ring per node, straight tubes, open
+// The mesher as it was before its shape details: one ring per node, straight tubes, open
 // ends, no collar, flare or gnarl. The counts below are derived by hand for it.
 mesh_params plain() {
   mesh_params p;
@@ -36,7 +36,7 @@ mesh_params plain() {
   p.collar = 0;
   p.flare_strength = 0;
   p.caps = false;
-  p.root_depth = 0;   // (issue 23) the foot ring at its node, on the ground
+  p.root_depth = 0;   // the foot ring at its node, on the ground
   return p;
 }
 
@@ -543,7 +543,7 @@ TEST(MeshShape, RootFlareHasLobesAndMeetsTheGround) {
   EXPECT_NEAR(hi, 0.3f * 1.6f, 0.01f);
   EXPECT_GT(lo, 0.3f * 1.1f);   // a fifth of the swell all round
   {
-    // With a root depth (issue 23) the same lobed ring sits that far below the ground.
+    // With a root depth the same lobed ring sits that far below the ground.
     mesh_params deep = p;
     deep.root_depth = 0.1f;
     const tree_mesh sunk = mesh_tree(t, deep);

@@ -1,4 +1,4 @@
-// Every published parameter range is usable (issue 15, item 9): from each generator's default
+// Every published parameter range is usable : from each generator's default
 // preset, each numeric parameter is set to its min and then its max, one at a time, and the tree
 // must grow (more than the root), with finite positions and radii, and no crash.
 #include <gtest/gtest.h>
@@ -92,7 +92,7 @@ void walk(const P& defaults, const char* generator) {
 
 }  // namespace
 
-// The values issue 15 found failing inside their ranges now grow a tree without an error.
+// The values a hostile walk found failing inside their ranges now grow a tree without an error.
 TEST(ParamWalk, FormerlyFailingValuesGrow) {
   auto grows = [](generator_params params, const std::string& what) {
     SCOPED_TRACE(what);

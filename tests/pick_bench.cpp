@@ -1,4 +1,4 @@
-// Picking speed (issue 18's goal: a branch under the mouse within one frame for 100,000 nodes).
+// Picking speed (goal: a branch under the mouse within one frame for 100,000 nodes).
 #include <benchmark/benchmark.h>
 
 #include "generators/lsystem.h"

@@ -1,4 +1,4 @@
-// Pruning (issue 18): a cut leaves the tree before its step untouched, removes its branch from
+// Pruning: a cut leaves the tree before its step untouched, removes its branch from
 // then on, and each generator answers it (Palubicki 2009's bud break, freed points and vertices).
 #include <gtest/gtest.h>
 

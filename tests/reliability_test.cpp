@@ -1,4 +1,4 @@
-// Hostile input (issue 15): UTF-8 at the entrances, bounded reads, preset caps, whole-sweep
+// Hostile input: UTF-8 at the entrances, bounded reads, preset caps, whole-sweep
 // validation, writes through symlinks, and CLI behaviour on bad file names.
 #include <gtest/gtest.h>
 

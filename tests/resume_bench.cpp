@@ -1,4 +1,4 @@
-// Resuming a regrow (issue 18's goal: editing a keyframe at step k and seeing the new tree takes no
+// Resuming a regrow (goal: editing a keyframe at step k and seeing the new tree takes no
 // longer than a full regrow). Honda's tree with 17 derivations (131,071 nodes), a keyframe at
 // derivation 14 edited: the full regrow, the first (recording) growth, and the resumed regrow.
 #include <benchmark/benchmark.h>

@@ -1,4 +1,4 @@
-// The species library (issue 12): the fifteen species exist, say which generator grows them and
+// The species library: the fifteen species exist, say which generator grows them and
 // why, and keep or drop their leaves in winter as their kind does.
 #include <gtest/gtest.h>
 
@@ -69,7 +69,7 @@ TEST(Species, WinterStripsTheBroadleavesAndSparesTheConifersAndPalm) {
   }
 }
 
-// ---- Conifer and palm forms (issue 23): each reads as itself, measured on the grown tree.
+// ---- Conifer and palm forms: each reads as itself, measured on the grown tree.
 namespace {
 
 struct grown {

@@ -1,4 +1,4 @@
-// Archetype texture generation (issue 11 goal: all 9 leaf and 5 bark sets at 512 px in < 300 ms on
+// Archetype texture generation (goal: all 9 leaf and 5 bark sets at 512 px in < 300 ms on
 // the two-core development machine, wall clock, two threads).
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Archetype texture sets (issue 11): determinism, the cache, plausible leaf cut-outs, seamless bark,
+// Archetype texture sets: determinism, the cache, plausible leaf cut-outs, seamless bark,
 // valid normal maps, the tint formula, and the checks on users' texture files.
 #include <iterator>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Wind export (issue 17): the glTF skin's trunk. Its joint count follows the trunk's internodes
+// Wind export: the glTF skin's trunk. Its joint count follows the trunk's internodes
 // (at least 4, up to wind_trunk_segments_max) within the 64-joint cap, majors keep their joints,
 // and the skinned trunk follows the viewport's bend (offset theta h^2 / 2H, wind_displace) more
 // closely than the old 4 segments did. The skin is posed on the CPU as glTF does: each joint's
@@ -106,7 +106,7 @@ TEST(WindSkin, TrunkSegmentsFollowTheTrunkAndShrinkTheBendError) {
                 "vertical %.5f -> %.5f m\n", name, trunk_nodes, majors, trunk_joints(old), trunk_joints(now), double(a.bend),
                 double(a.err), double(b.err), double(a.vertical), double(b.vertical));
     EXPECT_GT(a.bend, 0.01f) << name << ": the trunk bends";
-    // The oak's trunk forks sympodially (issue 23): past the fork the rig's trunk follows a crooked
+    // The oak's trunk forks sympodially: past the fork the rig's trunk follows a crooked
     // limb, where more straight segments no longer shrink the (millimetre) error; they must not grow it.
     EXPECT_LT(b.err, (winding ? 1.05f : 0.5f) * a.err) << name;
     EXPECT_LT(b.err, (winding ? 0.03f : 0.01f) * a.bend) << name;

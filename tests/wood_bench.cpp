@@ -1,4 +1,4 @@
-// The wood pass's cost (issue 12's goal: under 10% of grow time on the 642,000-internode
+// The wood pass's cost (goal: under 10% of grow time on the 642,000-internode
 // benchmark, bench/self_organizing_642k.json). The growth runs once; each iteration bends a copy.
 #include <benchmark/benchmark.h>
 

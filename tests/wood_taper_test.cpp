@@ -1,4 +1,4 @@
-// Wood that reads as wood (issue 23): every axis of every species tapers from base to tip by the
+// Wood that reads as wood: every axis of every species tapers from base to tip by the
 // pipe model with disused pipes, a lateral is thinner than its parent where it leaves it, the trunk
 // stands in the ground with its flare, and the oak and the pine fork sympodially.
 #include <gtest/gtest.h>

@@ -30,7 +30,7 @@ void orbit_camera_zoom(orbit_camera& c, float wheel) {
 
 void frame_camera(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi, float aspect) {
   // Keeps the direction; moves the target and the distance until the box's projection spans 75% of
-  // the view height (or 90% of its width, if that is tighter) and sits in the middle (issue 13).
+  // the view height (or 90% of its width, if that is tighter) and sits in the middle.
   aspect = std::isfinite(aspect) && aspect > 0.05f ? std::min(aspect, 20.0f) : 1.6f;
   const glm::vec3 center = 0.5f * (lo + hi);
   const float radius = std::max(glm::length(hi - lo) * 0.5f, 0.05f);

@@ -1,4 +1,4 @@
-// Impostor atlas (issue 17): the tree seen from 8 or 16 directions around its trunk, rendered
+// Impostor atlas: the tree seen from 8 or 16 directions around its trunk, rendered
 // off-screen by Sylva's renderer into one atlas of colour with alpha and one of normals.
 #pragma once
 
@@ -31,7 +31,7 @@ struct impostor_atlas {
 // to the nearer one); `cell` is clamped to 16..2048. Needs a current GL context.
 impostor_atlas render_impostor(renderer_gpu& r, const render_params& rp, int views, int cell);
 
-// The atlas built a view at a time (issue 17, no pause): impostor_begin prepares the target (and,
+// The atlas built a view at a time (no pause): impostor_begin prepares the target (and,
 // given a mesh, copies it into the build's own buffers, so the renderer may show another level
 // meanwhile); each impostor_step renders one view, and the step after the last reads the atlas back.
 // So the editor spreads the work over frames and never stalls for the whole atlas.
@@ -66,7 +66,7 @@ void impostor_cancel(impostor_build& b);
 // Writes the two atlases as PNG bytes ("" or the error).
 std::string impostor_pngs(const impostor_atlas& a, std::string& color_png, std::string& normal_png);
 
-// The impostor as the viewport draws it (issue 17): one card of the renderer's leaf pipeline, so it
+// The impostor as the viewport draws it: one card of the renderer's leaf pipeline, so it
 // is lit from the atlas's normals, shadowed and fogged as the tree is. The atlas views become leaf
 // layers (colour final: leaf_instance::texture >= impostor_texture_base skips the leaf tint; normals
 // turned into each view's card frame); the card turns about the vertical to face the camera and

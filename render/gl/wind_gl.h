@@ -1,4 +1,4 @@
-// Wind in the viewport (issue 17): the per-node sway table as a buffer texture, and the uniforms
+// Wind in the viewport: the per-node sway table as a buffer texture, and the uniforms
 // of render/wind.h's GLSL. The bark and leaf programs (lit and shadow) all sway; nothing is
 // re-uploaded per frame and no draw call is added.
 #pragma once

@@ -1,4 +1,4 @@
-// A/B comparison (issue 18), the display-free part: duplicate, select, edit isolation, per-slot
+// A/B comparison, the display-free part: duplicate, select, edit isolation, per-slot
 // undo history and saving either slot (app/editor_ab.h).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The editor end to end (issue 14): a real window under Xvfb driven by SYLVA_SCRIPT through an
+// The editor end to end: a real window under Xvfb driven by SYLVA_SCRIPT through an
 // edit, undo and redo from key taps queued between frames, quit with changes (the prompt
 // appears), an over-budget request (the prompt appears, the previous tree stays) and Cancel
 // (Esc) during a long regrow; the autosaved recovery file comes and goes with the changes.

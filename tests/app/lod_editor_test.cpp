@@ -1,4 +1,4 @@
-// The editor's level choice with the impostor (issue 17, app/editor_lod.h): far away the renderer
+// The editor's level choice with the impostor (app/editor_lod.h): far away the renderer
 // holds one camera-facing card showing the nearest atlas view, "Show LOD" 4 asks for it anywhere,
 // and near the tree LOD0 comes back.
 #include <gtest/gtest.h>

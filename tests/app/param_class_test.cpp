@@ -156,8 +156,9 @@ TEST(ParamClass, EachClassRedoesWhatItDeclares) {
       q.render = rp;
       // What the editor posts (spec and mesh settings) is untouched, and so is the mesh.
       EXPECT_TRUE(q.spec == p.spec && q.mesh == p.mesh) << key;
-      if (&p == &cases[0].second)   // grown and meshed again from what the worker is given, once
+      if (&p == &cases[0].second) {   // grown and meshed again from what the worker is given, once
         EXPECT_EQ(mesh_digest(mesh_tree(grow(q.spec, grow_options{}), q.mesh, q.spec.seed)), bark) << key;
+      }
     });
 
     int regrow_params = 0;

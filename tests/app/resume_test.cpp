@@ -1,4 +1,4 @@
-// Resuming a regrow (issue 18): when only a keyframe from step k on changed, Honda's L-system starts
+// Resuming a regrow: when only a keyframe from step k on changed, Honda's L-system starts
 // at step k from the state it recorded there, and the tree is the full regrow's, bit for bit.
 #include <gtest/gtest.h>
 

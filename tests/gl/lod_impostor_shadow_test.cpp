@@ -1,4 +1,4 @@
-// The viewport impostor's shadow (issue 17): the shadow pass draws a card facing the sun (the atlas
+// The viewport impostor's shadow: the shadow pass draws a card facing the sun (the atlas
 // view nearest the sun's azimuth), so its ground shadow keeps the crown's shape whatever the camera.
 // Measured as the area of shadowed ground seen from above, against LOD0's at the same sun.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Renderer cost invariants (issue 7 Speed): unchanged frames upload and allocate nothing, and leaves
+// Renderer cost invariants: unchanged frames upload and allocate nothing, and leaves
 // are one instanced draw per pass whatever their number. Runs under Xvfb; skipped without DISPLAY.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The scene of issue 13: the physical sky (CPU model), volumetric light shafts through an occluder
+// The low-sun scene: the physical sky (CPU model), volumetric light shafts through an occluder
 // with a hole, and bad lighting input (no NaN, no GL error). GL tests run under Xvfb.
 #include <gtest/gtest.h>
 

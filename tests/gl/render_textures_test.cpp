@@ -1,4 +1,4 @@
-// The renderer's archetype textures (issue 11): nine leaf layers drawn in one instanced call, the
+// The renderer's archetype textures: nine leaf layers drawn in one instanced call, the
 // bark set follows render_params::bark, bad user textures say why and fall back. Under Xvfb.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The season control (issue 12): looks per season, fallen leaves with scrubbing intact, no regrow,
+// The season control: looks per season, fallen leaves with scrubbing intact, no regrow,
 // out-of-range values clamped, exports without winter's leaves, and the viewport's pixels.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Wind (issue 17): the lighting follows the sway. The viewport's vertex shaders turn the bark
+// Wind: the lighting follows the sway. The viewport's vertex shaders turn the bark
 // normal and the leaf card's frame with the branch rotations and the trunk's bend. Checked in
 // pixels against the same tree posed on the CPU: positions through wind_displace (the shader's
 // CPU reference) and normals through the deformation's Jacobian J, taken by central differences of

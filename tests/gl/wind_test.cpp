@@ -1,4 +1,4 @@
-// Wind (issue 17): per-node sway data, the skin's weights and joint cap, the seamless loop, the
+// Wind: per-node sway data, the skin's weights and joint cap, the seamless loop, the
 // glTF skin + animation (re-read, and the Khronos validator), the render-side parameters, and the
 // viewport's sway in pixels (two moments differ with the wind on, are identical with it off).
 #include <gtest/gtest.h>

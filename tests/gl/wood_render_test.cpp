@@ -1,4 +1,4 @@
-// Scrubbing a bent tree (issue 12): the viewport shows the bend of the shown step through the
+// Scrubbing a bent tree: the viewport shows the bend of the shown step through the
 // per-node buffer, without re-meshing, and matches the export of that step. GL: runs under Xvfb.
 #include <gtest/gtest.h>
 
@@ -68,7 +68,7 @@ TEST_F(WoodRender, ScrubbingShowsTheBendOfTheStepLikeItsExport) {
   // The export of that step: re-meshed from skeleton_at_step, nothing left to offset.
   const tree_skeleton at = skeleton_at_step(t, step);
   const std::vector<unsigned char> exported = shot(mesh_tree_at_step(t, full, mp, step), at, step);
-  // The final mesh scrubbed without the bend of the step (the renderer before issue 12).
+  // The final mesh scrubbed without the bend of the step (the renderer before the bending pass).
   tree_skeleton unbent = t;
   unbent.wood.reset();
   const std::vector<unsigned char> no_bend = shot(full, unbent, step);
