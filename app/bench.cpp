@@ -18,7 +18,7 @@
 
 #include "app/bench_set.h"
 #include "app/cli.h"
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "generators/timing.h"
 #include "render/export.h"
 #include "render/preset.h"

@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli_textures.h"
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "generators/timing.h"
 #include "generators/lsystem_engine.h"
 #include "generators/memory_bound.h"

@@ -9,7 +9,7 @@
 
 #include "app/bench.h"
 #include "app/bench_set.h"
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "generators/timing.h"
 #include "generators/tree_spec.h"
 #include "render/gl/renderer.h"

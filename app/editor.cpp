@@ -20,7 +20,7 @@
 #include "app/editor_script.h"
 #include "app/editor_settings.h"
 #include "app/editor_state.h"
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "app/view_gizmo.h"
 
 namespace sylva {

@@ -11,7 +11,7 @@
 
 #include "app/bench.h"
 #include "app/bench_set.h"
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "generators/timing.h"
 #include "app/worker.h"
 #include "render/preset.h"

@@ -10,7 +10,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "render/file_io.h"
 
 namespace sylva {

@@ -91,7 +91,7 @@ struct export_result {
 };
 
 // The extensions `sylva export` and the editor's export dialog accept, in the dialog's order:
-// export_tree's formats, .png (a render of the tree, app/headless.h), and .fbx (through assimp).
+// export_tree's formats, .png (a render of the tree, app/gl_window.h), and .fbx (through assimp).
 inline constexpr const char* export_formats[] = {".glb", ".gltf", ".obj", ".json", ".png", ".fbx"};
 inline constexpr int export_format_count = 6;
 

@@ -13,7 +13,7 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
-#include "app/headless.h"
+#include "app/gl_window.h"
 #include "generators/tree_spec.h"
 #include "render/mesh.h"
 #include "render/preset.h"

@@ -1,4 +1,5 @@
-// Off-screen rendering of a preset to PNG with the editor's renderer (hidden GLFW window).
+// GL windows: the editor's window, hidden windows for the CLI and tests, and off-screen
+// rendering of a preset to PNG with the editor's renderer.
 #pragma once
 
 #include <string>
