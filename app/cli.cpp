@@ -222,11 +222,11 @@ int run_export(const export_args& a) {
   const char* cmd = "export";
   std::string ext = fs::path(a.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (std::find(std::begin(export_formats), std::end(export_formats), ext) == std::end(export_formats))
-    return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use .glb, .gltf, .obj, .fbx, .json or .png");
+  const export_format* format = find_export_format(ext);
+  if (!format) return usage_error(cmd, "cannot tell the format of \"" + a.output + "\": use " + export_format_list());
   if (a.step < -1) return usage_error(cmd, "--step must be -1 (final tree) or a step number");
   if (a.seed_opt->count() && !a.seeds.empty()) return usage_error(cmd, "--seed and --seeds exclude each other");
-  if (a.lods && (ext == ".json" || ext == ".png")) return usage_error(cmd, "--lods writes .glb, .gltf, .obj or .fbx");
+  if (a.lods && !format->lods) return usage_error(cmd, "--lods writes " + export_format_list(&export_format::lods));
   if (a.lods && (a.animation || a.step >= 0)) return usage_error(cmd, "--lods exports the final tree; drop --animation and --step");
 
   preset base;
@@ -284,7 +284,7 @@ int run_export(const export_args& a) {
   if (!a.shard.empty() && !parse_shard(a.shard, shard_index, shard_count))
     return usage_error(cmd, "--shard expects I/N with 1 <= I <= N, got \"" + a.shard + "\"");
   if (!a.shard.empty() && !batch) return usage_error(cmd, "--shard splits a batch: give --seeds A-B or a --set sweep");
-  const bool manifest = batch && ext != ".png";
+  const bool manifest = batch && format->manifest;
   const std::string manifest_file = manifest_path(a.output, shard_index, shard_count);
   std::map<std::string, manifest_entry> done = manifest ? read_manifest(manifest_file) : std::map<std::string, manifest_entry>{};
   std::vector<manifest_entry> written;
@@ -328,7 +328,7 @@ int run_export(const export_args& a) {
       p.render.wind.enabled = true;
       if (std::string msg = clamp_wind(p.render.wind); !msg.empty()) warn(path, msg);
     }
-    if (ext == ".png") {
+    if (format->render) {
       headless_stats stats;
       stats.wind_time = wind ? a.wind : 0.0f;
       const auto t0 = clock_type::now();
@@ -363,8 +363,8 @@ int run_export(const export_args& a) {
     lod_export_data lods;   // --lods (app/cli_lods.h): LOD1-3 and the impostor
     if (a.lods)
       for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
-    if (wind && (ext == ".glb" || ext == ".gltf" || ext == ".fbx")) o.wind_seconds = a.wind;
-    else if (wind && ext != ".png") warn(path, "--wind applies to .glb, .gltf, .fbx and .png; ignored");
+    if (wind && format->wind && !format->render) o.wind_seconds = a.wind;
+    else if (wind && !format->wind) warn(path, "--wind applies to " + export_format_list(&export_format::wind) + "; ignored");
     t0 = clock_type::now();
     const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
     const double export_ms = ms_since(t0);

@@ -18,6 +18,12 @@ namespace sylva::ed {
 
 namespace {
 
+std::vector<std::string> export_extensions() {
+  std::vector<std::string> out;
+  for (const export_format& f : export_format_table) out.push_back(f.ext);
+  return out;
+}
+
 // A dialog button that the scripted test can press too (`answer LABEL`).
 bool scripted_button(editor_state& e, const char* label) {
   const bool clicked = ImGui::Button(label);
@@ -258,7 +264,7 @@ void draw_dialogs(editor_state& e) {
     const std::string stem = fs::path(default_save_path(e)).stem().string();
     open_file_browser(e.files, "Export as", true, current.parent_path().string(),
                       stem + (current.has_extension() ? current.extension().string() : ".glb"),
-                      {std::begin(export_formats), std::end(export_formats)});
+                      export_extensions());
     e.browse = editor_state::browsing::export_to;
     e.browse_export = false;
   }

@@ -16,14 +16,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const* const formats = export_formats;
-constexpr int format_count = export_format_count;
-
+// The row of export_format_table the path's extension names (any case), or -1.
 int format_of(const std::string& path) {
-  const std::string ext = fs::path(path).extension().string();
-  for (int i = 0; i < format_count; ++i)
-    if (ext == formats[i]) return i;
-  return -1;
+  const export_format* f = find_export_format(fs::path(path).extension().string());
+  return f ? int(f - export_format_table) : -1;
 }
 
 std::string human_bytes(size_t b) {
@@ -38,8 +34,8 @@ export_options options_for(const export_dialog_state& d, const export_context& c
   const int steps = c.tree->skeleton->steps;
   o.step = d.final_tree || c.step >= steps ? -1 : c.step;
   const int f = format_of(d.path);
-  o.growth_animation = d.animation && (f == 0 || f == 1);
-  o.compact = d.compact && (f == 0 || f == 1);
+  o.growth_animation = d.animation && f >= 0 && export_format_table[f].gltf;
+  o.compact = d.compact && f >= 0 && export_format_table[f].gltf;
   o.seconds_per_step = d.seconds_per_step;
   o.mesh = c.tree->mesh_settings;
   apply_render_params(o, c.doc.render);  // the same materials and user textures as `sylva export`
@@ -117,12 +113,14 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   const bool busy = d.running;
   int f = format_of(d.path);
   ImGui::TextUnformatted("Format");
-  for (int i = 0; i < format_count; ++i) {
+  for (int i = 0; i < export_format_count; ++i) {
     ImGui::SameLine();
-    if (ImGui::RadioButton(formats[i], f == i) && f != i) {
-      d.path = fs::path(d.path).replace_extension(formats[i]).string();
+    const export_format& row = export_format_table[i];
+    if (ImGui::RadioButton(row.ext, f == i) && f != i) {
+      d.path = fs::path(d.path).replace_extension(row.ext).string();
       f = i;
     }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", row.label);
   }
   ImGui::SetNextItemWidth(440);
   ImGui::InputText("Path", &d.path);
@@ -133,7 +131,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
     if (d.confirm_replace != d.path) d.confirm_replace.clear();
     d.shown_path = d.path;
   }
-  if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: .glb .gltf .obj .json .png .fbx");
+  if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: %s", export_format_list(nullptr, " ").c_str());
   int scope = d.final_tree ? 1 : 0;
   ImGui::RadioButton("Current step", &scope, 0);
   ImGui::SameLine();
@@ -143,7 +141,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
     ImGui::SameLine();
     ImGui::TextDisabled("(step %d of %d)", d.final_tree ? c.tree->skeleton->steps : c.step, c.tree->skeleton->steps);
   }
-  const bool gltf = f == 0 || f == 1;
+  const bool gltf = f >= 0 && export_format_table[f].gltf;
   ImGui::BeginDisabled(!gltf);
   ImGui::Checkbox("Growth animation", &d.animation);
   ImGui::SameLine();
@@ -158,7 +156,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
     ImGui::SetTooltip("glTF: quantized vertices (KHR_mesh_quantization), EXT_meshopt_compression, opaque textures as JPEG");
 
   // The size estimate: a dry run of the same export, redone whenever an input changes.
-  const bool png = f >= 0 && std::string(formats[f]) == ".png";
+  const bool png = f >= 0 && export_format_table[f].render;
   if (have_tree && f >= 0 && !png) {
     char head[160];
     std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,

@@ -77,6 +77,21 @@ void apply_render_params(export_options& o, const render_params& rp) {
   o.wind = rp.wind;
 }
 
+const export_format* find_export_format(const std::string& ext) {
+  std::string e = ext;
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  for (const export_format& f : export_format_table)
+    if (e == f.ext) return &f;
+  return nullptr;
+}
+
+std::string export_format_list(bool export_format::*has, const char* sep) {
+  std::string out;
+  for (const export_format& f : export_format_table)
+    if (!has || f.*has) out += (out.empty() ? "" : sep) + std::string(f.ext);
+  return out;
+}
+
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
                           const export_options& o) {
   std::string ext = std::filesystem::path(path).extension().string();

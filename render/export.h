@@ -90,10 +90,33 @@ struct export_result {
   int animation_steps = 0;  // steps in the growth animation after the caps
 };
 
-// The extensions `sylva export` and the editor's export dialog accept, in the dialog's order:
-// export_tree's formats, .png (a render of the tree, app/gl_window.h), and .fbx (through assimp).
-inline constexpr const char* export_formats[] = {".glb", ".gltf", ".obj", ".json", ".png", ".fbx"};
-inline constexpr int export_format_count = 6;
+// Every format `sylva export` and the editor's export dialog write, in the dialog's order, with
+// what each can carry. The CLI's checks, its messages and the dialog all read this one table: a new
+// format is a row here and a writer in export_tree (or, for a render, app/gl_window.h).
+struct export_format {
+  const char* ext;      // lower case, with the dot
+  const char* label;    // for people: "glTF binary"
+  bool lods;            // --lods: the LOD chain and the impostor
+  bool wind;            // --wind: the wind as a skin and a loop (a render shows the wind's pose)
+  bool render;          // a picture of the tree, drawn by the GL renderer (main thread only)
+  bool manifest;        // a batch of these gets a manifest (seed, file, counts, hash)
+  bool gltf;            // the glTF family: --animation, --instancing and --compact apply
+};
+inline constexpr export_format export_format_table[] = {
+    // ext     label            lods   wind   render manifest gltf
+    {".glb",  "glTF binary",   true,  true,  false, true,  true},
+    {".gltf", "glTF + .bin",   true,  true,  false, true,  true},
+    {".obj",  "OBJ + MTL",     true,  false, false, true,  false},
+    {".json", "skeleton JSON", false, false, false, true,  false},
+    {".png",  "render (PNG)",  false, true,  true,  false, false},
+    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false},
+};
+inline constexpr int export_format_count = int(sizeof export_format_table / sizeof export_format_table[0]);
+
+// The row for an extension (any case, with the dot), or nullptr.
+const export_format* find_export_format(const std::string& ext);
+// The extensions of the rows that `has` accepts, joined by `sep` (every row when `has` is null).
+std::string export_format_list(bool export_format::*has = nullptr, const char* sep = ", ");
 
 // Picks the format from the extension of `path`: .glb .gltf .obj .fbx .json. Writes atomically.
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info,
