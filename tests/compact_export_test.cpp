@@ -15,6 +15,7 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/scratch_dir.h"
 #include "render/export.h"
 #include "render/preset.h"
 
@@ -22,27 +23,13 @@ using namespace sylva;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
+using sylva_test::slurp;
+
 namespace {
 
-struct scratch {
-  fs::path dir;
-  scratch() {
-    dir = fs::temp_directory_path() / ("sylva_compact_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  ~scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+struct scratch : sylva_test::scratch_dir {
+  scratch() : scratch_dir("sylva_compact_test") {}
 };
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 // A GLB read back: its JSON and every buffer view's bytes, EXT_meshopt_compression views decoded.
 struct glb {

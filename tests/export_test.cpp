@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "tests/scratch_dir.h"
 #include "generators/lsystem.h"
 #include "render/export.h"
 #include "render/textures.h"
@@ -21,19 +22,12 @@
 using namespace sylva;
 namespace fs = std::filesystem;
 
+using sylva_test::slurp;
+
 namespace {
 
-struct scratch {
-  fs::path dir;
-  scratch() {
-    dir = fs::temp_directory_path() / ("sylva_export_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  ~scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+struct scratch : sylva_test::scratch_dir {
+  scratch() : scratch_dir("sylva_export_test") {}
 };
 
 struct honda_tree {
@@ -96,13 +90,6 @@ const tinygltf::Mesh* find_mesh(const tinygltf::Model& model, const std::string&
   for (const auto& mesh : model.meshes)
     if (mesh.name == name) return &mesh;
   return nullptr;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 
+#include "tests/scratch_dir.h"
 #include "render/export.h"
 #include "render/lod.h"
 #include "render/preset.h"
@@ -20,21 +21,13 @@
 using namespace sylva;
 namespace fs = std::filesystem;
 
+using sylva_test::slurp;
+
 namespace {
 
-struct scratch {
-  fs::path dir = fs::temp_directory_path() / ("sylva_fbx_test_" + std::to_string(::getpid()));
-  scratch() { fs::create_directories(dir); }
-  ~scratch() { std::error_code ec; fs::remove_all(dir, ec); }
-  std::string operator/(const std::string& n) const { return (dir / n).string(); }
+struct scratch : sylva_test::scratch_dir {
+  scratch() : scratch_dir("sylva_fbx_test") {}
 };
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 // Walks binary FBX 7.5 records as Blender's parse_fbx.py does: a record with children must end
 // with a 25-byte null record. Returns the record count, or 0 when one is not closed.

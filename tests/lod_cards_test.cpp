@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "tests/scratch_dir.h"
 #include "generators/tree_spec.h"
 #include "render/export.h"
 #include "render/lod.h"
@@ -17,6 +18,8 @@
 
 using namespace sylva;
 namespace fs = std::filesystem;
+
+using sylva_test::slurp;
 
 namespace {
 
@@ -29,13 +32,6 @@ leaf_instance flat_leaf(glm::vec3 at, float size, glm::vec4 q = {0, 0, 0, 1}) {
   l.died = 0xffff;
   l.texture = uint8_t(leaf_archetype::lobed);
   return l;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/scratch_dir.h"
 #include "generators/tree_spec.h"
 #include "render/export.h"
 #include "render/preset.h"
@@ -20,25 +21,13 @@
 using namespace sylva;
 namespace fs = std::filesystem;
 
+using sylva_test::slurp;
+
 namespace {
 
-struct lod_scratch {
-  fs::path dir;
-  lod_scratch() {
-    dir = fs::temp_directory_path() / ("sylva-lod-export-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~lod_scratch() { fs::remove_all(dir); }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+struct lod_scratch : sylva_test::scratch_dir {
+  lod_scratch() : scratch_dir("sylva-lod-export") {}
 };
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 // Triangles a level's files carry: the chain counts a leaf card as the viewport draws it (one
 // quad, culling off), an export writes a face per side (render/leaf_shading.h).

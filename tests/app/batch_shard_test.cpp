@@ -9,19 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "tests/scratch_dir.h"
 #include "app/cli_batch.h"
 #include "tests/run_sylva.h"
 
 namespace fs = std::filesystem;
 
-namespace {
+using sylva_test::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+namespace {
 
 std::vector<std::string> lines_of(const fs::path& p) {
   std::vector<std::string> out;
