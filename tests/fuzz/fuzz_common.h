@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "render/mesh.h"
 #include "render/preset.h"
 
 namespace sylva {
@@ -41,6 +42,17 @@ inline void fuzz_check(bool ok, const char* what) {
     std::fprintf(stderr, "fuzz invariant failed: %s\n", what);
     std::abort();
   }
+}
+
+// Grows the preset made small (make_growth_small) and meshes it, checking the invariants every
+// tree keeps: parents precede children and the mesh is valid.
+inline void grow_small_and_check(preset& p) {
+  make_growth_small(p);
+  grow_report report;
+  const tree_skeleton t = grow(p.spec, grow_options{}, &report);
+  for (size_t i = 0; i < t.size(); ++i) fuzz_check(t.parent[i] < int32_t(i), "parent precedes child");
+  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+  fuzz_check(validate_mesh(m).empty(), "mesh is valid");
 }
 
 }  // namespace sylva
