@@ -245,8 +245,15 @@ void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>&
 }
 
 // One undo step per completed edit: nothing is recorded while a widget is held.
+// A completed edit that would leave a document the loader refuses (keyframes or cuts on a text
+// L-system) is taken back with the reason, so every document the editor holds saves and reopens.
 void record_undo(editor_state& e) {
   if (ImGui::IsAnyItemActive() || e.doc == e.undo_base) return;
+  if (std::string why = document_refusal(e.doc); !why.empty() && document_refusal(e.undo_base).empty()) {
+    e.doc = e.undo_base;
+    set_status(e, "Not applied: " + why + ". Delete those keyframes or cuts first.", true);
+    return;
+  }
   e.undo.push_back(e.undo_base);
   if (e.undo.size() > 200) e.undo.erase(e.undo.begin());
   e.redo.clear();

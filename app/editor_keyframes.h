@@ -31,7 +31,8 @@ generator_params params_at_step(const tree_spec& spec, int step);
 // error nothing changes.
 std::string key_edits(tree_spec& spec, const generator_params& before, const generator_params& after, int step);
 // Moves every keyframe at step `from` to step `to`. Refused (spec unchanged) when `to` is out of
-// 1..last step or one of the keys is already keyed at `to`.
+// 1..max_keyframe_step or one of the keys is already keyed at `to` (past the last step it is kept,
+// inactive, like any keyframe there).
 std::string move_keyframes(tree_spec& spec, int from, int to);
 // The steps that hold keyframes, ascending, without repeats.
 std::vector<int> keyed_steps(const tree_spec& spec);

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
+#include "generators/keyframes.h"
 #include "generators/timing.h"
 #include "render/pick.h"
 
@@ -140,7 +141,11 @@ bool draw_prune_panel(prune_panel_state& s, tree_spec& spec, const grow_result* 
     if (ImGui::SmallButton("x")) remove = int(k);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Delete this cut");
     ImGui::SameLine();
-    if (missed) ImGui::TextColored(ImVec4(1, 0.45f, 0.35f, 1), "%s: no branch found", b);
+    if (!step_active(spec, c.step)) {
+      ImGui::TextDisabled("%s (inactive: past the last step)", b);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Kept and saved; it applies again once Growth steps reaches %d.", c.step);
+    } else if (missed) ImGui::TextColored(ImVec4(1, 0.45f, 0.35f, 1), "%s: no branch found", b);
     else ImGui::TextUnformatted(b);
     if (ImGui::IsItemClicked()) step = std::max(0, c.step);
     ImGui::PopID();
@@ -186,12 +191,15 @@ void draw_cut_markers(const tree_spec& spec, int steps, float x0, float x1, floa
     ImGui::PushID(int(k) + 100000);
     ImGui::SetCursorScreenPos(ImVec2(x - 4, y));
     if (ImGui::InvisibleButton("##cut", ImVec2(8, 14))) step = std::clamp(c.step, 0, steps);
-    const bool hovered = ImGui::IsItemHovered();
-    dl->AddTriangleFilled(ImVec2(x - 4, y + 13), ImVec2(x + 4, y + 13), ImVec2(x, y + 1),
-                          hovered ? IM_COL32(255, 150, 130, 255) : IM_COL32(230, 70, 60, 255));
+    const bool hovered = ImGui::IsItemHovered(), active = step_active(spec, c.step);
+    const ImVec2 p0(x - 4, y + 13), p1(x + 4, y + 13), p2(x, y + 1);
+    const ImU32 col = hovered ? IM_COL32(255, 150, 130, 255) : IM_COL32(230, 70, 60, 255);
+    if (active) dl->AddTriangleFilled(p0, p1, p2, col);
+    else dl->AddTriangle(p0, p1, p2, hovered ? col : IM_COL32(150, 150, 150, 255), 1.5f);   // kept, inactive
     if (hovered)
-      ImGui::SetTooltip("Cut at step %d: %s (click to go there; delete it under Pruning)", c.step,
-                        c.shape == prune_shape::branch ? "a branch" : brush_labels[std::clamp(int(c.shape) - 1, 0, 1)]);
+      ImGui::SetTooltip("Cut at step %d: %s (click to go there; delete it under Pruning)%s", c.step,
+                        c.shape == prune_shape::branch ? "a branch" : brush_labels[std::clamp(int(c.shape) - 1, 0, 1)],
+                        active ? "" : "\nInactive: past the last step. It is kept and applies again once Growth steps reaches it.");
     ImGui::PopID();
   }
 }

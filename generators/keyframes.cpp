@@ -133,6 +133,27 @@ std::vector<std::string> keyframe_refused_keys(int generator) {
 
 int last_keyframe_step(const tree_spec& spec) { return default_steps(spec.params); }
 
+int max_keyframe_step(const tree_spec& spec) {
+  int top = 0;
+  std::visit(
+      [&](const auto& p) {
+        visit_params(p, [&](const auto&, const param_info& info) {
+          if (std::string_view(info.key) == "steps" || std::string_view(info.key) == "derivations") top = int(info.max);
+        });
+      },
+      spec.params);
+  return top;
+}
+
+bool step_active(const tree_spec& spec, int step) { return step <= last_keyframe_step(spec); }
+
+int inactive_edits(const tree_spec& spec) {
+  int n = 0;
+  for (const keyframe& k : spec.keyframes) n += !step_active(spec, k.step);
+  for (const prune_cut& c : spec.cuts) n += !step_active(spec, c.step);
+  return n;
+}
+
 const char* keyframe_step_meaning(const tree_spec& spec) {
   switch (spec.params.index()) {
     case 0: return "a step is one year of growth: a keyframe at step k changes the buds' light, resource and shoots from year k on";
@@ -185,10 +206,10 @@ std::string keyframe_refusal(const tree_spec& spec, std::string_view key) {
 std::string check_keyframe(const tree_spec& spec, const keyframe& k, int ignore) {
   const std::string at = "keyframe " + k.key + "@" + std::to_string(k.step);
   if (std::string why = keyframe_refusal(spec, k.key); !why.empty()) return at + ": " + why;
-  const int last = last_keyframe_step(spec);
+  const int top = max_keyframe_step(spec);
   if (k.step < 1) return at + ": steps start at 1 (the value before step 1 is the parameter's own value)";
-  if (k.step > last)
-    return at + ": " + step_text(k.step) + " is beyond the last step (" + std::to_string(last) + ")";
+  if (k.step > top)
+    return at + ": " + step_text(k.step) + " is beyond the most steps a growth can have (" + std::to_string(top) + ")";
   std::string range;
   std::visit(
       [&](const auto& p) {

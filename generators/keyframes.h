@@ -100,8 +100,17 @@ std::string check_keyframes(const tree_spec& spec);
 // Adds k, or replaces the value of the keyframe with the same key and step; keeps the list sorted
 // by step, then key. On a bad keyframe returns the message and leaves the spec as it was.
 std::string set_keyframe(tree_spec& spec, const keyframe& k);
-// The last step a keyframe may name: the spec's own step (or derivation) count.
+// The spec's own step (or derivation) count: the last step whose keyframes and cuts apply.
 int last_keyframe_step(const tree_spec& spec);
+// The last step a keyframe or cut may name: the top of the step (or derivation) parameter's range.
+// A keyframe between last_keyframe_step and this is legal but inactive: it stays in the document,
+// is saved and loaded, and applies again once Growth steps reaches it. So lowering Growth steps
+// never makes a document that cannot be saved and reopened.
+int max_keyframe_step(const tree_spec& spec);
+// Whether a keyframe or cut at `step` applies in this spec's growth (step <= last_keyframe_step).
+bool step_active(const tree_spec& spec, int step);
+// How many keyframes and cuts lie past the last step (kept, inactive).
+int inactive_edits(const tree_spec& spec);
 // The keys a generator (index in generator_names; Honda's mode for the L-system) refuses, for the
 // tests that check each one names a parameter.
 std::vector<std::string> keyframe_refused_keys(int generator);

@@ -83,9 +83,10 @@ std::string check_cut(const tree_spec& spec, const prune_cut& c) {
   if (const auto* l = std::get_if<lsystem_params>(&spec.params); l && l->mode == lsystem_mode::text)
     return at + ": text L-systems cannot be pruned during growth, since the turtle draws the string only after the "
                 "last derivation";
-  const int last = last_keyframe_step(spec);
+  const int top = max_keyframe_step(spec);   // past the last step a cut is kept, inactive
   if (c.step < 1) return at + ": steps start at 1";
-  if (c.step > last) return at + ": step " + std::to_string(c.step) + " is beyond the last step (" + std::to_string(last) + ")";
+  if (c.step > top)
+    return at + ": step " + std::to_string(c.step) + " is beyond the most steps a growth can have (" + std::to_string(top) + ")";
   if (int(c.shape) < 0 || int(c.shape) > 2) return at + ": unknown shape";
   auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite(c.point) || std::abs(c.point.x) > 1e4f || std::abs(c.point.y) > 1e4f || std::abs(c.point.z) > 1e4f)
@@ -104,8 +105,13 @@ std::string check_cuts(const tree_spec& spec) {
   return "";
 }
 
-std::string add_cut(tree_spec& spec, const prune_cut& c) {
-  if (std::string e = check_cut(spec, c); !e.empty()) return e;
+std::string add_cut(tree_spec& spec, const prune_cut& cut) {
+  if (std::string e = check_cut(spec, cut); !e.empty()) return e;
+  // A branch cut has a reach and a brush a size; the other field is not saved (render/preset.cpp),
+  // so the document keeps it at its default and saves and reopens exactly as it is.
+  prune_cut c = cut;
+  if (c.shape == prune_shape::branch) c.size = prune_cut{}.size;
+  else c.reach = prune_cut{}.reach;
   for (const prune_cut& o : spec.cuts)
     if (o == c) return "cut at step " + std::to_string(c.step) + ": the same cut is already in the list";
   spec.cuts.push_back(c);

@@ -47,6 +47,7 @@ struct tree_spec;
 std::string check_cut(const tree_spec& spec, const prune_cut& c);
 std::string check_cuts(const tree_spec& spec);
 // Appends a checked cut; on a bad one returns the message and leaves the spec as it was.
+// The field its shape does not use (a branch's size, a brush's reach) is kept at its default.
 std::string add_cut(tree_spec& spec, const prune_cut& c);
 // What a cut does in the spec's generator (the panel's help and the design notes).
 const char* cut_response(const tree_spec& spec);

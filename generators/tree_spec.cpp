@@ -73,6 +73,12 @@ tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* re
         "the axiom and productions drew no internode"};
     report->message = std::string("nothing grew beyond the seedling: ") + why[spec.params.index()];
   }
+  // Keyframes and cuts past the last step are legal (generators/keyframes.h) but do nothing: say so.
+  if (report && !report->error && !report->cancelled && report->message.empty())
+    if (const int n = inactive_edits(spec); n > 0)
+      report->message = std::to_string(n) + (n == 1 ? " keyframe or cut lies" : " keyframes or cuts lie") +
+                        " past the last step (" + std::to_string(last_keyframe_step(spec)) +
+                        "): kept, inactive until Growth steps reaches them";
   // The shared passes (DESIGN §3): the generator's radii are final, the foliage is placed later by
   // the mesher on the bent skeleton. A cancelled growth is not bent: it is thrown away.
   if (!(report && (report->cancelled || report->error)) && !opt.cancelled()) apply_wood(t, spec.wood, report);

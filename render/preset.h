@@ -54,6 +54,13 @@ std::string save_preset_json(const preset& p);
 // Writes through a temporary file and a rename; returns "" or the error.
 std::string save_preset_file(const preset& p, const std::string& path);
 
+// What the loader refuses across fields of a document that each field alone cannot show: its
+// keyframes and cuts against its generator and params (a text L-system carries none). "" when
+// load_preset_json would take the document's save. The editor reverts a completed edit that makes
+// it non-empty, and set_preset_param refuses such an assignment, so no edit makes a document that
+// saves but cannot be reopened.
+std::string document_refusal(const preset& p);
+
 // `key=value` for the current generator's params, mesh or render params (CLI --set), or
 // `key@step=value` for a keyframe of a generator parameter (generators/keyframes.h).
 // Returns "" or the error; on an error the preset is unchanged.

@@ -11,7 +11,9 @@
 #include <limits>
 #include <set>
 
+#include "generators/keyframes.h"
 #include "generators/lsystem_engine.h"
+#include "generators/pruning.h"
 
 namespace sylva {
 namespace {
@@ -201,6 +203,7 @@ std::string set_preset_param(preset& p, std::string_view assignment) {
   if (is_define_key(key)) return set_preset_define(p, key, text);
   if (key.find('@') != std::string_view::npos) return set_preset_keyframe(p, key, text);
   std::string error;
+  preset before = p;
   std::string found = with_param(p, key, [&](auto& value, const param_info& info) {
     auto v = value;
     error = text_to_value(text, v, info);
@@ -209,7 +212,16 @@ std::string set_preset_param(preset& p, std::string_view assignment) {
   });
   if (!found.empty()) return found;
   if (!error.empty()) return std::string(key) + ": " + error;
+  if (std::string why = document_refusal(p); !why.empty()) {
+    p = std::move(before);
+    return std::string(key) + ": not applied, since the document would not load again: " + why;
+  }
   return "";
+}
+
+std::string document_refusal(const preset& p) {
+  if (std::string e = check_keyframes(p.spec); !e.empty()) return e;
+  return check_cuts(p.spec);
 }
 
 std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out) {

@@ -265,17 +265,20 @@ TEST(HostileInput, CutFieldsOfTheOtherShapeAreIgnoredWithAWarning) {
 
 // ---------------------------------------------------------------- sweeps
 
-// Only later variants (fewer steps) refuse the keyframe: every variant is checked first.
+// Later variants (fewer steps) strand the keyframe past their last step: it is kept, inactive, and
+// each such variant says so; a keyframe no variant can hold (past the steps' range) writes nothing.
 TEST(HostileInput, SweepWithAKeyframeWritesNothingWhenAnyVariantRefusesIt) {
   scratch s("sweep_key");
   write_text(s / "t-1.json", "the user's own file");
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json";
-  expect_refused(s, "", "export " + quoted(preset) + " -o " + quoted(s / "t.json") + " --set steps=20:2:3 --set lambda@10=0.5",
-                 "lambda@10");
+  expect_refused(s, "", "export " + quoted(preset) + " -o " + quoted(s / "t.json") + " --set steps=20:2:3 --set lambda@201=0.5",
+                 "lambda@201");
   const sylva_run ok = run_sylva("", "export " + quoted(preset) + " -o " + quoted(s / "k.json") +
-                                         " --set steps=12:11:2 --set lambda@10=0.5");
+                                         " --set steps=12:2:3 --set lambda@10=0.5");
   EXPECT_EQ(ok.code, 0) << ok.err;
-  EXPECT_TRUE(fs::exists(s / "k-1.json") && fs::exists(s / "k-2.json"));
+  EXPECT_TRUE(fs::exists(s / "k-1.json") && fs::exists(s / "k-2.json") && fs::exists(s / "k-3.json"));
+  EXPECT_NE(ok.err.find("k-3.json: 1 keyframe or cut lies past the last step (2)"), std::string::npos) << ok.err;
+  EXPECT_EQ(ok.err.find("k-1.json: 1 keyframe"), std::string::npos) << ok.err;
 }
 
 // ---------------------------------------------------------------- inputs

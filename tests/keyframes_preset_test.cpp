@@ -63,7 +63,7 @@ TEST(KeyframePresets, OlderPresetsWithoutKeyframesLoadWithNone) {
 TEST(KeyframePresets, BadKeyframesFailTheLoadWithAMessage) {
   const char* head = R"({"sylva_preset":1,"generator":"self_organizing","params":{"steps":9},"keyframes":)";
   const struct { const char* list; const char* words; } bad[] = {
-      {R"([{"step":12,"key":"lambda","value":0.7}])", "beyond the last step (9)"},
+      {R"([{"step":201,"key":"lambda","value":0.7}])", "beyond the most steps a growth can have (200)"},
       {R"([{"step":3,"key":"lambda","value":0.7},{"step":3,"key":"lambda","value":0.8}])", "already keyed"},
       {R"([{"step":3,"key":"lambdaa","value":0.7}])", "not a parameter"},
       {R"([{"step":3,"key":"lambda","value":"x"}])", "expected a number"},
@@ -85,7 +85,7 @@ TEST(KeyframePresets, SetWithAStepRefusesBadInputAndLeavesThePresetAsItWas) {
   preset p = so_preset();
   ASSERT_EQ(set_preset_param(p, "lambda@5=0.7"), "");
   const preset before = p;
-  EXPECT_NE(set_preset_param(p, "lambda@13=0.7").find("beyond the last step (12)"), std::string::npos);
+  EXPECT_NE(set_preset_param(p, "lambda@201=0.7").find("beyond the most steps a growth can have (200)"), std::string::npos);
   EXPECT_NE(set_preset_param(p, "lambda@x=0.7").find("whole number"), std::string::npos);
   EXPECT_NE(set_preset_param(p, "lambda@5=abc").find("not a finite number"), std::string::npos);
   EXPECT_NE(set_preset_param(p, "lambda@5=3").find("outside"), std::string::npos);
@@ -122,7 +122,7 @@ TEST(KeyframePresets, CliSetsKeyframesAndRefusesContradictions) {
   EXPECT_NE(r.err.find("given twice"), std::string::npos) << r.err;
   const sylva_run beyond = run_sylva("", "export '" + preset + "' -o '" + twice + "' --set alpha1@99=60");
   EXPECT_EQ(beyond.code, 2);
-  EXPECT_NE(beyond.err.find("beyond the last step"), std::string::npos) << beyond.err;
+  EXPECT_NE(beyond.err.find("beyond the most steps a growth can have (24)"), std::string::npos) << beyond.err;
   EXPECT_FALSE(fs::exists(twice));
   fs::remove_all(dir);
 }
@@ -139,7 +139,7 @@ TEST(KeyframePresets, CutsSaveLoadAndRefuseBadInput) {
   EXPECT_EQ(back, p);
   const char* head = R"({"sylva_preset":1,"generator":"self_organizing","params":{"steps":9},"cuts":)";
   const struct { const char* list; const char* words; } bad[] = {
-      {R"([{"step":12,"point":[0,1,0]}])", "beyond the last step (9)"},
+      {R"([{"step":201,"point":[0,1,0]}])", "beyond the most steps a growth can have (200)"},
       {R"([{"step":3,"point":[0,1]}])", "\"point\" must be [x, y, z]"},
       {R"([{"step":3,"point":[0,1,0],"shape":"hedge"}])", "\"shape\" must be one of"},
       {R"([{"step":3,"point":[0,1,0],"reach":-1}])", "reach"},

@@ -135,6 +135,32 @@ TEST(Keyframes, ParamsAtStepApplyKeysInStepOrder) {
   EXPECT_EQ(s.keyframes[2].value.x, 0.8f);
 }
 
+// Lowering the steps below a keyframe keeps it, inactive: the tree grows as without it (and says
+// so), and raising the steps again applies it. The loader and the editor share this rule, so a
+// document with such a keyframe saves and reopens.
+TEST(Keyframes, AKeyframePastTheLastStepIsKeptInactiveAndAppliesWhenTheStepsGrowAgain) {
+  tree_spec s = small_spec(0);
+  auto& p = std::get<self_organizing_params>(s.params);
+  const int last = p.steps;
+  ASSERT_EQ(set_keyframe(s, {last + 3, "lambda", glm::vec3(0.3f, 0, 0)}), "");
+  EXPECT_FALSE(step_active(s, last + 3));
+  EXPECT_EQ(inactive_edits(s), 1);
+  tree_spec plain = s;
+  plain.keyframes.clear();
+  grow_report rep;
+  const tree_skeleton a = grow(s, {}, &rep), b = grow(plain, {});
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_NE(rep.message.find("past the last step (" + std::to_string(last) + ")"), std::string::npos) << rep.message;
+  p.steps = last + 5;
+  plain.params = s.params;
+  EXPECT_TRUE(step_active(s, last + 3));
+  EXPECT_EQ(inactive_edits(s), 0);
+  grow_report rep2;
+  const tree_skeleton c = grow(s, {}, &rep2), d = grow(plain, {});
+  EXPECT_TRUE(rep2.message.empty()) << rep2.message;
+  EXPECT_NE(c.position, d.position);   // lambda 0.3 from step last+3 on changes the tree
+}
+
 TEST(Keyframes, BadKeyframesAreRefusedAndLeaveTheSpecAsItWas) {
   tree_spec s = small_spec(0);
   ASSERT_EQ(set_keyframe(s, {4, "lambda", glm::vec3(0.6f, 0, 0)}), "");
@@ -144,7 +170,7 @@ TEST(Keyframes, BadKeyframesAreRefusedAndLeaveTheSpecAsItWas) {
     EXPECT_NE(e.find(words), std::string::npos) << e;
     EXPECT_EQ(s, before);
   };
-  refused({11, "lambda", glm::vec3(0.5f, 0, 0)}, "beyond the last step (10)");
+  refused({201, "lambda", glm::vec3(0.5f, 0, 0)}, "beyond the most steps a growth can have (200)");
   refused({0, "lambda", glm::vec3(0.5f, 0, 0)}, "steps start at 1");
   refused({4, "no_such_key", glm::vec3(0)}, "not a parameter of self_organizing");
   refused({4, "voxel_size", glm::vec3(2, 0, 0)}, "cannot change from a step on");

@@ -220,7 +220,7 @@ TEST(Pruning, BadCutsAreRefusedAndLeaveTheSpecAsItWas) {
     EXPECT_NE(e.find(words), std::string::npos) << e;
     EXPECT_EQ(s, before);
   };
-  refused({11, prune_shape::branch, glm::vec3(0), glm::vec3(1), 0.25f}, "beyond the last step (10)");
+  refused({201, prune_shape::branch, glm::vec3(0), glm::vec3(1), 0.25f}, "beyond the most steps a growth can have (200)");
   refused({0, prune_shape::branch, glm::vec3(0), glm::vec3(1), 0.25f}, "steps start at 1");
   refused({3, prune_shape::branch, glm::vec3(NAN, 0, 0), glm::vec3(1), 0.25f}, "finite");
   refused({3, prune_shape::branch, glm::vec3(0), glm::vec3(1), 0}, "reach");

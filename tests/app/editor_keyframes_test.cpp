@@ -61,8 +61,14 @@ TEST(EditorKeyframes, MovingAMarkerMovesItsKeyframesOrRefuses) {
   EXPECT_EQ(keyed_steps(s), (std::vector<int>{5, 7}));
   const tree_spec was = s;
   EXPECT_NE(move_keyframes(s, 5, 7).find("already keyed"), std::string::npos);   // lambda@7 exists
-  EXPECT_NE(move_keyframes(s, 5, 13).find("beyond the last step"), std::string::npos);
+  EXPECT_NE(move_keyframes(s, 5, 201).find("beyond the most steps a growth can have (200)"), std::string::npos);
   EXPECT_EQ(s, was);
+  // Past the last step but within the steps' range: kept, inactive (the same rule as the loader).
+  ASSERT_EQ(move_keyframes(s, 5, 13), "");
+  EXPECT_EQ(keyed_steps(s), (std::vector<int>{7, 13}));
+  EXPECT_FALSE(step_active(s, 13));
+  EXPECT_EQ(inactive_edits(s), 2);
+  ASSERT_EQ(move_keyframes(s, 13, 5), "");
   EXPECT_EQ(keyframe_text(s, s.keyframes[0]), "alpha = 3");
 }
 

@@ -17,7 +17,7 @@ if ! command -v clang++ >/dev/null 2>&1; then
   exit 1
 fi
 src=$(cd "$(dirname "$0")/../.." && pwd)
-harnesses=${FUZZ_ONLY:-lsystem preset set obj texture keys export settings recovery}
+harnesses=${FUZZ_ONLY:-lsystem preset set obj texture keys export settings recovery edits}
 cmake -S "$src" -B "$build" -DSYLVA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
 cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $harnesses) >/dev/null
