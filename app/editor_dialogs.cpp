@@ -386,6 +386,20 @@ void draw_dialogs(editor_state& e) {
     if (scripted_button(e, "Keep B") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
+  if (e.open_unrestored && !ImGui::IsPopupOpen("Restore unsaved work?")) {
+    ImGui::OpenPopup("Unsaved work not restored");
+    e.open_unrestored = false;
+  }
+  if (ImGui::BeginPopupModal("Unsaved work not restored", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    e.prompts_shown.push_back("Unsaved work not restored");
+    for (const std::string& m : e.unrestored) {
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
+      ImGui::TextUnformatted(m.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    if (scripted_button(e, "OK") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
   if (e.open_recovery) {
     ImGui::OpenPopup("Restore unsaved work?");
     e.open_recovery = false;

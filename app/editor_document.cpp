@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 #include <cctype>
@@ -112,6 +113,7 @@ std::string recovery_path(const editor_state& e, int slot) {
 }
 
 void remove_recovery(editor_state& e, int slot) {
+  if (e.autosave_off[slot]) return;   // an unusable autosave that could not be moved aside stays
   std::error_code ec;
   fs::remove(recovery_path(e, slot), ec);
   fs::remove(recovery_path(e, slot) + ".source", ec);
@@ -122,8 +124,44 @@ void remove_recovery(editor_state& e) {
   remove_recovery(e, 1);
 }
 
+namespace {
+
+// An autosave that cannot be offered back is the user's work all the same: it is moved aside to
+// ~/Sylva/unrestored-YYYYMMDD-HHMMSS[-b].json (a name the next autosave never writes), and the
+// editor says why and where. If it cannot be moved, that slot's autosave stays off this session.
+void keep_unrestored(editor_state& e, int slot, const std::string& file, const std::string& why) {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
+  std::error_code ec;
+  std::string kept;
+  for (int n = 0; n < 100 && kept.empty(); ++n) {
+    const std::string name = std::string("unrestored-") + stamp + (slot ? "-b" : "") + (n ? "-" + std::to_string(n) : "") + ".json";
+    const fs::path to = fs::path(e.home) / name;
+    if (fs::exists(fs::symlink_status(to, ec))) continue;
+    fs::rename(file, to, ec);
+    if (ec) break;
+    kept = to.string();
+    fs::rename(file + ".source", kept + ".source", ec);   // best effort: it only names the document's path
+  }
+  std::string m = "The autosaved work in " + file + " cannot be offered back: " + why + ". ";
+  if (!kept.empty()) {
+    m += "It is kept as " + kept + "; fix it in a text editor and open it.";
+  } else {
+    e.autosave_off[slot] = true;
+    m += "It could not be moved aside, so it stays where it is and this session does not autosave over it.";
+  }
+  e.unrestored.push_back(m);
+  e.open_unrestored = true;
+  set_status(e, m, true);   // also on stderr
+}
+
+}  // namespace
+
 // Work left unsaved by a crash or a killed session (each slot's autosave), offered back at start.
-// A recovery file that cannot be used is left where it is (the next autosave replaces it) and said.
+// One that cannot be used is kept under another name and said (keep_unrestored).
 void find_recovery(editor_state& e) {
   for (int slot = 0; slot < 2; ++slot) {
     std::error_code ec;
@@ -135,7 +173,7 @@ void find_recovery(editor_state& e) {
     preset& doc = slot == 0 ? e.recovered : e.recovered_b_doc;
     if (why.empty()) why = parse_recovery(json, source, doc, slot == 0 ? e.recovered_path : e.recovered_b_path);
     if (!why.empty()) {
-      set_status(e, "the autosaved work in " + file + " cannot be offered back: " + why, true);   // also on stderr
+      keep_unrestored(e, slot, file, why);
       continue;
     }
     (slot == 0 ? e.recovered_a : e.recovered_b) = true;
@@ -160,6 +198,7 @@ void autosave(editor_state& e, double dt) {
   std::error_code ec;
   fs::create_directories(e.home, ec);
   for (int slot : unsaved) {
+    if (e.autosave_off[slot]) continue;
     const bool selected = !e.ab.has_b || slot == e.ab.selected;
     const preset& doc = selected ? e.doc : e.ab.other_doc.doc;
     if (e.autosaved_any[slot] && doc == e.autosaved[slot]) continue;

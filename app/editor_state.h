@@ -134,6 +134,10 @@ struct editor_state {
   bool restore_b_pending = false;
   preset recovered_b_doc;
   std::string recovered_b_path;
+  // Autosaves that could not be offered back: why, and where each was kept (never overwritten).
+  std::vector<std::string> unrestored;
+  bool open_unrestored = false;
+  bool autosave_off[2] = {false, false};   // a slot's unusable autosave could not be moved aside
   std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
   ab_state ab;                    // app/editor_ab.h: slot B and the A/B view

@@ -201,6 +201,36 @@ TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
   EXPECT_EQ(std::system(cmd.c_str()), 0);
 }
 
+// An autosave that cannot be offered back (here a half-written file) is never dropped: the editor
+// says why and where it is kept, and moves it where the next autosave cannot overwrite it.
+TEST(EditorSession, AnUnusableRecoveryFileIsReportedAndKept) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  namespace fs = std::filesystem;
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  const fs::path dir = test_dir("unrestored"), home = dir / "home";
+  fs::remove_all(dir);
+  fs::create_directories(home);
+  const std::string broken = R"({"sylva_preset": 1, "generator": "lsystem", "params": {"derivations": )";
+  std::ofstream(home / ".recovery.json") << broken;
+  std::ofstream(dir / "script.txt") << "expect_prompt Unsaved work not restored\nexpect_message is kept as\n"
+                                       "answer OK\nframes 2\nwait_tree\nset derivations=7\nwait_tree\n"
+                                       "expect_recovery 1\n";
+  const std::string cmd = "SYLVA_HOME='" + home.string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
+                          "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" +
+                          (dir / "log.txt").string() + "' 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << std::ifstream(dir / "log.txt").rdbuf();
+  std::vector<fs::path> kept;
+  for (const auto& f : fs::directory_iterator(home))
+    if (f.path().filename().string().rfind("unrestored-", 0) == 0 && f.path().extension() == ".json") kept.push_back(f.path());
+  ASSERT_EQ(kept.size(), 1u);
+  std::stringstream text;
+  text << std::ifstream(kept[0]).rdbuf();
+  EXPECT_EQ(text.str(), broken);   // the user's bytes, untouched
+  // The new session's own autosave went to .recovery.json again, beside the kept file.
+  EXPECT_TRUE(fs::exists(home / ".recovery.json"));
+  fs::remove_all(dir);
+}
+
 TEST(EditorSession, SaveAsAndScreenshotsGoToTheUsersFolder) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   namespace fs = std::filesystem;
