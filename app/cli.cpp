@@ -27,6 +27,7 @@
 #include "generators/lsystem_engine.h"
 #include "generators/memory_bound.h"
 #include "render/export.h"
+#include "render/mesh_bound.h"
 #include "render/preset.h"
 
 namespace sylva {
@@ -167,8 +168,10 @@ int run_params(bool as_json, const std::string& preset_path) {
                                                      : "params of generator " + r["generator"].get<std::string>();
     if (h != heading) {
       std::printf("%s%s\n", heading.empty() ? "" : "\n", h.c_str());
-      if (r["section"] == "params" && !r["generator"].is_null())  // the documented bound (memory_bound.h)
-        std::printf("  (%s)\n", memory_bound_text(generator_index(r["generator"].get<std::string>())).c_str());
+      if (r["section"] == "params" && !r["generator"].is_null())  // the documented bounds (memory_bound.h, mesh_bound.h)
+        std::printf("  (%s)\n  (%s)\n", memory_bound_text(generator_index(r["generator"].get<std::string>())).c_str(),
+                    mesh_bound_text().c_str());
+      if (r["section"] == "mesh") std::printf("  (%s)\n", mesh_bound_text().c_str());
       heading = h;
     }
     const std::string sym = r["symbol"].get<std::string>();
@@ -340,15 +343,21 @@ int run_export(const export_args& a) {
       continue;
     }
     auto t0 = clock_type::now();
-    grow_report report;
-    const tree_skeleton t = grow(p.spec, grow_options{}, &report);
+    // A mesh over the mesh budget is refused before meshing, on a trial's estimate before growth
+    // when it can be (render/mesh_bound.h); the skeleton JSON is never meshed.
+    budgeted_growth g;
+    if (format->mesh) g = grow_for_mesh(p.spec, p.mesh, format);
+    else g.tree = grow(p.spec, grow_options{}, &g.report);
+    const tree_skeleton& t = g.tree;
+    const grow_report& report = g.report;
     const double grow_ms = ms_since(t0);
     if (report.error) return fail(cmd, path + ": growth failed: " + report.message);
+    if (!g.refusal.empty()) return fail(cmd, path + ": " + g.refusal);
     if (!report.message.empty()) warn(path, report.message);
     if (a.step > t.steps) warn(path, "--step " + std::to_string(a.step) + " is past the last step (" +
                                          std::to_string(t.steps) + "); exporting the final tree");
     t0 = clock_type::now();
-    const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+    const tree_mesh m = format->mesh ? mesh_tree(t, p.mesh, p.spec.seed) : tree_mesh{};
     const double mesh_ms = ms_since(t0);
 
     export_options o;
@@ -499,6 +508,13 @@ int run_cli(int argc, char** argv) {
       return run_bench_render(bench_paths, repeat, bench_json, bench_width, bench_height, bench_preset_light);
     }
     if (bench->parsed()) return run_bench(bench_paths, repeat, bench_json, bench_export, bench_stages);
+  } catch (const std::bad_alloc&) {  // last line of defence: the memory ran out past every bound and budget
+    const char* why = "out of memory: lower the node cap, the steps or the mesh settings (radial_segments, curve_rings), "
+                      "or the mesh budget (mesh.mesh_budget)";
+    for (CLI::App* sub : {params, exp, bench})
+      if (sub->parsed()) return fail(sub->get_name(), why);
+    std::fprintf(stderr, "sylva: %s\n", why);
+    return 1;
   } catch (const std::exception& e) {  // last resort: a library threw; still one line and exit 1
     for (CLI::App* sub : {params, exp, bench})
       if (sub->parsed()) return fail(sub->get_name(), e.what());

@@ -121,6 +121,49 @@ void open_export_dialog(editor_state& e) {
     e.exporter.path = (fs::path(e.home) / (fs::path(default_save_path(e)).stem().string() + fs::path(e.exporter.path).extension().string())).string();
 }
 
+// A tree over the mesh budget (render/mesh_bound.h) was not meshed: the tree on screen stays, and the
+// prompt offers the radial segment count that fits or the budget the mesh needs (as edits: undoable).
+void draw_mesh_budget_prompt(editor_state& e) {
+  if (e.open_mesh_prompt) {
+    ImGui::OpenPopup("Large mesh");
+    e.open_mesh_prompt = false;
+  }
+  if (!ImGui::BeginPopupModal("Large mesh", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  e.prompts_shown.push_back("Large mesh");
+  const grow_result* b = e.mesh_answer.get();
+  if (!b) ImGui::CloseCurrentPopup();
+  auto done = [&] {
+    e.mesh_answer.reset();
+    ImGui::CloseCurrentPopup();
+  };
+  if (b) {
+    ImGui::Text("The mesh would take ~%.2f GB, over the mesh budget of %d MB (Mesh settings).", b->mesh_bound_bytes / 1e9,
+                e.doc.mesh.mesh_budget);
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
+    ImGui::TextDisabled("%s", b->report.message.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::TextDisabled("The tree on screen stays until you choose.");
+    const int fit = b->mesh_fit_segments;
+    if (fit > 0 && scripted_button(e, ("Use " + std::to_string(fit) + " radial segments").c_str())) {
+      e.doc.mesh.radial_segments = fit;
+      done();
+    }
+    const double need_mb = std::ceil(b->mesh_bound_bytes / 1e6);
+    if (b && need_mb <= 32000) {
+      if (fit > 0) ImGui::SameLine();
+      if (scripted_button(e, ("Raise the mesh budget to " + std::to_string(int(need_mb)) + " MB").c_str())) {
+        e.doc.mesh.mesh_budget = int(need_mb);
+        done();
+      }
+    }
+  }
+  if (scripted_button(e, "Keep the current tree") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+    keep_shown_tree(e, "over the mesh budget: the previous tree stays");
+    done();
+  }
+  ImGui::EndPopup();
+}
+
 void draw_node_budget(editor_state& e) {
   // Typed and applied on Enter (a half-typed number is not clamped under the cursor), or picked.
   static int64_t typed = 0;
@@ -354,6 +397,12 @@ void draw_dialogs(editor_state& e) {
                   seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
       if (!b->estimate_note.empty()) ImGui::TextDisabled("Keyframes and cuts after the trial's reach are %s.", b->estimate_note.c_str());
       ImGui::Text("The node budget is %s (the Edit menu or the Output tab).", count_text(double(e.worker->node_budget.load())).c_str());
+      if (!b->mesh_over_budget.empty()) {   // the trial's estimate of the mesh (render/mesh_bound.h)
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
+        ImGui::TextWrapped("Its mesh is estimated over the mesh budget: %s. Grown anyway, it is meshed only if its own "
+                           "bound fits.", b->mesh_over_budget.c_str());
+        ImGui::PopTextWrapPos();
+      }
       ImGui::TextDisabled("The tree on screen stays until you choose.");
     }
     if (scripted_button(e, "Grow anyway") && b) {
@@ -370,6 +419,7 @@ void draw_dialogs(editor_state& e) {
     }
     ImGui::EndPopup();
   }
+  draw_mesh_budget_prompt(e);
   if (e.ab.ask_drop) {
     ImGui::OpenPopup("Drop slot B?");
     e.ab.ask_drop = false;

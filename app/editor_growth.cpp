@@ -95,6 +95,10 @@ void take_new_tree(editor_state& e) {
     e.growth_text = "over the node budget: grow it anyway?";
     return;
   }
+  if (r->over_mesh_budget && newest) {   // shown as a failure that keeps the tree; the prompt offers a fit
+    e.mesh_answer = r;
+    e.open_mesh_prompt = true;
+  }
   if (newest) {
     e.growth_state = r->report.error ? editor_state::growth::failed : editor_state::growth::done;
     e.growth_text = r->report.error ? r->report.message : r->report.stop_reason;

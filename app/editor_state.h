@@ -111,6 +111,8 @@ struct editor_state {
   std::chrono::steady_clock::time_point posted_at;
   std::shared_ptr<const grow_result> budget_answer;   // an over-budget estimate waiting for the user
   bool open_budget_prompt = false, approve_next = false;
+  std::shared_ptr<const grow_result> mesh_answer;     // a tree over the mesh budget, not meshed, waiting for the user
+  bool open_mesh_prompt = false;
   // Nodes alive at the scrubbed step (cached per tree and step).
   const tree_skeleton* counted_tree = nullptr;
   int counted_step = -1;
@@ -201,6 +203,7 @@ void draw_dialogs(editor_state& e);
 void draw_shortcuts(editor_state& e);
 void open_export_dialog(editor_state& e);   // File > Export...: in the user's folder, named after the tree
 void draw_node_budget(editor_state& e);     // the node budget: typed (Enter applies) or picked
+void draw_mesh_budget_prompt(editor_state& e);   // "Large mesh": a tree over the mesh budget, not meshed
 void draw_output_extras(editor_state& e);   // the Output tab: node budget and export
 void draw_message_log(editor_state& e);
 

@@ -13,6 +13,7 @@
 
 #include "generators/timing.h"
 #include "render/gl/renderer.h"
+#include "render/mesh_bound.h"
 
 namespace sylva {
 
@@ -113,10 +114,12 @@ std::string render_preset_png(const preset& p, int step, const std::string& path
 
   // Grow and mesh first: no window is opened for a tree that cannot be built.
   auto t0 = std::chrono::steady_clock::now();
-  grow_report report;
-  tree_skeleton tree = grow(p.spec, grow_options{}, &report);
+  budgeted_growth g = grow_for_mesh(p.spec, p.mesh, nullptr);   // nothing is meshed over the mesh budget
+  tree_skeleton tree = std::move(g.tree);
+  const grow_report& report = g.report;
   const double grow_ms = ms_since(t0);
   if (report.error) return "growth failed: " + report.message;
+  if (!g.refusal.empty()) return g.refusal;
   t0 = std::chrono::steady_clock::now();
   tree_mesh mesh = mesh_tree(tree, p.mesh, p.spec.seed);
   const double mesh_ms = ms_since(t0);

@@ -7,8 +7,10 @@
 #include <optional>
 #include <new>
 
+#include "generators/memory_bound.h"
 #include "generators/resume.h"
 #include "generators/timing.h"
+#include "render/mesh_bound.h"
 
 namespace sylva {
 
@@ -17,8 +19,10 @@ namespace {
 // A growth too large for memory: the tree on screen stays (the previous result, re-published under
 // the new generation) and the status bar says why. The worker's own `last` stays the good result.
 // With `over_budget`, not a failure: the request was not grown because its estimate is over the budget.
+// With `mesh`, the refusal of a mesh over the mesh budget (why: mesh_budget_refusal's line).
 void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& last, const worker_request& req,
-                     const char* why, const growth_estimate* over_budget = nullptr) {
+                     const std::string& why, const growth_estimate* over_budget = nullptr,
+                     const mesh_estimate* mesh = nullptr) {
   std::shared_ptr<const grow_result> keep;
   try {
     auto r = std::make_shared<grow_result>();
@@ -39,10 +43,16 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
       r->estimated_seconds = over_budget->seconds;
       r->estimated_bytes = over_budget->bytes;
       r->estimate_note = over_budget->note;
+      r->mesh_over_budget = why;
       r->report = last ? last->report : grow_report{};
     } else {
       r->report.error = true;
       r->report.message = why;
+    }
+    if (mesh) {
+      r->over_mesh_budget = true;
+      r->mesh_bound_bytes = mesh->total_bytes();
+      r->mesh_fit_segments = mesh_fit_segments(*mesh, req.mesh_settings);
     }
     keep = std::move(r);
   } catch (const std::bad_alloc&) {
@@ -160,8 +170,19 @@ void run_worker(worker_state& w) {
             w.busy = false;
             continue;
           }
-          if (!est.exact && !est.uncertain && !req.approved && est.nodes > double(w.node_budget.load())) {
-            publish_failure(w, last, req, "", &est);
+          // The tree and its mesh as the trial foresees them (render/mesh_bound.h). An estimate is
+          // no bound (a growth may stop sooner at another cap), so a mesh estimated over the mesh
+          // budget asks as a tree over the node budget does; grown anyway, the skeleton's own
+          // mesh bound decides before meshing.
+          std::string mesh_over;
+          if (!est.exact && !est.uncertain) {
+            const mesh_estimate me = with_writer(mesh_estimate_like(est.trial, est.nodes, req.mesh_settings), nullptr);
+            est.bytes = est.nodes * growth_memory_bound(req.spec).per_node + me.total_bytes();
+            mesh_over = mesh_budget_refusal(me, req.mesh_settings, true);
+          }
+          if (!est.exact && !est.uncertain && !req.approved &&
+              (est.nodes > double(w.node_budget.load()) || !mesh_over.empty())) {
+            publish_failure(w, last, req, mesh_over, &est);
             continue;
           }
           if (est.exact) {
@@ -201,6 +222,12 @@ void run_worker(worker_state& w) {
         result->mesh = last->mesh;
         result->remeshed = false;
       } else {
+        // Over the mesh budget nothing is meshed: the previous tree stays and the editor says why.
+        const mesh_estimate me = with_writer(mesh_bound(*result->skeleton, req.mesh_settings), nullptr);   // with the upload
+        if (std::string why = mesh_budget_refusal(me, req.mesh_settings); !why.empty()) {
+          publish_failure(w, last, req, why, nullptr, &me);
+          continue;
+        }
         result->mesh = mesh_tree(*result->skeleton, req.mesh_settings, req.spec.seed);
       }
     } catch (const std::bad_alloc&) {

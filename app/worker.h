@@ -35,6 +35,12 @@ struct grow_result {
   bool over_budget = false;
   double estimated_nodes = 0, estimated_seconds = 0, estimated_bytes = 0;
   std::string estimate_note;   // how later keyframes and cuts were counted (growth_estimate::note)
+  std::string mesh_over_budget; // "": the estimated mesh fits its budget; else why it would not be meshed
+  // Over the mesh budget (render/mesh_bound.h): not meshed. A failure (report.error, the refusal as
+  // its message) that keeps the previous tree; the editor offers the settings that fit.
+  bool over_mesh_budget = false;
+  double mesh_bound_bytes = 0;   // the mesh's bound (estimated from the trial when refused before growth)
+  int mesh_fit_segments = 0;     // the most radial segments that fit the budget (0: none does)
 };
 
 struct worker_request {

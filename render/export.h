@@ -101,15 +101,20 @@ struct export_format {
   bool render;          // a picture of the tree, drawn by the GL renderer (main thread only)
   bool manifest;        // a batch of these gets a manifest (seed, file, counts, hash)
   bool gltf;            // the glTF family: --animation, --instancing and --compact apply
+  bool mesh;            // written from the mesh (the skeleton JSON needs none: nothing is meshed for it)
+  // What the writer (or the renderer) holds on top of the mesh, per bark triangle and per leaf, for
+  // the mesh budget (render/mesh_bound.h): measured peaks (`/usr/bin/time -v sylva export`) on bark-
+  // and leaf-heavy trees, with room for vector slack (docs/DESIGN-NOTES.md "Mesh bound").
+  float writer_triangle_bytes, writer_leaf_bytes;
 };
 inline constexpr export_format export_format_table[] = {
-    // ext     label            lods   wind   render manifest gltf
-    {".glb",  "glTF binary",   true,  true,  false, true,  true},
-    {".gltf", "glTF + .bin",   true,  true,  false, true,  true},
-    {".obj",  "OBJ + MTL",     true,  false, false, true,  false},
-    {".json", "skeleton JSON", false, false, false, true,  false},
-    {".png",  "render (PNG)",  false, true,  true,  false, false},
-    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false},
+    // ext     label            lods   wind   render manifest gltf   mesh   writer B/triangle, B/leaf
+    {".glb",  "glTF binary",   true,  true,  false, true,  true,  true, 340,  1700},
+    {".gltf", "glTF + .bin",   true,  true,  false, true,  true,  true, 340,  1700},
+    {".obj",  "OBJ + MTL",     true,  false, false, true,  false, true, 420,  1700},
+    {".json", "skeleton JSON", false, false, false, true,  false, false, 0,    0},
+    {".png",  "render (PNG)",  false, true,  true,  false, false, true, 250,  120},
+    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false, true, 1800, 2900},
 };
 inline constexpr int export_format_count = int(sizeof export_format_table / sizeof export_format_table[0]);
 

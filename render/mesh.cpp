@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <numeric>
 
 #include "generators/job_pool.h"
 #include "generators/timing.h"
@@ -180,7 +181,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     const int32_t par = t.parent[i];
     if (par < 0) continue;
     const float score = (t.order[i] == t.order[par] ? 4.0f : 0.0f) + glm::dot(dir[par], dir[i]);
-    if (score > best[par]) { best[par] = score; cont[par] = int32_t(i); }
+    if (!(score <= best[par])) { best[par] = score; cont[par] = int32_t(i); }   // (a NaN score too: every parent continues)
   }
 
   // Velocity of the axis curve at each node: centripetal Catmull-Rom through the previous and the
@@ -229,13 +230,6 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   const float collar_length = std::isfinite(p.collar_length) ? std::clamp(p.collar_length, 0.0f, 100.0f) : 0.0f;
   const float collar_min = std::isfinite(p.collar_min_radius) ? p.collar_min_radius : 0.0f;
   const float root_depth = std::isfinite(p.root_depth) ? std::clamp(p.root_depth, 0.0f, 10.0f) : 0.0f;
-
-  // Sized by a guess and grown as rings come: this loop is the mesher's hot path.
-  const size_t guess = (n + n / 2 + 8) * size_t(stride);
-  m.position.reserve(guess);
-  m.normal.reserve(guess);
-  m.uv.reserve(guess);
-  m.node.reserve(guess);
 
   std::vector<float> cos_a(stride), sin_a(stride), u_of(stride);
   for (int k = 0; k < stride; ++k) {
@@ -361,6 +355,9 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     const double spare = (budget - 1.0) * base - fixed;
     size_t left = spare > 0 ? size_t(spare / per_ring) : 0;
     std::vector<float> score;
+    size_t asked = 0;
+    for (size_t i = 0; i < n; ++i) asked += want[i] + (collar_score[i] > 0);
+    score.reserve(asked);
     for (size_t i = 0; i < n; ++i) {
       for (int j = 1; j <= want[i]; ++j) score.push_back(want_score[i] / float(j * (j + 1)));
       if (collar_score[i] > 0) score.push_back(collar_score[i]);
@@ -387,13 +384,32 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
 
   lap(st.budget);
 
+  // Every ring the loop below can emit (a ring too close to the last is skipped): the vertex
+  // arrays are allocated once, at no more than this, so the mesh bound (render/mesh_bound.h) holds
+  // with no vector slack.
+  {
+    size_t rings = n + tips, inner = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const int32_t par = t.parent[i];
+      inner += keep[i] + collared[i];
+      if (par >= 0 && cont[par] != int32_t(i)) ++rings;   // a lateral's base ring
+    }
+    rings += inner + fixed_rings;
+    const size_t vertices = rings * size_t(stride);
+    m.position.reserve(vertices);
+    m.normal.reserve(vertices);
+    m.uv.reserve(vertices);
+    m.node.reserve(vertices);
+  }
+
   constexpr uint32_t none = UINT32_MAX;
   std::vector<glm::vec3> frame(n);
   std::vector<float> vcoord(n, 0.0f);
   std::vector<uint32_t> ring_start(n, 0), cap_apex(n, none);
   // The rings each internode's triangles run through, parent's ring first: chain[off[i]..off[i+1]).
   std::vector<uint32_t> chain, off(n + 1, 0);
-  chain.reserve(n * 2);
+  chain.reserve(2 * tubes + fixed_rings + std::accumulate(keep.begin(), keep.end(), size_t(0)) +
+                std::accumulate(collared.begin(), collared.end(), size_t(0)));
   std::vector<float> us;
   for (size_t i = 0; i < n; ++i) {
     const int32_t par = t.parent[i];

@@ -18,6 +18,7 @@ namespace sylva {
 
 struct mesh_params {
   int radial_segments = 8;      // vertices per ring
+  int mesh_budget = 4000;       // MB: a mesh whose bound (render/mesh_bound.h) is larger is not made
   float uv_repeat = 2.0f;       // bark texture repeats per metre along a branch
   float min_radius = 0.0005f;   // radii below this are raised to it (keeps thin twigs visible)
   // Bark shape: curved axes, gnarl, twist, collars, root flare, caps.
@@ -44,6 +45,7 @@ template <params_of<mesh_params> P, class V>
 void visit_params(P& p, V&& visitor) {
   auto v = declare_class(visitor, param_remesh);   // mesh_tree alone reads them
   v(p.radial_segments, param_info{"radial_segments", "Radial segments", "", 3, 32, "Vertices around each bark ring", 0, "Bark mesh"});
+  v(p.mesh_budget, param_info{"mesh_budget", "Mesh budget", "MB", 50, 32000, "Most memory the mesh may take, in MB (10^6 bytes): a tree whose mesh bound (nodes x radial segments x rings, plus leaves) is larger is not meshed; the export stops and says which setting to lower, the editor asks which to change", param_log | param_on_release});
   v(p.uv_repeat, param_info{"uv_repeat", "Bark UV repeat", "", 0.05f, 20, "Bark texture repeats per metre along a branch", param_log});
   v(p.min_radius, param_info{"min_radius", "Minimum radius", "", 0.00001f, 0.05f, "Thinner branches are drawn at this radius (metres)", param_log});
   v(p.curve_angle, param_info{"curve_angle", "Curve ring angle", "", 2, 90, "A ring is inserted into an internode for every this many degrees its centripetal Catmull-Rom curve turns", param_degrees, "Bark shape"});

@@ -15,6 +15,8 @@
 #include <unistd.h>
 
 #include "app/editor_files.h"
+#include "generators/tree_spec.h"
+#include "render/mesh_bound.h"
 #include "render/preset.h"
 
 namespace {
@@ -152,8 +154,9 @@ TEST(EditorSession, CancellingALongGrowthKeepsThePreviousTree) {
   p.kill_distance = 0.1f;
   p.max_branches = 10000000;
   p.steps = 20000;
-  p.node_cap = 20000000;
+  p.node_cap = 2000000;
   cube.spec.params = p;
+  cube.mesh.mesh_budget = 32000;   // its estimated mesh fits: no question before it grows
   cube.name = "Long growth";
   const std::string long_growth = test_dir("long.json").string();
   ASSERT_EQ(sylva::save_preset_file(cube, long_growth), "");
@@ -175,6 +178,36 @@ expect_modified 0
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok expect_state cancelled"), std::string::npos) << r.output;
+}
+
+// A mesh over the mesh budget is not made: the prompt keeps the tree on screen, and its answers
+// keep it or apply the radial segment count that fits.
+TEST(EditorSession, MeshOverItsBudgetAsksAndKeepsTheTree) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const sylva::tree_skeleton t = sylva::grow(bush.spec, sylva::grow_options{});
+  const double at_8 = sylva::with_writer(sylva::mesh_bound(t, bush.mesh), nullptr).total_bytes();
+  bush.mesh.mesh_budget = int(at_8 * 1.3 / 1e6) + 1;
+  sylva::mesh_params at_32 = bush.mesh;
+  at_32.radial_segments = 32;
+  const sylva::mesh_estimate e32 = sylva::with_writer(sylva::mesh_bound(t, at_32), nullptr);
+  ASSERT_GT(e32.total_bytes(), sylva::mesh_budget_bytes(at_32));
+  const int fit = sylva::mesh_fit_segments(e32, at_32);
+  ASSERT_GE(fit, 8);
+  const std::string preset = test_dir("bush_budget.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string n = std::to_string(fit);
+  const std::string script = "wait_tree\nremember\nset radial_segments=32\nexpect_prompt Large mesh\nexpect_same_tree\n"
+                             "answer Keep the current tree\nframes 2\nexpect_no_prompt\nexpect_param radial_segments=8\n"
+                             "expect_same_tree\nexpect_state cancelled\nset radial_segments=32\nexpect_prompt Large mesh\n"
+                             "answer Use " + n + " radial segments\nframes 2\nwait_tree\nexpect_no_prompt\n"
+                             "expect_param radial_segments=" + n + "\nexpect_state done\n";
+  run_result r = run_script("mesh_budget", script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok expect_param radial_segments=" + n), std::string::npos) << r.output;
 }
 
 TEST(EditorSession, RecoveryFileIsOfferedOnTheNextStart) {
