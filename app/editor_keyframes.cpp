@@ -14,38 +14,29 @@ namespace {
 // Edits one keyframe's value with a widget of its parameter's type; true when it changed.
 bool edit_keyframe_value(tree_spec& spec, keyframe& k, std::string& error) {
   bool changed = false;
-  std::visit(
-      [&](const auto& p) {
-        auto copy = p;
-        visit_params(copy, [&](auto& value, const param_info& info) {
-          using T = std::remove_cvref_t<decltype(value)>;
-          if constexpr (keyable_type<T>) {
-            if (k.key != info.key) return;
-            from_key_value(k.value, value);
-            bool edited = false;
-            if constexpr (std::is_same_v<T, float>)
-              edited = ImGui::SliderFloat("##v", &value, info.min, info.max, "%.4g",
-                                          (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0);
-            else if constexpr (std::is_same_v<T, int>)
-              edited = ImGui::SliderInt("##v", &value, int(info.min), int(info.max));
-            else if constexpr (std::is_same_v<T, bool>)
-              edited = ImGui::Checkbox("##v", &value);
-            else if constexpr (std::is_enum_v<T>) {
-              int v = int(value);
-              if (ImGui::Combo("##v", &v, info.options, option_count(info))) value = T(v), edited = true;
-            } else
-              edited = ImGui::DragFloat3("##v", &value.x, 0.01f, info.min, info.max);
-            if (!edited) return;
-            clamp_param(value, info);
-            keyframe changed_k = k;
-            changed_k.value = to_key_value(value);
-            tree_spec out = spec;
-            if (std::string e = set_keyframe(out, changed_k); !e.empty()) error = e;
-            else spec = std::move(out), changed = true;
-          }
-        });
-      },
-      spec.params);
+  visit_keyed_value(spec, k, [&](auto& value, const param_info& info) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    bool edited = false;
+    if constexpr (std::is_same_v<T, float>)
+      edited = ImGui::SliderFloat("##v", &value, info.min, info.max, "%.4g",
+                                  (info.flags & param_log) ? ImGuiSliderFlags_Logarithmic : 0);
+    else if constexpr (std::is_same_v<T, int>)
+      edited = ImGui::SliderInt("##v", &value, int(info.min), int(info.max));
+    else if constexpr (std::is_same_v<T, bool>)
+      edited = ImGui::Checkbox("##v", &value);
+    else if constexpr (std::is_enum_v<T>) {
+      int v = int(value);
+      if (ImGui::Combo("##v", &v, info.options, option_count(info))) value = T(v), edited = true;
+    } else
+      edited = ImGui::DragFloat3("##v", &value.x, 0.01f, info.min, info.max);
+    if (!edited) return;
+    clamp_param(value, info);
+    keyframe changed_k = k;
+    changed_k.value = to_key_value(value);
+    tree_spec out = spec;
+    if (std::string e = set_keyframe(out, changed_k); !e.empty()) error = e;
+    else spec = std::move(out), changed = true;
+  });
   return changed;
 }
 

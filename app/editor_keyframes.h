@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "generators/keyframes.h"
 #include "generators/tree_spec.h"
 
 namespace sylva {
@@ -36,6 +37,23 @@ std::string key_edits(tree_spec& spec, const generator_params& before, const gen
 std::string move_keyframes(tree_spec& spec, int from, int to);
 // The steps that hold keyframes, ascending, without repeats.
 std::vector<int> keyed_steps(const tree_spec& spec);
+// Calls f(value, info) once with a copy of k's parameter set to k's value, typed as the parameter
+// (float, int, bool, enum or vec3); nothing when the spec's generator has no such keyable key.
+template <class F>
+void visit_keyed_value(const tree_spec& spec, const keyframe& k, F&& f) {
+  std::visit(
+      [&](const auto& p) {
+        auto copy = p;
+        visit_params(copy, [&](auto& value, const param_info& info) {
+          if constexpr (keyable_type<std::remove_cvref_t<decltype(value)>>) {
+            if (k.key != info.key) return;
+            from_key_value(k.value, value);
+            f(value, info);
+          }
+        });
+      },
+      spec.params);
+}
 // "lambda = 0.7" for a keyframe, the value written as its parameter's type.
 std::string keyframe_text(const tree_spec& spec, const keyframe& k);
 

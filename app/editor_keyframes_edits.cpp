@@ -100,25 +100,16 @@ std::vector<int> keyed_steps(const tree_spec& spec) {
 
 std::string keyframe_text(const tree_spec& spec, const keyframe& k) {
   std::string text = k.key + " = ?";
-  std::visit(
-      [&](const auto& p) {
-        auto copy = p;
-        visit_params(copy, [&](auto& value, const param_info& info) {
-          using T = std::remove_cvref_t<decltype(value)>;
-          if constexpr (keyable_type<T>) {
-            if (k.key != info.key) return;
-            from_key_value(k.value, value);
-            char b[96];
-            if constexpr (std::is_same_v<T, float>) std::snprintf(b, sizeof b, "%.4g", double(value));
-            else if constexpr (std::is_same_v<T, bool>) std::snprintf(b, sizeof b, "%s", value ? "on" : "off");
-            else if constexpr (std::is_enum_v<T>) std::snprintf(b, sizeof b, "%s", int(value) < option_count(info) ? info.options[int(value)] : "?");
-            else if constexpr (std::is_same_v<T, int>) std::snprintf(b, sizeof b, "%d", value);
-            else std::snprintf(b, sizeof b, "(%.3g, %.3g, %.3g)", double(value.x), double(value.y), double(value.z));
-            text = k.key + " = " + b;
-          }
-        });
-      },
-      spec.params);
+  visit_keyed_value(spec, k, [&](const auto& value, const param_info& info) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    char b[96];
+    if constexpr (std::is_same_v<T, float>) std::snprintf(b, sizeof b, "%.4g", double(value));
+    else if constexpr (std::is_same_v<T, bool>) std::snprintf(b, sizeof b, "%s", value ? "on" : "off");
+    else if constexpr (std::is_enum_v<T>) std::snprintf(b, sizeof b, "%s", int(value) < option_count(info) ? info.options[int(value)] : "?");
+    else if constexpr (std::is_same_v<T, int>) std::snprintf(b, sizeof b, "%d", value);
+    else std::snprintf(b, sizeof b, "(%.3g, %.3g, %.3g)", double(value.x), double(value.y), double(value.z));
+    text = k.key + " = " + b;
+  });
   return text;
 }
 

@@ -96,14 +96,14 @@ P worst_params(P p) {
   return p;
 }
 
+}  // namespace
+
 std::string size_text(double bytes) {
   char buf[32];
   if (bytes >= 1e9) std::snprintf(buf, sizeof buf, "%.2f GB", bytes / 1e9);
   else std::snprintf(buf, sizeof buf, "%.0f MB", bytes / 1e6);
   return buf;
 }
-
-}  // namespace
 
 memory_bound growth_memory_bound(const tree_spec& spec) {
   return std::visit([](const auto& p) { return bound_of(p); }, spec.params);

@@ -31,6 +31,8 @@ struct memory_bound {
 memory_bound growth_memory_bound(const tree_spec& spec);
 // The worst case over every parameter in its range, for `sylva params` and the README.
 memory_bound worst_memory_bound(int generator);
+// "1.23 GB" from 1e9 bytes up, else "456 MB": the growth and mesh bounds' messages.
+std::string size_text(double bytes);
 // One line: "peak growth memory <= 1.23 GB = 1.2 MB + node_cap x 200 B + ...".
 std::string memory_bound_text(int generator);
 

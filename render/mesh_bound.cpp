@@ -3,6 +3,7 @@
 // curve rings the detail budget keeps) the count takes the most it can decide.
 #include "render/mesh_bound.h"
 
+#include "generators/memory_bound.h"
 #include "render/export.h"
 
 #include <algorithm>
@@ -127,13 +128,6 @@ mesh_counts counts_of(const tree_skeleton& t, const mesh_params& p) {
   c.curve_wants = c.tubes * std::clamp(p.curve_rings, 0, 16);
   count_leaves(t, p, c);
   return c;
-}
-
-std::string size_text(double bytes) {
-  char buf[32];
-  if (bytes >= 1e9) std::snprintf(buf, sizeof buf, "%.2f GB", bytes / 1e9);
-  else std::snprintf(buf, sizeof buf, "%.0f MB", bytes / 1e6);
-  return buf;
 }
 
 std::string count_text(double v) {
