@@ -103,7 +103,9 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
     const float len = glm::length(t.position[i] - t.position[par]);
     if (!(len > 1e-6f)) return 0;
     r = rng(seed ^ (uint64_t(i) * 0x9E3779B97F4A7C15ull + 0xf011a9eull));
-    const float want = len / spacing / float(cluster) * (density.empty() ? 1.0f : density[i]);
+    float want = len / spacing / float(cluster) * (density.empty() ? 1.0f : density[i]);
+    if (!(want > 0)) return 0;            // NaN too
+    want = std::min(want, 1.0e6f);        // a limb km long (an out-of-range L-system define) still counts in int
     int nodes = int(want);
     if (r.uniform() < want - float(nodes)) ++nodes;
     return nodes;
