@@ -68,8 +68,14 @@ bool run_script(editor_state& e, script_state& sc) {
       if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
       sc.frames_left = 2;   // posted on the next frame
     } else if (cmd == "expect_recovery" || cmd == "expect_recovery_b") {
+      // "1": the file is there and holds the slot's current document (an autosave taken before the
+      // last edit is not yet the work that a crash would leave); "0": the file is gone.
       std::error_code ec;
-      done = fs::exists(recovery_path(e, cmd == "expect_recovery" ? 0 : 1), ec) == (arg == "1");
+      const int slot = cmd == "expect_recovery" ? 0 : 1;
+      const bool selected = !e.ab.has_b || slot == e.ab.selected;
+      const preset& now = selected ? e.doc : e.ab.other_doc.doc;
+      const bool there = fs::exists(recovery_path(e, slot), ec);
+      done = arg == "1" ? there && e.autosaved_any[slot] && e.autosaved[slot] == now : !there;
       if (!done && waited > 20) return fail(arg == "1" ? "no recovery file" : "the recovery file stays");
     } else if (cmd == "wait_growing") {
       if (!growing) return fail("the growth ended before " + arg + " s");

@@ -16,7 +16,7 @@ namespace sylva::ed {
 //   set KEY=VALUE              an edit, as the panel would make it (set_preset_param)
 //   key [ctrl+][shift+]NAME    a press and release queued between two frames (NAME: a-z, escape, f12, ...)
 //   taps N [ctrl+]NAME         N presses and releases queued at once
-//   expect_recovery 0|1        whether the autosaved recovery file exists (waits for it)
+//   expect_recovery 0|1        whether the autosaved recovery file exists and holds the current document (waits)
 //   answer LABEL               press a button of the open dialog
 //   expect_prompt TITLE / expect_no_prompt
 //   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
@@ -25,7 +25,7 @@ namespace sylva::ed {
 //   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
 //   ab_duplicate / ab_select a|b / ab_mode off|side|split / ab_divider F / ab_wait (the other slot's tree)
 //   expect_other_state STATE   until the unselected A/B slot's growth state is STATE (as expect_state)
-//   expect_recovery_b 0|1      whether slot B's autosaved recovery file exists (waits for it)
+//   expect_recovery_b 0|1      the same for slot B's recovery file
 //   wait_growing S             until the growth in progress has run S seconds (fails if it ends first)
 //   frame_median N             prints the median (and the longest) time of the next N frames
 //   hold [ctrl+]NAME N         a press, N system repeats (a held key) and a release, queued at once
