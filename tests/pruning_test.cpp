@@ -237,7 +237,9 @@ TEST(Pruning, BadCutsAreRefusedAndLeaveTheSpecAsItWas) {
 // One small cut on the oak (space colonization) takes an order-3 branch and the tree regrows into
 // the points that branch had killed. The regrowth is bounded: at most a fifth more nodes than the
 // uncut tree. (The leaves rise much more, by about 84%: the new shoots are short and each ends in
-// a leaf-bearing tip; the Pruning panel says so.)
+// a leaf-bearing tip; the Pruning panel says so.) The points given back can keep the growth going
+// a few steps past the uncut tree's last one (64 against 62 on the oak with its 3.6 m trunk), never
+// more than five.
 TEST(Pruning, OneSmallCutOnTheOakRegrowsBoundedly) {
   preset oak;
   ASSERT_TRUE(load_preset_file(SYLVA_SOURCE_DIR "/presets/species_oak.json", oak).ok);
@@ -278,5 +280,6 @@ TEST(Pruning, OneSmallCutOnTheOakRegrowsBoundedly) {
               plain_nodes, leaves_alive(plain), pruned_nodes, leaves_alive(pruned), below[size_t(victim)], k);
   EXPECT_GT(pruned_nodes + size_t(below[size_t(victim)]), plain_nodes);   // it regrows
   EXPECT_LT(pruned_nodes, plain_nodes + plain_nodes / 5);                 // boundedly
-  EXPECT_EQ(pruned.steps, plain.steps);
+  EXPECT_GE(pruned.steps, plain.steps);
+  EXPECT_LE(pruned.steps, plain.steps + 5);
 }
