@@ -83,7 +83,7 @@ void draw_needle_tufts(leaf_canvas& c, rng& g) {
     for (int k = 0; k < count; ++k) {
       const float a = toward + g.range(-110, 110);
       const vec2 d = heading(a);
-      stroke(c, p, p + d * fit(p, d, g.range(0.055f, 0.09f)), 0.0036f, 0.0009f, needle);
+      stroke(c, p, p + d * fit(p, d, g.range(0.055f, 0.09f)), 0.0052f, 0.0014f, needle);
     }
     stroke(c, p - heading(toward) * 0.012f, p, 0.006f, 0.0055f, twig_style);  // the spur
   };
