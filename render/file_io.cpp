@@ -15,6 +15,27 @@ namespace sylva {
 
 namespace {
 std::atomic<int> write_fault{-1};   // stage_file calls left before one fails (tests); -1: never
+
+// Why a new file could not be made in `dir`, in the user's words: open() says "No such file or
+// directory" both for a missing folder and for a system folder (/proc, /sys) that takes no files.
+std::string create_failure(const std::filesystem::path& dir, int err) {
+  std::error_code ec;
+  const std::string where = dir.string();
+  const std::string why = std::string(" (") + std::strerror(err) + ")";
+  switch (err) {
+    case ENOENT:
+      return std::filesystem::is_directory(dir, ec)
+                 ? "the folder " + where + " does not take new files (a system folder such as /proc or /sys?)"
+                 : "the folder " + where + " does not exist";
+    case EACCES:
+    case EPERM: return "no permission to create a file in " + where + why;
+    case EROFS: return "the folder " + where + " is on a read-only file system" + why;
+    case ENOSPC:
+    case EDQUOT: return "the disk is full: no room for a new file in " + where + why;
+    case ENOTDIR: return "part of " + where + " is a file, not a folder" + why;
+    default: return "cannot create a file in " + where + ": " + std::strerror(err);
+  }
+}
 }  // namespace
 
 void inject_write_failure_for_tests(int n) { write_fault.store(n); }
@@ -65,7 +86,7 @@ std::string stage_file(const std::string& path, std::string_view bytes, staged_w
     return "cannot write " + path + ": " + what + ": " + std::strerror(err);
   };
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, existed ? 0600 : 0666);
-  if (fd < 0) return fail("cannot create a file in its folder", errno);
+  if (fd < 0) return "cannot write " + path + ": " + create_failure(dir, errno);
   if (existed) {
     if (::fchown(fd, old_st.st_uid, old_st.st_gid) != 0) {}  // only root may give a file away; not an error
     if (::fchmod(fd, old_st.st_mode & 07777) != 0) {

@@ -316,3 +316,18 @@ TEST(HostileInput, SpecialTextureFilesFallBack) {
     EXPECT_NE(r.err.find("using the procedural leaves"), std::string::npos) << r.err;
   }
 }
+
+// A folder that takes no new files (/proc) and one that does not exist are told apart: open() gives
+// "No such file or directory" for both, which read as if /proc were missing.
+TEST(HostileOutput, SystemFolderAndMissingFolderAreToldApart) {
+  if (fs::is_directory("/proc")) {
+    const std::string err = write_file_atomic("/proc/sylva_test_x.glb", "bytes");
+    EXPECT_NE(err.find("/proc does not take new files"), std::string::npos) << err;
+    EXPECT_EQ(err.find("No such file or directory"), std::string::npos) << err;
+  }
+  scratch s("missing_folder");
+  const std::string missing = s / "not_there/tree.glb";
+  const std::string err = write_file_atomic(missing, "bytes");
+  EXPECT_NE(err.find("not_there does not exist"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(s / "not_there"));
+}
