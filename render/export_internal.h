@@ -82,7 +82,14 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b);
 
 bool has_shed(const tree_skeleton& t, int s);
 
-// Splits a mesh into one part per tree (a forest is one glTF node per tree); leaves alive at
+// Stems whose bases stand within stool_reach (metres, horizontally and vertically) of another's are
+// one plant: a coppice stool or a many-stemmed shrub grown as several trees in one environment is
+// one glTF node and one bark mesh, where a forest's trees, metres apart, stay one node each.
+inline constexpr float stool_reach = 1.0f;
+// The plant (0, 1, ... in the order of their first root) of every node.
+std::vector<int32_t> plant_of_nodes(const tree_skeleton& t);
+
+// Splits a mesh into one part per plant (a forest is one glTF node per tree; a stool is one); leaves alive at
 // `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
 // they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
 // normal_blend (render/leaf_shading.h).
