@@ -138,12 +138,12 @@ void draw_lanceolate(leaf_canvas& c, rng& g) {
   blade_style st;
   st.serration = 0.06f, st.teeth = 40, st.vein_angle = 60, st.veins = 14, st.dome = 0.14f;
   auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.62f)), 1.1f); };
-  const int leaves = 9;
+  const int leaves = 13;
   for (int i = 0; i < leaves; ++i) {
-    const float t = 0.12f + 0.8f * float(i) / float(leaves - 1);
+    const float t = 0.08f + 0.84f * float(i) / float(leaves - 1);
     const vec2 p = shoot(t);
     const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(16, 30);
+    const float ang = 90 + side * g.range(7, 15);
     const vec2 d = heading(ang);
     st.bend = side * g.range(0.0f, 0.05f);
     const float len = fit(p, d, g.range(0.5f, 0.6f) * (1.0f - 0.35f * t), 0.01f);
