@@ -89,9 +89,9 @@ inline constexpr float stool_reach = 1.0f;
 // The plant (0, 1, ... in the order of their first root) of every node.
 std::vector<int32_t> plant_of_nodes(const tree_skeleton& t);
 
-// Splits a mesh into one part per plant (a forest is one glTF node per tree; a stool is one); leaves alive at
-// `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
-// they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
+// Splits a mesh into one part per plant (a forest's trees one each; a stool one); leaves alive
+// at `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which
+// case they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
 // normal_blend (render/leaf_shading.h).
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
                                    float normal_blend);

@@ -98,50 +98,41 @@ bool has_shed(const tree_skeleton& t, int s) {
 }
 
 std::vector<int32_t> plant_of_nodes(const tree_skeleton& t) {
-  // Roots in order; each joins the plant of the first earlier root within stool_reach (a chain of
-  // close stems is one stool), else starts a plant of its own.
-  std::vector<int32_t> plant_of_root;
-  std::vector<glm::vec3> root_at;
-  std::vector<int32_t> out(t.size(), 0);
+  // Roots closer than stool_reach are joined (union-find, so a chain of close stems is one stool);
+  // the plants are then numbered in the order of their first root.
+  std::vector<size_t> roots;
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t.parent[i] < 0) roots.push_back(i);
+  std::vector<size_t> link(roots.size());
+  for (size_t r = 0; r < roots.size(); ++r) link[r] = r;
+  auto find = [&](size_t r) {
+    while (link[r] != r) r = link[r] = link[link[r]];
+    return r;
+  };
+  for (size_t a = 0; a < roots.size(); ++a)
+    for (size_t b = 0; b < a; ++b) {
+      const glm::vec3 d = t.position[roots[a]] - t.position[roots[b]];
+      if (d.x * d.x + d.z * d.z <= stool_reach * stool_reach && std::abs(d.y) <= stool_reach) link[find(a)] = find(b);
+    }
+  std::vector<int32_t> label(roots.size(), -1);
   int32_t plants = 0;
-  for (size_t i = 0; i < t.size(); ++i) {
-    assert(t.parent[i] < int32_t(i) && "split_parts: parent[i] < i");
+  std::vector<int32_t> out(t.size(), 0);
+  for (size_t i = 0, r = 0; i < t.size(); ++i) {
+    assert(t.parent[i] < int32_t(i) && "plant_of_nodes: parent[i] < i");
     if (t.parent[i] >= 0) {
       out[i] = out[size_t(t.parent[i])];
       continue;
     }
-    const glm::vec3 p = t.position[i];
-    int32_t joined = -1;
-    for (size_t r = 0; r < root_at.size() && joined < 0; ++r) {
-      const glm::vec3 d = root_at[r] - p;
-      if (d.x * d.x + d.z * d.z <= stool_reach * stool_reach && std::abs(d.y) <= stool_reach) joined = plant_of_root[r];
-    }
-    if (joined < 0) joined = plants++;
-    // A root that joins links its plant to every later close root too: merge plants it bridges.
-    for (size_t r = 0; r < root_at.size(); ++r) {
-      const glm::vec3 d = root_at[r] - p;
-      const int32_t other = plant_of_root[r];
-      if (other == joined || d.x * d.x + d.z * d.z > stool_reach * stool_reach || std::abs(d.y) > stool_reach) continue;
-      for (int32_t& q : plant_of_root) q = q == other ? joined : q;
-      for (size_t j = 0; j < i; ++j) out[j] = out[j] == other ? joined : out[j];
-    }
-    root_at.push_back(p);
-    plant_of_root.push_back(joined);
-    out[i] = joined;
-  }
-  // Number the plants 0, 1, ... in the order of their first root.
-  std::vector<int32_t> renumber(size_t(std::max(plants, 1)), -1);
-  int32_t next = 0;
-  for (int32_t& k : out) {
-    if (renumber[size_t(k)] < 0) renumber[size_t(k)] = next++;
-    k = renumber[size_t(k)];
+    int32_t& l = label[find(r++)];
+    if (l < 0) l = plants++;
+    out[i] = l;
   }
   return out;
 }
 
-// Splits a mesh into one part per tree (a forest is one glTF node per tree); leaves alive at
-// `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which case
-// they are left to the caller.
+// Splits a mesh into one part per plant (render/export_internal.h); leaves alive at `step` are
+// baked into quads (one geometry per leaf slot) unless `bake` is false, in which case they are
+// left to the caller.
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
                                    float normal_blend) {
   const std::vector<int32_t> tree_of = plant_of_nodes(t);
