@@ -122,14 +122,35 @@ float shadow_at(const shadow_grid& g, const glm::ivec3& v) {
 
 void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
   constexpr int side = shadow_grid::chunk_side, bits = shadow_grid::chunk_bits, m = side - 1;
+  // The chunks the pyramid touches, each found in the hash once: its widest layer spans at most
+  // two or three chunks a side, and its q_max + 1 layers a few chunk levels. Indices, not
+  // pointers, since creating a chunk may move every chunk's cells.
+  const int q_top = std::max(q_max, 0);
+  const glm::ivec3 c0{(v.x - q_top) >> bits, (v.y - q_top) >> bits, (v.z - q_top) >> bits};
+  const glm::ivec3 c1{(v.x + q_top) >> bits, v.y >> bits, (v.z + q_top) >> bits};
+  const glm::ivec3 cn = c1 - c0 + 1;
+  constexpr int cached_max = 128;
+  int32_t cached[cached_max];
+  const bool cache = size_t(cn.x) * size_t(cn.y) * size_t(cn.z) <= size_t(cached_max);
+  if (cache) std::fill(cached, cached + cn.x * cn.y * cn.z, -1);
+  auto chunk_cells = [&](const glm::ivec3& c) {
+    if (!cache) return get_chunk(g, c);
+    int32_t& k = cached[((c.y - c0.y) * cn.z + (c.z - c0.z)) * cn.x + (c.x - c0.x)];
+    if (k < 0) {
+      float* cells = get_chunk(g, c);
+      if (cells == g.scratch.data()) return cells;   // over the cap: nothing to remember
+      k = int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells);
+    }
+    return g.cells.data() + size_t(k) * shadow_grid::chunk_cells;
+  };
   float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
   for (int q = 0; q <= q_max; ++q, ds /= b) {
     const int y = v.y - q;
     const int x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
-    // Visit the layer chunk by chunk: one hash lookup per chunk, not per voxel. This loop is the
-    // largest cost of a default tree's growth, so each chunk row takes one fixed 8-wide add (two
-    // SIMD adds) of ds inside [x0, x1] and ds·0 = ±0 outside. Adding ±0 changes no value a cell can
-    // hold: cells start at +0 and a sum is -0 only when both terms are, so no cell is ever -0.
+    // Visit the layer chunk by chunk. This loop is the largest cost of a default tree's growth,
+    // so each chunk row takes one fixed 8-wide add (two SIMD adds) of ds inside [x0, x1] and
+    // ds·0 = ±0 outside. Adding ±0 changes no value a cell can hold: cells start at +0 and a sum
+    // is -0 only when both terms are, so no cell is ever -0.
     for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
       const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
       for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {   // z then x: chunks are created in that order
@@ -137,7 +158,7 @@ void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, i
         const float* mask = row_masks.m[xa][xb];
         float add[side];
         for (int k = 0; k < side; ++k) add[k] = ds * mask[k];
-        float* row = get_chunk(g, {cx, y >> bits, cz}) + cell_index({0, y, za});
+        float* row = chunk_cells({cx, y >> bits, cz}) + cell_index({0, y, za});
         for (int z = za; z <= zb; ++z, row += side)
           for (int k = 0; k < side; ++k) row[k] += add[k];
       }
