@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "generators/job_pool.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
@@ -111,9 +112,7 @@ struct so_state : so_vars {
   std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
   std::vector<glm::vec3> cone_offset; // the same in metres
   std::vector<float> cone_x, cone_y, cone_z;   // cone_offset by component, for the vectorised cone test
-  std::vector<uint8_t> in_cone;               // scratch: which offsets pass the cone test
   int cone_radius = 0;
-  std::vector<const float*> near_chunks;
   float reach = 0;                   // perception reach in metres
   float l = 0.1f;
   // k^e for whole k, filled on first use: tip counts and bud ages repeat every step, and std::pow
@@ -156,7 +155,24 @@ struct so_state : so_vars {
   // Palubicki 2009 §4.2: the direction to the least-shadowed voxel in the perception cone. Ties go
   // to the voxel closest to the default direction, then to the seeded RNG: seed 000's trees leaned
   // because ties took the first voxel found.
-  glm::vec3 optimal_shadow_direction(const glm::vec3& pos, const glm::ivec3& v0, const glm::vec3& def) {
+  //
+  // Split in two so that the buds of a step can be scanned in parallel: scan_cone reads the grid
+  // only (the environment stays as it was at the step's start) and lists the choices the search
+  // made in order, each new best (ties = 1) and each tie met (ties = its count so far); pick_optimal
+  // replays that list on the shared RNG, bud by bud in the sequential order, drawing exactly the
+  // numbers the one-pass search drew, so the tree is the same bit for bit.
+  struct cone_choice {
+    int ties;
+    glm::vec3 dir;
+  };
+  struct cone_scratch {
+    std::vector<uint8_t> in_cone;               // which offsets pass the cone test
+    std::vector<const float*> near_chunks;
+  };
+  void scan_cone(const glm::vec3& pos, const glm::ivec3& v0, const glm::vec3& def, cone_scratch& sc,
+                 std::vector<cone_choice>& choices) const {
+    std::vector<uint8_t>& in_cone = sc.in_cone;
+    std::vector<const float*>& near_chunks = sc.near_chunks;
     // The few chunks around the bud, looked up once rather than once per voxel.
     const glm::ivec3 c0 = (v0 - cone_radius) >> shadow_grid::chunk_bits;
     const glm::ivec3 c1 = (v0 + cone_radius) >> shadow_grid::chunk_bits;
@@ -168,7 +184,6 @@ struct so_state : so_vars {
     const glm::vec3 base = voxel_centre(grid, v0) - pos;
     const float reach2 = reach * reach, cos2 = cos_theta * cos_theta;
     float best_s = 0, best_dot = -2;
-    glm::vec3 best = def;
     int ties = 0;
     // Pass 1, branch-free so that it vectorises: most offsets lie outside the cone, and testing them
     // one by one was a quarter of a default tree's growth. Same operations in the same order as
@@ -206,14 +221,22 @@ struct so_state : so_vars {
       const float len = std::sqrt(len2);
       const float cd = c / len;
       if (ties == 0 || s < best_s - eps) {
-        best_s = s, best_dot = cd, best = d / len, ties = 1;
+        best_s = s, best_dot = cd, ties = 1;
+        choices.push_back({1, d / len});
       } else if (cd > best_dot + eps) {
-        best_dot = cd, best = d / len, ties = 1;
+        best_dot = cd, ties = 1;
+        choices.push_back({1, d / len});
       } else if (cd >= best_dot - eps) {
-        ++ties;  // reservoir sampling keeps each tied voxel with probability 1/ties
-        if (r.uniform_int(ties) == 0) best = d / len;
+        ++ties;
+        choices.push_back({ties, d / len});
       }
     }
+  }
+  // Reservoir sampling over the ties: each tied voxel is kept with probability 1/ties.
+  glm::vec3 pick_optimal(const cone_choice* c, size_t count, const glm::vec3& def) {
+    glm::vec3 best = def;
+    for (size_t k = 0; k < count; ++k)
+      if (c[k].ties == 1 || r.uniform_int(c[k].ties) == 0) best = c[k].dir;
     return best;
   }
 
@@ -561,6 +584,15 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   }  // !resumed
 
   std::vector<int32_t> grown;  // nodes made this step
+  std::vector<glm::ivec3> grown_voxels;
+  struct shoot {
+    int32_t node;
+    int k;                     // 0: the main bud, 1: the lateral
+    shoot_plan plan;
+    uint32_t first, count;     // its cone's choices in choices[its index / scan_chunk]
+  };
+  std::vector<shoot> shoots;
+  std::vector<std::vector<so_state::cone_choice>> choices;
   std::vector<float> last_flow;
   // What is recorded from here on is replaced; the state resumed from stays (it is this state).
   if (resume && resume->record) snaps->resize(size_t(first) + (resumed ? 1 : 0));
@@ -601,13 +633,40 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     // does not depend on the order in which buds are visited.
     grown.clear();
     const size_t n_before = t.size();
-    for (size_t i = 0; i < n_before && !rep.hit_node_cap; ++i) {
-      if ((i & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
+    // The shoots this step grows, in bud order; in the shadow environment their cones are scanned
+    // in parallel chunks first (scan_cone reads the grid only), then replayed in this order.
+    shoots.clear();
+    for (size_t i = 0; i < n_before; ++i) {
       if (t.died[i] != never_died) continue;
-      for (int k = 0; k < 2 && !rep.hit_node_cap; ++k) {
+      for (int k = 0; k < 2; ++k) {
         if ((k == 0 ? st.main[i] : st.lat[i]) != bud_here) continue;
         const shoot_plan plan = plan_shoot(st.q[2 * i + k], p.internode_length);
-        if (plan.metamers == 0) continue;
+        if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan, 0, 0});
+      }
+    }
+    constexpr size_t scan_chunk = 256;
+    if (shadow) {
+      const size_t chunks = (shoots.size() + scan_chunk - 1) / scan_chunk;
+      if (choices.size() < chunks) choices.resize(chunks);
+      parallel_jobs(chunks, [&](size_t c) {
+        so_state::cone_scratch sc;
+        std::vector<so_state::cone_choice>& out = choices[c];
+        out.clear();
+        for (size_t j = c * scan_chunk; j < std::min(shoots.size(), (c + 1) * scan_chunk); ++j) {
+          shoot& sh = shoots[j];
+          const glm::vec3 def = sh.k == 0 ? st.heading(sh.node) : st.lateral_direction(sh.node);
+          sh.first = uint32_t(out.size());
+          st.scan_cone(t.position[size_t(sh.node)], st.voxel[size_t(sh.node)], def, sc, out);
+          sh.count = uint32_t(out.size()) - sh.first;
+        }
+      });
+    }
+    for (size_t j = 0; j < shoots.size() && !rep.hit_node_cap; ++j) {
+      if ((j & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
+      const size_t i = size_t(shoots[j].node);
+      const int k = shoots[j].k;
+      {
+        const shoot_plan plan = shoots[j].plan;
         int32_t prev = int32_t(i);
         const glm::vec3 def = k == 0 ? st.heading(int32_t(i)) : st.lateral_direction(int32_t(i));
         glm::vec3 ref = k == 0 ? st.side[i] : st.heading(int32_t(i));
@@ -615,7 +674,8 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[2 * i + k], def);
         // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
-        const glm::vec3 optimal = shadow ? st.optimal_shadow_direction(t.position[i], st.voxel[i], def) : marker_dir;
+        const glm::vec3 optimal =
+            shadow ? st.pick_optimal(choices[j / scan_chunk].data() + shoots[j].first, shoots[j].count, def) : marker_dir;
         const glm::vec3 dir = safe_normalize(p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism, def);
         for (int m = 0; m < plan.metamers; ++m) {
           if (int64_t(t.size()) >= p.node_cap) { rep.hit_node_cap = true; break; }
@@ -639,9 +699,12 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
       }
     }
     // Grow the environment with the new nodes.
-    for (int32_t i : grown) {
-      if (shadow) add_shadow_pyramid(st.grid, st.voxel[i], p.shadow_a, p.shadow_b, p.q_max);
-      else st.remove_markers_near(t.position[i]);
+    if (shadow) {
+      grown_voxels.clear();
+      for (int32_t i : grown) grown_voxels.push_back(st.voxel[size_t(i)]);
+      add_shadow_pyramids(st.grid, grown_voxels, p.shadow_a, p.shadow_b, p.q_max);
+    } else {
+      for (int32_t i : grown) st.remove_markers_near(t.position[i]);
     }
     step = T;
     if (o.progress) o.progress(float(T) / float(std::max(steps, 1)));

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generators/job_pool.h"
+
 namespace sylva {
 namespace {
 
@@ -164,6 +166,56 @@ void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, i
       }
     }
   }
+}
+
+void add_shadow_pyramids(shadow_grid& g, const std::vector<glm::ivec3>& voxels, float a, float b, int q_max, float sign) {
+  constexpr int side = shadow_grid::chunk_side, bits = shadow_grid::chunk_bits, m = side - 1;
+  const int parts = std::min(job_pool_helpers() + 1, 4);
+  if (parts < 2 || voxels.size() < 64) {
+    for (const glm::ivec3& v : voxels) add_shadow_pyramid(g, v, a, b, q_max, sign);
+    return;
+  }
+  // Every chunk row segment the pyramids visit, in the order add_shadow_pyramid visits them one
+  // pyramid after another, with its chunk made (in that order, so the grid's layout is the one
+  // pyramid at a time gives); -1 where the memory cap sends the write nowhere.
+  std::vector<int32_t> ids;
+  for (const glm::ivec3& v : voxels)
+    for (int q = 0; q <= q_max; ++q) {
+      const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
+      for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz)
+        for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
+          float* cells = get_chunk(g, {cx, y >> bits, cz});
+          ids.push_back(cells == g.scratch.data() ? -1 : int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells));
+        }
+    }
+  // Then the adds, split by voxel row: part k takes the rows whose z is k modulo parts, so each
+  // cell is written by one part only, in pyramid order, and holds the bits one thread gives.
+  parallel_jobs(size_t(parts), [&](size_t part) {
+    size_t at = 0;
+    for (const glm::ivec3& v : voxels) {
+      float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
+      for (int q = 0; q <= q_max; ++q, ds /= b) {
+        const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
+        for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
+          const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
+          for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
+            const int32_t id = ids[at++];
+            if (id < 0) continue;
+            const int xa = std::max(x0, cx * side) & m, xb = std::min(x1, cx * side + m) & m;
+            const float* mask = row_masks.m[xa][xb];
+            float add[side];
+            for (int k = 0; k < side; ++k) add[k] = ds * mask[k];
+            float* chunk = g.cells.data() + size_t(id) * shadow_grid::chunk_cells;
+            int z = za + int((size_t(parts) + part - size_t(((za % parts) + parts) % parts)) % size_t(parts));
+            for (; z <= zb; z += parts) {
+              float* row = chunk + cell_index({0, y, z});
+              for (int k = 0; k < side; ++k) row[k] += add[k];
+            }
+          }
+        }
+      }
+    }
+  });
 }
 
 size_t count_shadowed_voxels(const shadow_grid& g) {
