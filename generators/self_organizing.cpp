@@ -13,6 +13,7 @@
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
+#include "generators/self_organizing_cone.h"
 #include "generators/self_organizing_grid.h"
 #include "generators/vec_util.h"
 
@@ -109,10 +110,7 @@ struct so_state : so_vars {
   const self_organizing_params& p;
   tree_skeleton& t;
   rng& r;
-  std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
-  std::vector<glm::vec3> cone_offset; // the same in metres
-  std::vector<float> cone_x, cone_y, cone_z;   // cone_offset by component, for the vectorised cone test
-  int cone_radius = 0;
+  perception_cone cone;              // voxel offsets within the perception distance
   float reach = 0;                   // perception reach in metres
   float l = 0.1f;
   // k^e for whole k, filled on first use: tip counts and bud ages repeat every step, and std::pow
@@ -150,94 +148,6 @@ struct so_state : so_vars {
   glm::vec3 lateral_direction(int32_t i) const {
     const float b = glm::radians(p.branch_angle);
     return safe_normalize(std::cos(b) * heading(i) + std::sin(b) * side[i], heading(i));
-  }
-
-  // Palubicki 2009 §4.2: the direction to the least-shadowed voxel in the perception cone. Ties go
-  // to the voxel closest to the default direction, then to the seeded RNG: seed 000's trees leaned
-  // because ties took the first voxel found.
-  //
-  // Split in two so that the buds of a step can be scanned in parallel: scan_cone reads the grid
-  // only (the environment stays as it was at the step's start) and lists the choices the search
-  // made in order, each new best (ties = 1) and each tie met (ties = its count so far); pick_optimal
-  // replays that list on the shared RNG, bud by bud in the sequential order, drawing exactly the
-  // numbers the one-pass search drew, so the tree is the same bit for bit.
-  struct cone_choice {
-    int ties;
-    glm::vec3 dir;
-  };
-  struct cone_scratch {
-    std::vector<uint8_t> in_cone;               // which offsets pass the cone test
-    std::vector<const float*> near_chunks;
-  };
-  void scan_cone(const glm::vec3& pos, const glm::ivec3& v0, const glm::vec3& def, cone_scratch& sc,
-                 std::vector<cone_choice>& choices) const {
-    std::vector<uint8_t>& in_cone = sc.in_cone;
-    std::vector<const float*>& near_chunks = sc.near_chunks;
-    // The few chunks around the bud, looked up once rather than once per voxel.
-    const glm::ivec3 c0 = (v0 - cone_radius) >> shadow_grid::chunk_bits;
-    const glm::ivec3 c1 = (v0 + cone_radius) >> shadow_grid::chunk_bits;
-    const glm::ivec3 cn = c1 - c0 + 1;
-    near_chunks.resize(size_t(cn.x * cn.y * cn.z));
-    for (int z = 0; z < cn.z; ++z)
-      for (int y = 0; y < cn.y; ++y)
-        for (int x = 0; x < cn.x; ++x) near_chunks[(z * cn.y + y) * cn.x + x] = shadow_chunk(grid, c0 + glm::ivec3(x, y, z));
-    const glm::vec3 base = voxel_centre(grid, v0) - pos;
-    const float reach2 = reach * reach, cos2 = cos_theta * cos_theta;
-    float best_s = 0, best_dot = -2;
-    int ties = 0;
-    // Pass 1, branch-free so that it vectorises: most offsets lie outside the cone, and testing them
-    // one by one was a quarter of a default tree's growth. Same operations in the same order as
-    // glm::dot, so the same verdicts, NaN included (each test is the negation of a rejection).
-    const size_t n = cone.size();
-    in_cone.resize(n);
-    if (cos_theta >= 0) {
-      const float bx = base.x, by = base.y, bz = base.z, ex = def.x, ey = def.y, ez = def.z;
-      const float* ox = cone_x.data();
-      const float* oy = cone_y.data();
-      const float* oz = cone_z.data();
-      uint8_t* pass = in_cone.data();
-      for (size_t k = 0; k < n; ++k) {
-        const float dx = bx + ox[k], dy = by + oy[k], dz = bz + oz[k];
-        const float c = dx * ex + dy * ey + dz * ez, len2 = dx * dx + dy * dy + dz * dz;
-        pass[k] = uint8_t(!(c <= 0) & !(len2 > reach2) & !(len2 < 1e-12f) & !(c * c < cos2 * len2));
-      }
-    } else {
-      for (size_t k = 0; k < n; ++k) {
-        const glm::vec3 d = base + cone_offset[k];
-        const float c = glm::dot(d, def), len2 = glm::dot(d, d);
-        in_cone[k] = !(len2 > reach2 || len2 < 1e-12f) && !(c < cos_theta * std::sqrt(len2));
-      }
-    }
-    for (size_t k = 0; k < n; ++k) {
-      if (!in_cone[k]) continue;
-      const glm::vec3 d = base + cone_offset[k];
-      const float c = glm::dot(d, def), len2 = glm::dot(d, d);
-      const glm::ivec3 v = v0 + cone[k];
-      const glm::ivec3 cc = (v >> shadow_grid::chunk_bits) - c0;
-      const float* chunk = near_chunks[(cc.z * cn.y + cc.y) * cn.x + cc.x];
-      const float s = chunk ? chunk[shadow_cell(v)] : 0.0f;
-      constexpr float eps = 1e-6f;
-      if (ties > 0 && s > best_s + eps) continue;
-      const float len = std::sqrt(len2);
-      const float cd = c / len;
-      if (ties == 0 || s < best_s - eps) {
-        best_s = s, best_dot = cd, ties = 1;
-        choices.push_back({1, d / len});
-      } else if (cd > best_dot + eps) {
-        best_dot = cd, ties = 1;
-        choices.push_back({1, d / len});
-      } else if (cd >= best_dot - eps) {
-        ++ties;
-        choices.push_back({ties, d / len});
-      }
-    }
-  }
-  // Reservoir sampling over the ties: each tied voxel is kept with probability 1/ties.
-  glm::vec3 pick_optimal(const cone_choice* c, size_t count, const glm::vec3& def) {
-    glm::vec3 best = def;
-    for (size_t k = 0; k < count; ++k)
-      if (c[k].ties == 1 || r.uniform_int(c[k].ties) == 0) best = c[k].dir;
-    return best;
   }
 
   // Bud light l from the environment, then seed 001 eq. 1: Q = l^((T−T₀)^σ).
@@ -502,22 +412,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   st.grid.voxel_size = p.voxel_size * p.internode_length;
   st.cos_theta = std::cos(glm::radians(p.perception_angle));
   st.reach = p.perception_distance * p.internode_length;
-  {
-    // Offsets whose voxel can hold a point within the reach of a bud somewhere in voxel 0.
-    const float rv = p.perception_distance / p.voxel_size + 0.87f;
-    const int R = int(std::ceil(rv));
-    for (int z = -R; z <= R; ++z)
-      for (int y = -R; y <= R; ++y)
-        for (int x = -R; x <= R; ++x)
-          if (float(x * x + y * y + z * z) <= rv * rv) {
-            st.cone.push_back({x, y, z});
-            st.cone_offset.push_back(glm::vec3(x, y, z) * st.grid.voxel_size);
-            st.cone_x.push_back(st.cone_offset.back().x);
-            st.cone_y.push_back(st.cone_offset.back().y);
-            st.cone_z.push_back(st.cone_offset.back().z);
-          }
-    st.cone_radius = R;
-  }
+  st.cone = make_perception_cone(p.perception_distance, p.voxel_size, st.grid.voxel_size);
 
   float div = glm::radians(p.divergence);
   int step = 0;
@@ -592,7 +487,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     uint32_t first, count;     // its cone's choices in choices[its index / scan_chunk]
   };
   std::vector<shoot> shoots;
-  std::vector<std::vector<so_state::cone_choice>> choices;
+  std::vector<std::vector<cone_choice>> choices;
   std::vector<float> last_flow;
   // What is recorded from here on is replaced; the state resumed from stays (it is this state).
   if (resume && resume->record) snaps->resize(size_t(first) + (resumed ? 1 : 0));
@@ -649,14 +544,14 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
       const size_t chunks = (shoots.size() + scan_chunk - 1) / scan_chunk;
       if (choices.size() < chunks) choices.resize(chunks);
       parallel_jobs(chunks, [&](size_t c) {
-        so_state::cone_scratch sc;
-        std::vector<so_state::cone_choice>& out = choices[c];
+        cone_scratch sc;
+        std::vector<cone_choice>& out = choices[c];
         out.clear();
         for (size_t j = c * scan_chunk; j < std::min(shoots.size(), (c + 1) * scan_chunk); ++j) {
           shoot& sh = shoots[j];
           const glm::vec3 def = sh.k == 0 ? st.heading(sh.node) : st.lateral_direction(sh.node);
           sh.first = uint32_t(out.size());
-          st.scan_cone(t.position[size_t(sh.node)], st.voxel[size_t(sh.node)], def, sc, out);
+          scan_cone(st.grid, st.cone, st.cos_theta, st.reach, t.position[size_t(sh.node)], st.voxel[size_t(sh.node)], def, sc, out);
           sh.count = uint32_t(out.size()) - sh.first;
         }
       });
@@ -675,7 +570,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
         const glm::vec3 optimal =
-            shadow ? st.pick_optimal(choices[j / scan_chunk].data() + shoots[j].first, shoots[j].count, def) : marker_dir;
+            shadow ? pick_optimal(r, choices[j / scan_chunk].data() + shoots[j].first, shoots[j].count, def) : marker_dir;
         const glm::vec3 dir = safe_normalize(p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism, def);
         for (int m = 0; m < plan.metamers; ++m) {
           if (int64_t(t.size()) >= p.node_cap) { rep.hit_node_cap = true; break; }
