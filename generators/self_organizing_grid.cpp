@@ -122,99 +122,88 @@ float shadow_at(const shadow_grid& g, const glm::ivec3& v) {
   return c ? c[cell_index(v)] : 0.0f;
 }
 
-void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
+namespace {
+
+// A few recently used chunks by coordinates, direct-mapped: the pyramids of one step lie close
+// together, so most lookups end here instead of in the grid's large hash. Chunk indices stay
+// valid as chunks are added (only the cells move), and chunks are never removed.
+struct chunk_cache {
+  static constexpr size_t size = 256;
+  uint64_t key[size];
+  int32_t id[size];
+  chunk_cache() { std::fill(key, key + size, shadow_grid::empty_key); }
+};
+
+// The chunk of each chunk row segment a pyramid visits (layer by layer, z then x: the order in
+// which chunks are created), appended to ids; -1 where the memory cap sends the write nowhere.
+void pyramid_chunks(shadow_grid& g, const glm::ivec3& v, int q_max, chunk_cache& cache, std::vector<int32_t>& ids) {
+  constexpr int bits = shadow_grid::chunk_bits;
+  for (int q = 0; q <= q_max; ++q) {
+    const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
+    for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz)
+      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
+        const glm::ivec3 c{cx, y >> bits, cz};
+        const uint64_t key = pack(c);
+        const size_t slot = size_t((key ^ (key >> 21) ^ (key >> 42)) & (chunk_cache::size - 1));
+        if (cache.key[slot] != key) {
+          const float* cells = get_chunk(g, c);
+          if (cells == g.scratch.data()) { ids.push_back(-1); continue; }   // over the cap: not remembered
+          cache.key[slot] = key;
+          cache.id[slot] = int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells);
+        }
+        ids.push_back(cache.id[slot]);
+      }
+  }
+}
+
+// Adds one pyramid's Δs to the chunks in ids (pyramid_chunks' order) whose index is `part` modulo
+// `parts`. Each chunk row takes one fixed 8-wide add (two SIMD adds) of ds inside [x0, x1] and
+// ds·0 = ±0 outside. Adding ±0 changes no value a cell can hold: cells start at +0 and a sum is -0
+// only when both terms are, so no cell is ever -0.
+const int32_t* add_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign,
+                           const int32_t* ids, size_t part, size_t parts) {
   constexpr int side = shadow_grid::chunk_side, bits = shadow_grid::chunk_bits, m = side - 1;
-  // The chunks the pyramid touches, each found in the hash once: its widest layer spans at most
-  // two or three chunks a side, and its q_max + 1 layers a few chunk levels. Indices, not
-  // pointers, since creating a chunk may move every chunk's cells.
-  const int q_top = std::max(q_max, 0);
-  const glm::ivec3 c0{(v.x - q_top) >> bits, (v.y - q_top) >> bits, (v.z - q_top) >> bits};
-  const glm::ivec3 c1{(v.x + q_top) >> bits, v.y >> bits, (v.z + q_top) >> bits};
-  const glm::ivec3 cn = c1 - c0 + 1;
-  constexpr int cached_max = 128;
-  int32_t cached[cached_max];
-  const bool cache = size_t(cn.x) * size_t(cn.y) * size_t(cn.z) <= size_t(cached_max);
-  if (cache) std::fill(cached, cached + cn.x * cn.y * cn.z, -1);
-  auto chunk_cells = [&](const glm::ivec3& c) {
-    if (!cache) return get_chunk(g, c);
-    int32_t& k = cached[((c.y - c0.y) * cn.z + (c.z - c0.z)) * cn.x + (c.x - c0.x)];
-    if (k < 0) {
-      float* cells = get_chunk(g, c);
-      if (cells == g.scratch.data()) return cells;   // over the cap: nothing to remember
-      k = int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells);
-    }
-    return g.cells.data() + size_t(k) * shadow_grid::chunk_cells;
-  };
   float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
   for (int q = 0; q <= q_max; ++q, ds /= b) {
-    const int y = v.y - q;
-    const int x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
-    // Visit the layer chunk by chunk. This loop is the largest cost of a default tree's growth,
-    // so each chunk row takes one fixed 8-wide add (two SIMD adds) of ds inside [x0, x1] and
-    // ds·0 = ±0 outside. Adding ±0 changes no value a cell can hold: cells start at +0 and a sum
-    // is -0 only when both terms are, so no cell is ever -0.
+    const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
     for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
       const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
-      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {   // z then x: chunks are created in that order
+      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
+        const int32_t id = *ids++;
+        if (id < 0 || size_t(id) % parts != part) continue;
         const int xa = std::max(x0, cx * side) & m, xb = std::min(x1, cx * side + m) & m;
         const float* mask = row_masks.m[xa][xb];
         float add[side];
         for (int k = 0; k < side; ++k) add[k] = ds * mask[k];
-        float* row = chunk_cells({cx, y >> bits, cz}) + cell_index({0, y, za});
+        float* row = g.cells.data() + size_t(id) * shadow_grid::chunk_cells + cell_index({0, y, za});
         for (int z = za; z <= zb; ++z, row += side)
           for (int k = 0; k < side; ++k) row[k] += add[k];
       }
     }
   }
+  return ids;
+}
+
+}  // namespace
+
+void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
+  std::vector<int32_t> ids;
+  chunk_cache cache;
+  pyramid_chunks(g, v, q_max, cache, ids);
+  add_pyramid(g, v, a, b, q_max, sign, ids.data(), 0, 1);
 }
 
 void add_shadow_pyramids(shadow_grid& g, const std::vector<glm::ivec3>& voxels, float a, float b, int q_max, float sign) {
-  constexpr int side = shadow_grid::chunk_side, bits = shadow_grid::chunk_bits, m = side - 1;
-  const int parts = std::min(job_pool_helpers() + 1, 4);
-  if (parts < 2 || voxels.size() < 64) {
-    for (const glm::ivec3& v : voxels) add_shadow_pyramid(g, v, a, b, q_max, sign);
-    return;
-  }
-  // Every chunk row segment the pyramids visit, in the order add_shadow_pyramid visits them one
-  // pyramid after another, with its chunk made (in that order, so the grid's layout is the one
-  // pyramid at a time gives); -1 where the memory cap sends the write nowhere.
+  // The chunks first, made in the order one pyramid after another makes them (so the grid's layout
+  // is the same); then the adds in parts by chunk, so each cell (and cache line) is written by one
+  // part only, in pyramid order, and holds the bits one thread gives.
   std::vector<int32_t> ids;
-  for (const glm::ivec3& v : voxels)
-    for (int q = 0; q <= q_max; ++q) {
-      const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
-      for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz)
-        for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
-          float* cells = get_chunk(g, {cx, y >> bits, cz});
-          ids.push_back(cells == g.scratch.data() ? -1 : int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells));
-        }
-    }
-  // Then the adds, split by voxel row: part k takes the rows whose z is k modulo parts, so each
-  // cell is written by one part only, in pyramid order, and holds the bits one thread gives.
-  parallel_jobs(size_t(parts), [&](size_t part) {
-    size_t at = 0;
-    for (const glm::ivec3& v : voxels) {
-      float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
-      for (int q = 0; q <= q_max; ++q, ds /= b) {
-        const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
-        for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
-          const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
-          for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
-            const int32_t id = ids[at++];
-            if (id < 0) continue;
-            const int xa = std::max(x0, cx * side) & m, xb = std::min(x1, cx * side + m) & m;
-            const float* mask = row_masks.m[xa][xb];
-            float add[side];
-            for (int k = 0; k < side; ++k) add[k] = ds * mask[k];
-            float* chunk = g.cells.data() + size_t(id) * shadow_grid::chunk_cells;
-            int z = za + int((size_t(parts) + part - size_t(((za % parts) + parts) % parts)) % size_t(parts));
-            for (; z <= zb; z += parts) {
-              float* row = chunk + cell_index({0, y, z});
-              for (int k = 0; k < side; ++k) row[k] += add[k];
-            }
-          }
-        }
-      }
-    }
+  chunk_cache cache;
+  for (const glm::ivec3& v : voxels) pyramid_chunks(g, v, q_max, cache, ids);
+  const size_t parts = voxels.size() < 64 ? 1 : size_t(std::min(job_pool_helpers() + 1, 4));
+  parallel_jobs(parts, [&](size_t part) {
+    const int32_t* at = ids.data();
+    for (const glm::ivec3& v : voxels) at = add_pyramid(g, v, a, b, q_max, sign, at, part, parts);
   });
 }
 
