@@ -32,8 +32,16 @@ using namespace ed;
 void handle_keys(editor_state& e) {
   ImGuiIO& io = ImGui::GetIO();
   if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
-  if (io.WantTextInput) return;
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+  // The windows' keys work while a text field has the keyboard too (the panel's or the library's
+  // search box): they type nothing there, and a newcomer who clicked into one still gets them.
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
+  if (io.WantTextInput) return;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
   // Undo and redo take one step per press: a held Ctrl+Z does not run through the history.
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z) && !e.input.is_repeat(GLFW_KEY_Z)) {
     if (shift) apply_undo(e, e.redo, e.undo);
@@ -46,13 +54,7 @@ void handle_keys(editor_state& e) {
                                                                      {GLFW_KEY_KP_7, GLFW_KEY_7, view_axis::top, view_axis::bottom}};
   for (const auto& v : views)
     if (ImGui::IsKeyPressed(v.kp) || ImGui::IsKeyPressed(v.row)) snap_view(e.camera, ctrl ? v.opposite : v.axis);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
   const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
   if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
