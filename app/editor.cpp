@@ -262,7 +262,6 @@ int run_editor(const editor_options& o) {
     for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
     init_preset_browser(e->browser, folders);
   }
-  std::string window_title;
 
   int exit_code = 0, frames_with_tree = 0;
   auto started = std::chrono::steady_clock::now();
@@ -364,8 +363,7 @@ int run_editor(const editor_options& o) {
     e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
-    const std::string title = std::string("Sylva - ") + (e->ab.has_b ? (e->ab.selected == 0 ? "[A] " : "[B] ") : "") + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
-    if (title != window_title) glfwSetWindowTitle(window, (window_title = title).c_str());
+    if (const std::string title = window_title_text(*e); title != e->window_title) glfwSetWindowTitle(window, (e->window_title = title).c_str());
     ImGui::Render();
     // The 3D view fills the area between the panels (framebuffer pixels, origin bottom-left).
     const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1, sy = win_h > 0 ? float(fb_h) / float(win_h) : 1;

@@ -104,6 +104,10 @@ std::string default_save_path(const editor_state& e) {
 
 bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
 
+std::string window_title_text(const editor_state& e) {
+  return std::string("Sylva - ") + (e.ab.has_b ? (e.ab.selected == 0 ? "[A] " : "[B] ") : "") + e.doc.name + (modified(e) ? " *" : "");
+}
+
 // The slots with unsaved changes (A/B: both slots; the selected one first).
 std::vector<int> unsaved_slots(const editor_state& e) { return ab_unsaved_slots(e.ab, e.doc, e.browser.baseline); }
 
