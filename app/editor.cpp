@@ -310,7 +310,14 @@ int run_editor(const editor_options& o) {
     draw_shortcuts(*e);
     draw_dialogs(*e);
     if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
-    draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera, left, top}, e->message, e->message_is_error);
+    {
+      // An export's outcome goes through set_status, so it is dated (not taken for stale at once),
+      // logged, and a failure gets its toast.
+      std::string exported;
+      bool export_failed = false;
+      draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera, left, top}, exported, export_failed);
+      if (!exported.empty()) set_status(*e, exported, export_failed);
+    }
     handle_keys(*e);
     const view_rect view{left, top, float(win_w) - left, bottom - top};
     // A slot whose growth failed or waits marks its (older) tree stale.

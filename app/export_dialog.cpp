@@ -98,7 +98,6 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
                      : "Exported " + d.path + " (" + human_bytes(done->bytes) + ", " + std::to_string(done->files.size()) + " file(s))";
       d.warning = error ? "" : done->warning;
       if (!d.warning.empty()) status += "; warning: " + d.warning.substr(0, d.warning.find('\n'));
-      if (error) std::fprintf(stderr, "sylva: %s\n", status.c_str());
       if (!d.warning.empty()) std::fprintf(stderr, "sylva: export warning: %s\n", d.warning.c_str());
     }
   }

@@ -191,7 +191,8 @@ expect_export_path tree.glb
 }
 
 // Plain Export onto an existing file asks first and writes only after Replace; Export as... (its
-// file browser asked already) writes over an existing file at once.
+// file browser asked already) writes over an existing file at once. Each export's outcome stays in
+// the status bar (it was cleared as stale in the frame it arrived).
 TEST(EditorNewcomer, ExportAsksBeforeReplacingAndExportAsWritesAtOnce) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
   const fs::path dir = test_dir("export_fixture");
@@ -209,6 +210,8 @@ expect_export_asking 1
 expect_file_size PLAIN 3
 click export_button
 wait_file_size_over PLAIN 3
+frames 3
+expect_message Exported PLAIN
 show_export 0
 menu_export_as
 expect_prompt Export as
@@ -217,11 +220,14 @@ answer Save
 expect_prompt Export as
 answer Replace
 wait_file_size_over AS 3
+frames 3
+expect_message Exported AS
 expect_export_asking 0
 )";
   replace_all(script, "PLAIN", plain);
   replace_all(script, "AS\n", as + "\n");
   replace_all(script, "AS 3", as + " 3");
+  replace_all(script, "Exported AS", "Exported " + as);
   run_result r = run_script("export", script, bush);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
