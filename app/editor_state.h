@@ -177,6 +177,9 @@ bool save_to(editor_state& e, const std::string& path);
 std::string user_folder();
 bool is_installed_preset(const std::string& path);
 std::string default_save_path(const editor_state& e);
+// A preset's name as a file name: lower-case letters and digits, each run of anything else one "_",
+// none at either end ("Hazel fan (guiding vectors)" -> "hazel_fan_guiding_vectors"); "tree" if empty.
+std::string file_stem_for(const std::string& name);
 bool modified(const editor_state& e);
 std::string window_title_text(const editor_state& e);   // "Sylva - [B] oak *": the slot, the name, unsaved changes
 std::vector<int> unsaved_slots(const editor_state& e);

@@ -54,6 +54,16 @@ TEST(EditorNewcomer, ElidedTextFitsItsWidthAndKeepsCharactersWhole) {
   EXPECT_EQ(sylva::ed::elide_text("abc", 0, chars), "\u2026");                      // nothing fits: the dots alone
 }
 
+// The name proposed for Save as and Export as: no runs of "_" and none at the ends.
+TEST(EditorNewcomer, FileNamesFromPresetNamesReadCleanly) {
+  EXPECT_EQ(sylva::ed::file_stem_for("Hazel fan (guiding vectors)"), "hazel_fan_guiding_vectors");
+  EXPECT_EQ(sylva::ed::file_stem_for("Oak (B)"), "oak_b");
+  EXPECT_EQ(sylva::ed::file_stem_for("Space colonization: seed cube"), "space_colonization_seed_cube");
+  EXPECT_EQ(sylva::ed::file_stem_for("Fig. 7, radial t1"), "fig_7_radial_t1");
+  EXPECT_EQ(sylva::ed::file_stem_for("  --  "), "tree");
+  EXPECT_EQ(sylva::ed::file_stem_for("Érable"), "rable");   // only ASCII letters and digits are kept
+}
+
 // Two folders both shipping the bush (same name, same bytes) and one the Honda tree: two cards.
 // The first start renders both thumbnails into the cache; a pick opens the preset and closes the
 // library. The second start reads both from the cache and renders none.
