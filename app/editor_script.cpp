@@ -134,6 +134,11 @@ bool run_script(editor_state& e, script_state& sc) {
       done = size > n;
       if (cmd == "expect_file_size") done = true;
       else if (!done && waited > 180) return fail(path + " still holds " + std::to_string(size) + " bytes");
+    } else if (cmd == "expect_ab_labels") {   // both A/B labels fit their parts; the selected one says so
+      const std::string& sel = e.ab.labels_shown[e.ab.selected];
+      std::printf("sylva script: A/B labels \"%s\" | \"%s\"\n", e.ab.labels_shown[0].c_str(), e.ab.labels_shown[1].c_str());
+      if (!e.ab.labels_fit) return fail("an A/B label runs past its part of the view");
+      if (sel.size() < 10 || sel.compare(sel.size() - 10, 10, "(selected)") != 0) return fail("the selected slot's label is \"" + sel + "\"");
     } else if (cmd == "expect_doc_name") {
       if (e.doc.name != arg) return fail("the document is \"" + e.doc.name + "\"");
     } else if (cmd == "expect_recovery" || cmd == "expect_recovery_b") {

@@ -200,6 +200,24 @@ expect_export_path tree.glb
   EXPECT_NE(r.output.find("ok expect_window library 0"), std::string::npos) << r.output;
 }
 
+// Side by side in a small window, a long preset name is cut with "…" so that each label fits its
+// half and the selected slot's still ends "(selected)" (it was clipped off).
+TEST(EditorNewcomer, ABLabelsFitTheirHalvesAndKeepSelected) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(presets + "self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  bush.name = "Bush with a name far too long for half of a small window";
+  const fs::path dir = test_dir("ab_labels_fixture");
+  fs::create_directories(dir);
+  ASSERT_EQ(sylva::save_preset_file(bush, (dir / "bush.json").string()), "");
+  const std::string script = "wait_tree\nab_duplicate\nab_mode side\nab_wait\nframes 3\nexpect_ab_labels\nab_select a\nframes 3\nexpect_ab_labels\n";
+  run_result r = run_script("ab_labels", script, (dir / "bush.json").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\u2026  (selected)\""), std::string::npos) << r.output;   // cut, and still marked
+}
+
 // Plain Export onto an existing file asks first and writes only after Replace; Export as... (its
 // file browser asked already) writes over an existing file at once. Each export's outcome stays in
 // the status bar (it was cleared as stale in the frame it arrived).
