@@ -18,6 +18,7 @@ namespace {
 using sylva_test::have_display;
 using sylva_test::run_result;
 using sylva_test::run_script;
+using sylva_test::script_passed;
 using sylva_test::test_dir;
 namespace fs = std::filesystem;
 
@@ -91,14 +92,13 @@ expect_doc_name Honda tree a
 )";
   replace_all(script, "A B", (fixture / "a").string() + " " + (fixture / "b").string());
   run_result first = run_script("library1", script, bush, env);
-  EXPECT_EQ(first.code, 0) << first.output;
-  EXPECT_EQ(first.output.find("FAIL"), std::string::npos) << first.output;
+  EXPECT_TRUE(script_passed(first));
   EXPECT_NE(first.output.find("thumbnails: 2 cards, 2 rendered, 0 from the cache, 0 without a picture"), std::string::npos)
       << first.output;
   EXPECT_NE(first.output.find("ok expect_doc_name Honda tree a"), std::string::npos) << first.output;
 
   run_result second = run_script("library2", script, bush, env);
-  EXPECT_EQ(second.code, 0) << second.output;
+  EXPECT_TRUE(script_passed(second));
   EXPECT_NE(second.output.find("thumbnails: 2 cards, 0 rendered, 2 from the cache, 0 without a picture"), std::string::npos)
       << second.output;
 }
@@ -145,8 +145,7 @@ expect_title Sylva - Space colonization: seed cube
 )";
   replace_all(script, "LONG_EDIT", long_edit);
   run_result r = run_script("title", script, cube);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_TRUE(script_passed(r));
   EXPECT_NE(r.output.find("ok expect_title Sylva - Space colonization: seed cube * ("), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok expect_title Sylva - Space colonization: seed cube ("), std::string::npos) << r.output;
 }
@@ -163,8 +162,7 @@ TEST(EditorNewcomer, MarkersFollowTheStepsGrownAndALongStatusFits) {
   const std::string script = "wait_tree\nset segment_length@10=0.45\nwait_tree\nframes 2\nexpect_marker 10\nstatus Saved " +
                              long_text + " end\nexpect_status_fits cut\n";
   run_result r = run_script("markers", script, cube);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_TRUE(script_passed(r));
   const size_t at = r.output.find("steps grown)");
   ASSERT_NE(at, std::string::npos) << r.output;
   const int grown = std::atoi(r.output.c_str() + r.output.rfind('(', at) + 1);
@@ -195,8 +193,7 @@ expect_window library 0
 expect_export_path tree.glb
 )";
   run_result r = run_script("keys", script, bush);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_TRUE(script_passed(r));
   EXPECT_NE(r.output.find("ok expect_window library 0"), std::string::npos) << r.output;
 }
 
@@ -213,8 +210,7 @@ TEST(EditorNewcomer, ABLabelsFitTheirHalvesAndKeepSelected) {
   ASSERT_EQ(sylva::save_preset_file(bush, (dir / "bush.json").string()), "");
   const std::string script = "wait_tree\nab_duplicate\nab_mode side\nab_wait\nframes 3\nexpect_ab_labels\nab_select a\nframes 3\nexpect_ab_labels\n";
   run_result r = run_script("ab_labels", script, (dir / "bush.json").string());
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_TRUE(script_passed(r));
   EXPECT_NE(r.output.find("\u2026  (selected)\""), std::string::npos) << r.output;   // cut, and still marked
 }
 
@@ -257,8 +253,7 @@ expect_export_asking 0
   replace_all(script, "AS 3", as + " 3");
   replace_all(script, "Exported AS", "Exported " + as);
   run_result r = run_script("export", script, bush);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  EXPECT_TRUE(script_passed(r));
   EXPECT_GT(fs::file_size(plain), 3u);
   EXPECT_GT(fs::file_size(as), 3u);
 }

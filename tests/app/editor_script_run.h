@@ -7,20 +7,24 @@
 #include <sstream>
 #include <string>
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace sylva_test {
+#include "../gl/gl_test_context.h"   // have_display
 
-inline bool have_display() {
-  const char* d = std::getenv("DISPLAY");
-  return d && *d;
-}
+namespace sylva_test {
 
 struct run_result {
   int code = -1;
   std::string output;
 };
+
+// The script ran to its end: exit 0 and no failed line (the output goes with a failure).
+inline ::testing::AssertionResult script_passed(const run_result& r) {
+  if (r.code == 0 && r.output.find("FAIL") == std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "exit " << r.code << "\n" << r.output;
+}
 
 // A folder of this test process's own, so that parallel runs do not share files.
 inline std::filesystem::path test_dir(const std::string& name) {
