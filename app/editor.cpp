@@ -32,8 +32,16 @@ using namespace ed;
 void handle_keys(editor_state& e) {
   ImGuiIO& io = ImGui::GetIO();
   if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
-  if (io.WantTextInput) return;
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+  // The windows' keys work while a text field has the keyboard too (the panel's or the library's
+  // search box): they type nothing there, and a newcomer who clicked into one still gets them.
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
+  if (io.WantTextInput) return;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
   // Undo and redo take one step per press: a held Ctrl+Z does not run through the history.
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z) && !e.input.is_repeat(GLFW_KEY_Z)) {
     if (shift) apply_undo(e, e.redo, e.undo);
@@ -46,13 +54,7 @@ void handle_keys(editor_state& e) {
                                                                      {GLFW_KEY_KP_7, GLFW_KEY_7, view_axis::top, view_axis::bottom}};
   for (const auto& v : views)
     if (ImGui::IsKeyPressed(v.kp) || ImGui::IsKeyPressed(v.row)) snap_view(e.camera, ctrl ? v.opposite : v.axis);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
   const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
   if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
@@ -260,7 +262,6 @@ int run_editor(const editor_options& o) {
     for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
     init_preset_browser(e->browser, folders);
   }
-  std::string window_title;
 
   int exit_code = 0, frames_with_tree = 0;
   auto started = std::chrono::steady_clock::now();
@@ -309,7 +310,14 @@ int run_editor(const editor_options& o) {
     draw_shortcuts(*e);
     draw_dialogs(*e);
     if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
-    draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera, left, top}, e->message, e->message_is_error);
+    {
+      // An export's outcome goes through set_status, so it is dated (not taken for stale at once),
+      // logged, and a failure gets its toast.
+      std::string exported;
+      bool export_failed = false;
+      draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera, left, top}, exported, export_failed);
+      if (!exported.empty()) set_status(*e, exported, export_failed);
+    }
     handle_keys(*e);
     const view_rect view{left, top, float(win_w) - left, bottom - top};
     // A slot whose growth failed or waits marks its (older) tree stale.
@@ -362,8 +370,7 @@ int run_editor(const editor_options& o) {
     e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
-    const std::string title = std::string("Sylva - ") + (e->ab.has_b ? (e->ab.selected == 0 ? "[A] " : "[B] ") : "") + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
-    if (title != window_title) glfwSetWindowTitle(window, (window_title = title).c_str());
+    if (const std::string title = window_title_text(*e); title != e->window_title) glfwSetWindowTitle(window, (e->window_title = title).c_str());
     ImGui::Render();
     // The 3D view fills the area between the panels (framebuffer pixels, origin bottom-left).
     const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1, sy = win_h > 0 ? float(fb_h) / float(win_h) : 1;

@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 #include <imgui.h>
 
+#include "app/editor_state.h"   // elide_text
 #include "render/gl/overlays.h"
 #include "render/gl/wind_gl.h"
 
@@ -153,18 +154,24 @@ bool draw_ab_overlay(ab_state& s, float x, float y, float w, float h, const std:
   const float mid = s.mode == ab_mode::split ? x + w * s.divider : x + w * 0.5f;
   const float pad = 8;
   const ImU32 sel = IM_COL32(255, 200, 80, 255);
-  // The stale mark goes first so that a long name cannot clip it off.
+  // The stale mark goes first and "(selected)" last; the name between them is cut with "…" to
+  // fit its part, so neither mark is ever clipped off.
   const char* stale = "stale (last tree, see the status bar) - ";
-  const std::string a = std::string("A: ") + (a_stale ? stale : "") + a_label + (s.selected == 0 ? "  (selected)" : "");
-  const std::string b = std::string("B: ") + (b_stale ? stale : "") + b_label + (s.selected == 1 ? "  (selected)" : "");
+  auto width_of = [](std::string_view t) { return ImGui::CalcTextSize(t.data(), t.data() + t.size()).x; };
+  auto label = [&](int slot, bool is_stale, const std::string& name, float room) {
+    const std::string head = std::string(slot == 0 ? "A: " : "B: ") + (is_stale ? stale : "");
+    const std::string tail = s.selected == slot ? "  (selected)" : "";
+    return head + ed::elide_text(name, room - width_of(head) - width_of(tail), width_of) + tail;
+  };
+  const std::string a = label(0, a_stale, a_label, mid - x - 2 * pad), b = label(1, b_stale, b_label, x + w - mid - 2 * pad);
+  s.labels_shown[0] = a, s.labels_shown[1] = b;
+  s.labels_fit = width_of(a) <= mid - x - 2 * pad && width_of(b) <= x + w - mid - 2 * pad;
   const ImU32 red = IM_COL32(255, 115, 100, 255);
   const ImVec4 clip_a(x, y, mid - pad, y + h), clip_b(mid, y, x + w - pad, y + h);   // each label stays in its part
   // A dark band under each label keeps it readable over a bright sky.
   const float band = ImGui::GetTextLineHeight() + pad;
-  dl->AddRectFilled(ImVec2(x, y), ImVec2(std::min(mid, x + ImGui::CalcTextSize(a.c_str()).x + 2 * pad), y + band + pad * 0.5f),
-                    IM_COL32(0, 0, 0, 120));
-  dl->AddRectFilled(ImVec2(mid, y), ImVec2(std::min(x + w, mid + ImGui::CalcTextSize(b.c_str()).x + 2 * pad), y + band + pad * 0.5f),
-                    IM_COL32(0, 0, 0, 120));
+  dl->AddRectFilled(ImVec2(x, y), ImVec2(std::min(mid, x + width_of(a) + 2 * pad), y + band + pad * 0.5f), IM_COL32(0, 0, 0, 120));
+  dl->AddRectFilled(ImVec2(mid, y), ImVec2(std::min(x + w, mid + width_of(b) + 2 * pad), y + band + pad * 0.5f), IM_COL32(0, 0, 0, 120));
   dl->AddText(nullptr, 0, ImVec2(x + pad, y + pad), a_stale ? red : s.selected == 0 ? sel : text, a.c_str(), nullptr, 0, &clip_a);
   dl->AddText(nullptr, 0, ImVec2(mid + pad, y + pad), b_stale ? red : s.selected == 1 ? sel : text, b.c_str(), nullptr, 0, &clip_b);
   dl->AddLine(ImVec2(mid, y), ImVec2(mid, y + h), line, s.mode == ab_mode::split ? 2.0f : 1.0f);

@@ -65,6 +65,9 @@ struct ab_state {
   int keep_w = 0, keep_h = 0;
   bool ask_drop = false;            // Drop B with edits in B: the prompt asks first
   bool drop_confirmed = false;      // the prompt's "Drop B": drop without asking again
+  // The labels as drawn last frame over each slot's part, and whether both fit their parts.
+  std::string labels_shown[2];
+  bool labels_fit = true;
 };
 
 // ---- Display-free logic (app/editor_ab_doc.cpp; tests/editor_ab_test.cpp).

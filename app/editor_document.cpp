@@ -96,13 +96,29 @@ bool is_installed_preset(const std::string& path) {
 // "My tree" -> "~/Sylva/my_tree.json".
 std::string default_save_path(const editor_state& e) {
   if (!e.path.empty() && !is_installed_preset(e.path)) return e.path;
+  return (fs::path(e.home) / (file_stem_for(e.doc.name) + ".json")).string();
+}
+
+std::string file_stem_for(const std::string& name) {
   std::string stem;
-  for (char c : e.doc.name) stem += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '_';
-  if (stem.empty()) stem = "tree";
-  return (fs::path(e.home) / (stem + ".json")).string();
+  bool gap = false;   // a run of other characters since the last letter or digit
+  for (char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) {
+      gap = !stem.empty();
+      continue;
+    }
+    if (gap) stem += '_';
+    gap = false;
+    stem += char(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return stem.empty() ? "tree" : stem;
 }
 
 bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
+
+std::string window_title_text(const editor_state& e) {
+  return std::string("Sylva - ") + (e.ab.has_b ? (e.ab.selected == 0 ? "[A] " : "[B] ") : "") + e.doc.name + (modified(e) ? " *" : "");
+}
 
 // The slots with unsaved changes (A/B: both slots; the selected one first).
 std::vector<int> unsaved_slots(const editor_state& e) { return ab_unsaved_slots(e.ab, e.doc, e.browser.baseline); }

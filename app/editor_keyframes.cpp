@@ -108,6 +108,7 @@ bool draw_keyframe_panel(keyframe_panel_state& s, tree_spec& spec, int step, std
 
 bool draw_keyframe_markers(keyframe_panel_state& s, tree_spec& spec, int steps, float x0, float x1, float y,
                            int& step, std::string& error) {
+  s.drawn.clear();
   if (spec.keyframes.empty() || steps <= 0) return false;
   bool changed = false;
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -116,6 +117,7 @@ bool draw_keyframe_markers(keyframe_panel_state& s, tree_spec& spec, int steps, 
   for (int k : keyed_steps(spec)) {
     ImGui::PushID(k);
     const float x = x_of(s.drag_from == k && s.drag_to >= 0 ? s.drag_to : k);
+    s.drawn.emplace_back(k, (x - x0) / std::max(x1 - x0, 1.0f));
     ImGui::SetCursorScreenPos(ImVec2(x - h - 1, y));
     ImGui::InvisibleButton("##marker", ImVec2(2 * h + 2, 2 * h + 2), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
     const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();

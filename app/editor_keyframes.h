@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "generators/keyframes.h"
@@ -15,6 +16,9 @@ struct keyframe_panel_state {
   int drag_from = -1;       // the step of the marker being dragged (-1: none)
   int drag_to = -1;         // where it would land
   int popup_step = -1;      // the marker whose popup is open
+  // The markers drawn last frame: (keyed step, place along the timeline from 0 at its start to 1 at
+  // its end), for the scripted test.
+  std::vector<std::pair<int, float>> drawn;
 };
 
 // ---------------------------------------------------------------- display-free (tested)

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
+#include <sstream>
 
 #include <GLFW/glfw3.h>
 
@@ -26,6 +28,13 @@ int glfw_key(const std::string& name) {
   if (name == "kp3") return GLFW_KEY_KP_3;
   if (name == "kp7") return GLFW_KEY_KP_7;
   return GLFW_KEY_UNKNOWN;
+}
+
+std::vector<std::string> words(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
 }
 
 }  // namespace
@@ -67,6 +76,71 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "set") {
       if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
       sc.frames_left = 2;   // posted on the next frame
+    } else if (cmd == "set_all") {   // several assignments in one frame: one request
+      preset edited = e.doc;
+      for (const std::string& a : words(arg))
+        if (std::string err = set_preset_param(edited, a); !err.empty()) return fail(err);
+      e.doc = edited;
+      sc.frames_left = 2;
+    } else if (cmd == "expect_title") {
+      if (e.window_title != arg) return fail("the title is \"" + e.window_title + "\"");
+    } else if (cmd == "status") {
+      set_status(e, arg);
+      sc.frames_left = 2;
+    } else if (cmd == "expect_status_fits") {   // the status bar's text ends inside the window; "cut": a piece was cut
+      int w = 0, h = 0;
+      glfwGetWindowSize(e.window, &w, &h);
+      if (e.status_right > float(w)) return fail("the status runs to x " + std::to_string(e.status_right) + " of " + std::to_string(w));
+      if (arg == "cut" && e.status_cut.empty()) return fail("no piece of the status was cut");
+      if (arg == "cut") std::printf("sylva script: status cut, whole in its tooltip: %s\n", e.status_cut.c_str());
+    } else if (cmd == "expect_marker") {   // expect_marker STEP: its marker sits at STEP / the steps grown
+      const int k = std::atoi(arg.c_str());
+      const int grown = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
+      auto it = std::find_if(e.keys.drawn.begin(), e.keys.drawn.end(), [&](const auto& m) { return m.first == k; });
+      if (it == e.keys.drawn.end() || grown <= 0) return fail("no marker at step " + arg);
+      const float want = float(std::min(k, grown)) / float(grown);
+      std::printf("sylva script: marker at step %d drawn at %.3f of the timeline (%d steps grown)\n", k, it->second, grown);
+      if (std::abs(it->second - want) > 0.01f) return fail("the marker sits at " + std::to_string(it->second) + ", not " + std::to_string(want));
+    } else if (cmd == "library_folders") {   // the library lists these folders (space separated) instead
+      e.browser.folders = words(arg);
+      e.browser.rescan = true;
+    } else if (cmd == "wait_thumbnails") {   // until every card of the open library has its picture
+      done = e.browser.open && e.browser.ready_s >= 0;
+      if (!done && waited > 900) return fail("thumbnails still missing after 900 s");
+      if (done)
+        std::printf("sylva script: thumbnails: %zu cards, %d rendered, %d from the cache, %zu without a picture, all drawn %.1f s after the library opened\n",
+                    e.browser.entries.size(), e.browser.rendered, e.browser.from_cache, e.browser.failed.size(), e.browser.ready_s);
+    } else if (cmd == "expect_cards") {   // expect_cards NAME N: the library lists N cards named NAME
+      const std::string name = arg.substr(0, arg.rfind(' '));
+      const long n = std::count_if(e.browser.entries.begin(), e.browser.entries.end(), [&](const preset_entry& c) { return c.name == name; });
+      if (n != std::atol(arg.substr(arg.rfind(' ') + 1).c_str())) return fail(std::to_string(n) + " cards named " + name);
+    } else if (cmd == "menu_export_as") {   // File > Export as...: the file browser opens
+      e.browse_export = true;
+      sc.frames_left = 3;
+    } else if (cmd == "file_path") {   // the open file browser's folder and name, as if typed
+      e.files.folder = fs::path(arg).parent_path().string();
+      e.files.name = fs::path(arg).filename().string();
+      e.files.confirm_overwrite = false;
+    } else if (cmd == "expect_export_asking") {   // the Export dialog asks before replacing its file
+      std::error_code ec;
+      const bool asking = fs::exists(e.exporter.path, ec) && e.exporter.confirm_replace == e.exporter.path;
+      if (asking != (arg == "1")) return fail(asking ? "the dialog asks to replace" : "the dialog does not ask");
+    } else if (cmd == "expect_file_size" || cmd == "wait_file_size_over") {   // PATH N; the second waits for it
+      const std::string path = arg.substr(0, arg.rfind(' '));
+      const auto n = std::uintmax_t(std::atoll(arg.substr(arg.rfind(' ') + 1).c_str()));
+      std::error_code ec;
+      const std::uintmax_t size = fs::exists(path, ec) ? fs::file_size(path, ec) : 0;
+      if (cmd == "expect_file_size" && size != n) return fail(path + " holds " + std::to_string(size) + " bytes");
+      done = size > n;
+      if (cmd == "expect_file_size") done = true;
+      else if (!done && waited > 180) return fail(path + " still holds " + std::to_string(size) + " bytes");
+    } else if (cmd == "expect_ab_labels") {   // both A/B labels fit their parts; the selected one says so
+      const std::string& sel = e.ab.labels_shown[e.ab.selected];
+      std::printf("sylva script: A/B labels \"%s\" | \"%s\"\n", e.ab.labels_shown[0].c_str(), e.ab.labels_shown[1].c_str());
+      if (!e.ab.labels_fit) return fail("an A/B label runs past its part of the view");
+      if (sel.size() < 10 || sel.compare(sel.size() - 10, 10, "(selected)") != 0) return fail("the selected slot's label is \"" + sel + "\"");
+    } else if (cmd == "expect_doc_name") {
+      if (e.doc.name != arg) return fail("the document is \"" + e.doc.name + "\"");
     } else if (cmd == "expect_recovery" || cmd == "expect_recovery_b") {
       // "1": the file is there and holds the slot's current document (an autosave taken before the
       // last edit is not yet the work that a crash would leave); "0": the file is gone.
@@ -137,7 +211,12 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "click") {   // click TARGET: a move onto it, a press and a release, queued at once
       float x = 0, y = 0;
       if (arg == "export_path") x = e.exporter.path_at[0], y = e.exporter.path_at[1];
-      else if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail("click export_path or click X Y");
+      else if (arg == "export_button") x = e.exporter.export_at[0], y = e.exporter.export_at[1];
+      else if (arg.rfind("card ", 0) == 0) {   // click card NAME: the library's card of that preset
+        auto it = e.browser.card_at.find(arg.substr(5));
+        if (it == e.browser.card_at.end()) return fail("no card " + arg.substr(5));
+        x = it->second.first, y = it->second.second;
+      } else if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail("click export_path or click X Y");
       if (x <= 0 && y <= 0) return fail("the target is not on screen");
       e.input.push_move(x, y);
       e.input.push_button(0, true, x, y);

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/editor_ab.h"
@@ -86,6 +88,9 @@ struct editor_state {
   // after half a minute ("Slot B dropped" minutes later). Errors stay until a success clears them.
   size_t message_edits = 0;                           // undo + redo depth when it was set
   std::chrono::steady_clock::time_point message_at;
+  float status_right = 0;         // the status bar's text ends here (window x), cut to fit
+  std::string status_cut;         // a piece of it cut with "…" this frame, whole (its tooltip)
+  std::string window_title;       // as last set ("Sylva - oak *")
   std::string toast;              // the last error in full, until dismissed or a success
   uint32_t error_after = 0;       // a tree from a newer request clears the error
   struct log_line { std::string time, text; bool error; };
@@ -155,6 +160,9 @@ void set_status(editor_state& e, const std::string& m, bool error = false);
 void clear_error(editor_state& e);   // the next successful action clears an error left from before
 std::string count_text(double n);    // "1.2 million"
 std::string seconds_text(double s);  // "3 min"
+// `text` as it fits in `width` (measure: a string's width): whole, or its longest prefix that fits
+// with "…" after it, cut between UTF-8 characters.
+std::string elide_text(const std::string& text, float width, const std::function<float(std::string_view)>& measure);
 void draw_status(editor_state& e, float y, float w);
 void draw_toast(editor_state& e, float left, float top, float right);
 void draw_overlay_legend(editor_state& e, float left, float bottom);
@@ -169,7 +177,11 @@ bool save_to(editor_state& e, const std::string& path);
 std::string user_folder();
 bool is_installed_preset(const std::string& path);
 std::string default_save_path(const editor_state& e);
+// A preset's name as a file name: lower-case letters and digits, each run of anything else one "_",
+// none at either end ("Hazel fan (guiding vectors)" -> "hazel_fan_guiding_vectors"); "tree" if empty.
+std::string file_stem_for(const std::string& name);
 bool modified(const editor_state& e);
+std::string window_title_text(const editor_state& e);   // "Sylva - [B] oak *": the slot, the name, unsaved changes
 std::vector<int> unsaved_slots(const editor_state& e);
 std::string recovery_path(const editor_state& e, int slot = 0);
 void remove_recovery(editor_state& e, int slot);

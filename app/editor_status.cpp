@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 #include <ctime>
+#include <functional>
+#include <string_view>
 
 #include <imgui.h>
 
@@ -55,6 +57,25 @@ std::string seconds_text(double s) {
   else if (s >= 1) std::snprintf(b, sizeof b, "%.0f s", s);
   else std::snprintf(b, sizeof b, "%.1f s", s);
   return b;
+}
+
+std::string elide_text(const std::string& text, float width, const std::function<float(std::string_view)>& measure) {
+  if (measure(text) <= width) return text;
+  static const std::string dots = "\u2026";
+  // The longest prefix, cut between UTF-8 characters, that fits with the dots (the width only grows
+  // with the prefix, so a binary search over the character boundaries finds it).
+  std::vector<size_t> cuts{0};
+  for (size_t i = 1; i <= text.size(); ++i)
+    if (i == text.size() || (static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) cuts.push_back(i);
+  size_t lo = 0, hi = cuts.size() - 1;
+  while (lo < hi) {
+    const size_t mid = (lo + hi + 1) / 2;
+    if (measure(text.substr(0, cuts[mid]) + dots) <= width) lo = mid;
+    else hi = mid - 1;
+  }
+  std::string out = text.substr(0, cuts[lo]);
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out + dots;
 }
 
 // The overlays' legend in the viewport's bottom left corner: each visible layer, its colour and units.
@@ -149,6 +170,28 @@ void draw_status(editor_state& e, float y, float w) {
   ImGui::Begin("Status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
+  e.status_right = 0;
+  e.status_cut.clear();
+  auto width_of = [](std::string_view t) { return ImGui::CalcTextSize(t.data(), t.data() + t.size()).x; };
+  // A piece of the line (after the first, on the same line), cut with "…" where it would run past
+  // the bar's right edge (or `most` pixels, or `leave` pixels before it); one cut short or left out puts the whole line in the
+  // bar's tooltip.
+  std::string whole;
+  bool cut = false;
+  auto piece = [&](const std::string& text, const ImVec4& colour, float most = 1e9f, float leave = 0) {
+    whole += text;
+    if (e.status_right > 0) ImGui::SameLine();
+    const float room = std::min(most, ImGui::GetContentRegionAvail().x - leave);
+    const std::string shown = elide_text(text, room, width_of);
+    if (width_of(shown) > room) {   // not even "…" fits
+      cut = true;
+      return;
+    }
+    ImGui::TextColored(colour, "%s", shown.c_str());
+    e.status_right = std::max(e.status_right, ImGui::GetItemRectMax().x);
+    cut |= shown != text;
+  };
+  const ImVec4 plain = ImGui::GetStyleColorVec4(ImGuiCol_Text), warn(1, 0.8f, 0.4f, 1), bad(1, 0.45f, 0.4f, 1);
   const grow_result* r = e.shown.get();
   // One state: growing (with progress and Cancel once it takes a while), done, cancelled or failed.
   using g = editor_state::growth;
@@ -164,43 +207,47 @@ void draw_status(editor_state& e, float y, float w) {
         ImGui::TextUnformatted("growing...");
       }
       break;
-    case g::asking: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", e.growth_text.c_str()); break;
-    case g::done: ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1), "done: %s", e.growth_text.c_str()); break;
-    case g::cancelled: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "cancelled: %s", e.growth_text.c_str()); break;
-    case g::failed: ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "failed: %s", e.growth_text.c_str()); break;
+    case g::asking: piece(e.growth_text, warn, 0.45f * w); break;
+    case g::done: piece("done: " + e.growth_text, ImVec4(0.6f, 0.9f, 0.6f, 1), 0.45f * w); break;
+    case g::cancelled: piece("cancelled: " + e.growth_text, warn, 0.45f * w); break;
+    case g::failed: piece("failed: " + e.growth_text, bad, 0.45f * w); break;
     case g::idle: ImGui::TextDisabled("no tree yet"); break;
   }
-  ImGui::SameLine();
+  e.status_right = std::max(e.status_right, ImGui::GetItemRectMax().x);
+  if (!e.message.empty() && !e.message_is_error &&
+      (e.undo.size() + e.redo.size() != e.message_edits || seconds_since(e.message_at) > 30))
+    e.message.clear();   // stale: the document changed since, or it is old news
+  // The counts leave the message room (up to 40 % of the bar) rather than push it out of sight.
+  const float keep = e.message.empty() ? 0 : std::min(width_of("   " + e.message), 0.4f * w);
+  char text[512];
   if (ab_showing(e.ab)) {   // A/B: both slots' counts and timings in place of the one tree's
     ab_counts mine = ab_counts_of(e.shown.get()), other = ab_counts_of(e.ab.other.shown.get());
     // A slot whose last growth failed or waits shows it, with the counts of the tree it still shows.
     mine.problem = ab_slot_problem(int(e.growth_state), e.growth_text);
     other.problem = ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text);
-    ImGui::Text("   %s   frame %.1f ms", (e.ab.selected == 0 ? ab_compare_text(mine, other) : ab_compare_text(other, mine)).c_str(),
-                e.frame_ms);
+    std::snprintf(text, sizeof text, "   %s   frame %.1f ms",
+                  (e.ab.selected == 0 ? ab_compare_text(mine, other) : ab_compare_text(other, mine)).c_str(), e.frame_ms);
+    piece(text, plain, 1e9f, keep);
   } else {
-    ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e), e.renderer.leaves_drawn,
-                e.renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
+    std::snprintf(text, sizeof text, "   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e),
+                  e.renderer.leaves_drawn, e.renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
+    piece(text, plain, 1e9f, keep);
     // The hidden slot's failure still shows (A/B view off).
-    if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text) : ""; !p.empty()) {
-      ImGui::SameLine();
-      ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "   %s: %s", e.ab.selected == 0 ? "B" : "A", p.c_str());
+    if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text) : ""; !p.empty())
+      piece(std::string("   ") + (e.ab.selected == 0 ? "B" : "A") + ": " + p, bad);
+  }
+  if (!e.message.empty()) piece("   " + e.message, e.message_is_error ? bad : ImVec4(0.75f, 0.85f, 0.75f, 1));
+  if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) piece("   " + lod, plain);
+  if (r && !r->mesh.message.empty()) piece("   " + r->mesh.message, warn);   // the leaf cap: growth went on, the foliage stopped
+  if (cut) {
+    e.status_cut = whole;
+    if (ImGui::IsWindowHovered()) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(std::min(w * 0.6f, 700 * ui_scale));
+      ImGui::TextUnformatted(whole.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
     }
-  }
-  if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) {
-    ImGui::SameLine();
-    ImGui::Text("   %s", lod.c_str());
-  }
-  if (!e.message.empty() && !e.message_is_error &&
-      (e.undo.size() + e.redo.size() != e.message_edits || seconds_since(e.message_at) > 30))
-    e.message.clear();   // stale: the document changed since, or it is old news
-  if (!e.message.empty()) {
-    ImGui::SameLine();
-    ImGui::TextColored(e.message_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.75f, 0.85f, 0.75f, 1), "   %s", e.message.c_str());
-  }
-  if (r && !r->mesh.message.empty()) {   // the leaf cap: growth went on, the foliage stopped
-    ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "   %s", r->mesh.message.c_str());
   }
   ImGui::End();
   ImGui::PopStyleVar();

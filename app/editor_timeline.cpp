@@ -53,6 +53,8 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
     draw_cut_markers(e.doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step);
     draw_keyframe_markers(e.keys, e.doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step, key_error);
     if (!key_error.empty()) set_status(e, key_error, true);
+  } else {
+    e.keys.drawn.clear();
   }
   ImGui::End();
 }

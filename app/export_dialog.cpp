@@ -98,7 +98,6 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
                      : "Exported " + d.path + " (" + human_bytes(done->bytes) + ", " + std::to_string(done->files.size()) + " file(s))";
       d.warning = error ? "" : done->warning;
       if (!d.warning.empty()) status += "; warning: " + d.warning.substr(0, d.warning.find('\n'));
-      if (error) std::fprintf(stderr, "sylva: %s\n", status.c_str());
       if (!d.warning.empty()) std::fprintf(stderr, "sylva: export warning: %s\n", d.warning.c_str());
     }
   }
@@ -192,6 +191,8 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
     const bool asking = exists && d.confirm_replace == d.path;
     if (asking) ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s exists. Replace it?", fs::path(d.path).filename().c_str());
     bool go = ImGui::Button(asking ? "Replace" : "Export");
+    d.export_at[0] = 0.5f * (ImGui::GetItemRectMin().x + ImGui::GetItemRectMax().x);
+    d.export_at[1] = 0.5f * (ImGui::GetItemRectMin().y + ImGui::GetItemRectMax().y);
     if (d.export_now && have_tree && f >= 0) go = true, d.confirm_replace = d.path;   // Export as... asked already
     d.export_now = false;
     if (go && exists && d.confirm_replace != d.path) {   // an existing file: ask before writing over it

@@ -40,6 +40,7 @@ struct export_dialog_state {
   std::string confirm_replace;             // the existing file the next Export would replace (asked once)
   std::string shown_path;                  // the path as drawn last frame: an edit clears the old failure
   float path_at[2] = {0, 0};               // the Path field's centre on screen (the scripted test clicks it)
+  float export_at[2] = {0, 0};             // the Export (or Replace) button's centre, the same
 };
 
 struct export_context {

@@ -78,7 +78,7 @@ int feed_imgui(input_queue& q, ImGuiIO& io) {
 int feed_mouse(input_queue& q, ImGuiIO& io) {
   constexpr int buttons = int(sizeof(q.buttons) / sizeof(q.buttons[0]));
   int fed = 0;
-  bool moved = false;
+  bool moved = false, button = false;
   while (!q.mouse.empty()) {
     const mouse_event ev = q.mouse.front();
     if (ev.is_button && ev.button >= 0 && ev.button < buttons) {
@@ -87,6 +87,7 @@ int feed_mouse(input_queue& q, ImGuiIO& io) {
       q.mouse_x = ev.x, q.mouse_y = ev.y, q.mouse_known = true;
       q.mouse.pop_front();
       ++fed;
+      button = true;
       break;                         // one button change per frame; what follows waits
     }
     if (!ev.is_button) {
@@ -97,11 +98,14 @@ int feed_mouse(input_queue& q, ImGuiIO& io) {
     ++fed;
   }
   // The backend polled the cursor: outside the window (and unfocused) it reports no position;
-  // otherwise the queued position is the one in step with the buttons.
+  // otherwise the queued position is the one in step with the buttons. A button change fed this
+  // frame happened in this window at its place, focused or not: the release of a click on a
+  // window without the focus (beside another window, or with no window manager) must land on the
+  // button it pressed, or the click is lost.
   const bool outside = io.MousePos.x <= -FLT_MAX * 0.5f;
   bool any_down = false;
   for (int b = 0; b < buttons; ++b) any_down |= q.buttons[b];
-  if (q.mouse_known && (!outside || any_down)) io.MousePos = ImVec2(q.mouse_x, q.mouse_y);
+  if (q.mouse_known && (!outside || any_down || button)) io.MousePos = ImVec2(q.mouse_x, q.mouse_y);
   for (int b = 0; b < buttons; ++b) io.MouseDown[b] = q.buttons[b];
   return fed;
 }

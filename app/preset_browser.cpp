@@ -11,6 +11,7 @@
 #include <imgui_stdlib.h>
 
 #include "app/gl_window.h"
+#include "generators/job_pool.h"
 #include "render/file_io.h"
 
 namespace sylva {
@@ -19,30 +20,55 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int loads_per_frame = 4;   // cached PNGs are small; more per frame would stall the UI
+// Takes the next job (under the lock): a card on screen first, else the oldest.
+bool take_job(preset_browser_state& b, thumbnail_job& job) {
+  if (b.todo.empty()) return false;
+  auto it = std::find_if(b.todo.begin(), b.todo.end(), [&](const thumbnail_job& j) { return b.wanted.count(j.key) > 0; });
+  if (it == b.todo.end()) it = b.todo.begin();
+  job = std::move(*it);
+  b.todo.erase(it);
+  return true;
+}
 
+void grow_thumbnail(preset_browser_state& b, thumbnail_job& job) {
+  grow_options o;
+  o.seed = job.doc.spec.seed;
+  o.cancel = &b.cancel;
+  grow_report report;
+  auto skeleton = std::make_shared<tree_skeleton>(grow(job.doc.spec, o, &report));
+  if (report.error) job.error = report.message;
+  else if (!b.cancel.load()) {
+    job.mesh = std::make_shared<tree_mesh>(mesh_tree(*skeleton, job.doc.mesh, job.doc.spec.seed));
+    job.skeleton = std::move(skeleton);
+  }
+}
+
+// Grown trees waiting to be rendered, at most: the library closed, growth pauses here rather than
+// holding every preset's mesh.
+constexpr size_t done_backlog = 8;
+
+// Grows queued presets, several at once on the job pool (half its threads, so an edit's regrow
+// keeps the rest), each worker taking the next job when it finishes one.
 void run_thumbnail_thread(preset_browser_state& b) {
+  const int threads = std::max(1, (job_pool_helpers() + 1) / 2);
   for (;;) {
-    thumbnail_job job;
     {
       std::unique_lock lock(b.mutex);
-      b.wake.wait(lock, [&] { return b.quit || !b.todo.empty(); });
+      b.wake.wait(lock, [&] { return b.quit || (!b.todo.empty() && b.done.size() < done_backlog); });
       if (b.quit) return;
-      job = std::move(b.todo.front());
-      b.todo.pop_front();
     }
-    grow_options o;
-    o.seed = job.doc.spec.seed;
-    o.cancel = &b.cancel;
-    grow_report report;
-    auto skeleton = std::make_shared<tree_skeleton>(grow(job.doc.spec, o, &report));
-    if (report.error) job.error = report.message;
-    else if (!b.cancel.load()) {
-      job.mesh = std::make_shared<tree_mesh>(mesh_tree(*skeleton, job.doc.mesh, job.doc.spec.seed));
-      job.skeleton = std::move(skeleton);
-    }
-    std::lock_guard lock(b.mutex);
-    b.done.push_back(std::move(job));
+    parallel_jobs(size_t(threads), [&](size_t) {
+      for (;;) {
+        thumbnail_job job;
+        {
+          std::lock_guard lock(b.mutex);
+          if (b.quit || b.done.size() >= done_backlog || !take_job(b, job)) return;
+        }
+        grow_thumbnail(b, job);
+        std::lock_guard lock(b.mutex);
+        b.done.push_back(std::move(job));
+      }
+    }, threads);
   }
 }
 
@@ -62,22 +88,7 @@ unsigned upload_thumbnail(const std::string& png) {
 }
 
 void scan(preset_browser_state& b) {
-  b.entries.clear();
-  std::set<std::string> seen, same_file;
-  for (const std::string& f : b.folders) {
-    for (preset_entry& e : scan_preset_folder(f, thumbnail_size)) {
-      std::error_code ec;
-      const std::string canonical = fs::weakly_canonical(e.path, ec).string();
-      if (!seen.insert(canonical).second) continue;   // the same folder reached twice
-      // The same preset shipped twice (the binary's tree and the working folder both hold
-      // presets/): one card, from the first folder.
-      std::string bytes;
-      if (read_file(canonical, bytes).empty() && !same_file.insert(fs::path(canonical).filename().string() + '\n' + bytes).second)
-        continue;
-      e.path = canonical;
-      b.entries.push_back(std::move(e));
-    }
-  }
+  b.entries = scan_preset_folders(b.folders, thumbnail_size);
   b.tags = collect_tags(b.entries);
   std::erase_if(b.selected_tags, [&](const std::string& t) { return std::find(b.tags.begin(), b.tags.end(), t) == b.tags.end(); });
   b.rescan = false;
@@ -117,47 +128,10 @@ void note_saved_preset(preset_browser_state& b, const preset& doc, const std::st
 
 bool has_unsaved_changes(const preset_browser_state& b, const preset& doc) { return !(doc == b.baseline); }
 
-void update_thumbnails(preset_browser_state& b) {
-  if (!b.open) return;
-  if (b.rescan) scan(b);
-  int loads = 0;
-  std::vector<thumbnail_job> queue;
-  for (const preset_entry& e : b.entries) {
-    if (!e.error.empty() || b.textures.count(e.thumbnail_key) || b.pending.count(e.thumbnail_key) ||
-        b.failed.count(e.thumbnail_key))
-      continue;
-    const std::string png = (fs::path(b.cache_dir) / (e.thumbnail_key + ".png")).string();
-    std::error_code ec;
-    if (fs::exists(png, ec)) {
-      if (loads++ >= loads_per_frame) continue;
-      if (unsigned id = upload_thumbnail(png)) b.textures[e.thumbnail_key] = id;
-      else b.failed.insert(e.thumbnail_key);
-      continue;
-    }
-    thumbnail_job job;
-    job.key = e.thumbnail_key;
-    job.png_path = png;
-    if (!load_preset_file(e.path, job.doc).ok) {
-      b.failed.insert(e.thumbnail_key);
-      continue;
-    }
-    b.pending.insert(e.thumbnail_key);
-    queue.push_back(std::move(job));
-  }
-  thumbnail_job finished;
-  bool have = false;
-  {
-    std::lock_guard lock(b.mutex);
-    for (thumbnail_job& j : queue) b.todo.push_back(std::move(j));
-    if (!b.done.empty()) {
-      finished = std::move(b.done.front());
-      b.done.pop_front();
-      have = true;
-    }
-  }
-  if (!queue.empty()) b.wake.notify_one();
-  if (!have) return;
-  // Render one finished tree per frame so the editor stays responsive.
+namespace {
+
+// Renders a grown preset into its cached PNG and uploads it (main thread).
+void render_thumbnail(preset_browser_state& b, const thumbnail_job& finished) {
   b.pending.erase(finished.key);
   if (!finished.mesh || b.renderer_failed) {
     b.failed.insert(finished.key);
@@ -179,18 +153,91 @@ void update_thumbnails(preset_browser_state& b) {
   frame_camera(cam, r.bounds_min, r.bounds_max, 1.0f);   // square thumbnails
   render_params rp = finished.doc.render;
   rp.shafts = light_shafts::off;   // at thumbnail size they only wash the tree out
+  // A 512 map shades a 128-pixel tree as finely as 2048 does the window; it is the pass that
+  // cost most of a thumbnail on a software renderer.
+  rp.shadow_resolution = std::min(rp.shadow_resolution, 4 * thumbnail_size);
   // Written under a temporary name and renamed: a half-written PNG is never taken for a cached one.
   const std::string tmp = finished.png_path + ".tmp.png";
   std::string err = save_view_png(r, rp, cam, thumbnail_size, thumbnail_size, tmp);
   std::error_code ec;
   if (err.empty()) fs::rename(tmp, finished.png_path, ec);
   unsigned id = err.empty() && !ec ? upload_thumbnail(finished.png_path) : 0;
-  if (id) b.textures[finished.key] = id;
+  if (id) b.textures[finished.key] = id, ++b.rendered;
   else b.failed.insert(finished.key);
-  upload_tree(r, tree_mesh{});   // the thumbnail's buffers are not needed until the next one
+}
+
+}  // namespace
+
+bool thumbnails_ready(const preset_browser_state& b) {
+  return std::all_of(b.entries.begin(), b.entries.end(), [&](const preset_entry& e) {
+    return !e.error.empty() || b.textures.count(e.thumbnail_key) || b.failed.count(e.thumbnail_key);
+  });
+}
+
+void update_thumbnails(preset_browser_state& b) {
+  using clock = std::chrono::steady_clock;
+  const clock::time_point start = clock::now();
+  // A quarter of the time since the last call (the frame), at least 30 ms: on a slow frame more
+  // thumbnails per frame, on a fast one no visible stall.
+  const double frame_s = b.last_update == clock::time_point{} ? 0 : std::chrono::duration<double>(start - b.last_update).count();
+  const double budget_s = std::clamp(0.25 * frame_s, 0.03, 1.0);
+  b.last_update = start;
+  auto spent = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+  if (b.open && !b.was_open) b.opened_at = start, b.ready_s = -1, b.from_cache = b.rendered = 0;
+  b.was_open = b.open;
+  if (!b.open) return;
+  if (b.rescan) scan(b);
+  std::vector<thumbnail_job> queue;
+  bool over_budget = false;
+  for (const preset_entry& e : b.entries) {
+    if (!e.error.empty() || b.textures.count(e.thumbnail_key) || b.pending.count(e.thumbnail_key) ||
+        b.failed.count(e.thumbnail_key))
+      continue;
+    const std::string png = (fs::path(b.cache_dir) / (e.thumbnail_key + ".png")).string();
+    std::error_code ec;
+    if (fs::exists(png, ec)) {   // a cached PNG is small: read as many as the budget allows
+      if (over_budget || (over_budget = spent() > budget_s)) continue;
+      if (unsigned id = upload_thumbnail(png)) b.textures[e.thumbnail_key] = id, ++b.from_cache;
+      else b.failed.insert(e.thumbnail_key);
+      continue;
+    }
+    thumbnail_job job;
+    job.key = e.thumbnail_key;
+    job.png_path = png;
+    if (!load_preset_file(e.path, job.doc).ok) {
+      b.failed.insert(e.thumbnail_key);
+      continue;
+    }
+    b.pending.insert(e.thumbnail_key);
+    queue.push_back(std::move(job));
+  }
+  {
+    std::lock_guard lock(b.mutex);
+    for (thumbnail_job& j : queue) b.todo.push_back(std::move(j));
+    b.wanted = std::set<std::string>(b.on_screen.begin(), b.on_screen.end());
+  }
+  if (!queue.empty()) b.wake.notify_all();
+  // Grown trees are rendered here until the budget is spent, at least one per frame.
+  bool drew = false;
+  for (bool first = true; first || spent() < budget_s; first = false) {
+    thumbnail_job finished;
+    {
+      std::lock_guard lock(b.mutex);
+      if (b.done.empty()) break;
+      finished = std::move(b.done.front());
+      b.done.pop_front();
+    }
+    render_thumbnail(b, finished);
+    drew = true;
+  }
+  if (drew) b.wake.notify_all();   // room in the backlog again
+  if (drew && b.renderer) upload_tree(*b.renderer, tree_mesh{});   // the thumbnail's buffers are not needed until the next one
+  if (b.ready_s < 0 && thumbnails_ready(b)) b.ready_s = std::chrono::duration<double>(clock::now() - b.opened_at).count();
 }
 
 std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
+  b.on_screen.clear();
+  b.card_at.clear();
   if (!b.open) return "";
   std::string clicked;
   ImGui::SetNextWindowSize(ImVec2(760, 640), ImGuiCond_FirstUseEver);
@@ -255,6 +302,9 @@ std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
       pressed = ImGui::Button(what, ImVec2(size.x + 8, size.y + 8));
     }
     if (current) ImGui::PopStyleColor();
+    if (ImGui::IsItemVisible()) b.on_screen.push_back(e.thumbnail_key);
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    b.card_at[e.name] = {0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y)};
     if (ImGui::IsItemHovered()) {
       ImGui::BeginTooltip();
       ImGui::PushTextWrapPos(420);

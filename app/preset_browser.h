@@ -2,8 +2,10 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -39,13 +41,23 @@ struct preset_browser_state {
   // Thumbnails: GL textures by key (main thread only); keys queued or given up on.
   std::unordered_map<std::string, unsigned> textures;
   std::set<std::string> pending, failed;
+  std::vector<std::string> on_screen;      // keys of the cards drawn in the grid's visible part this frame
+  std::map<std::string, std::pair<float, float>> card_at;   // each card's centre by preset name (scripted test)
   std::unique_ptr<renderer_gpu> renderer;  // a second renderer so the edited tree stays uploaded
   bool renderer_failed = false;
-  // The growth thread for thumbnails missing from the cache (CPU only; GL stays on the main thread).
+  // Since the library was last opened: thumbnails read from the cache and rendered, and the
+  // seconds until every card had its picture or gave up (-1: not yet).
+  int from_cache = 0, rendered = 0;
+  double ready_s = -1;
+  bool was_open = false;
+  std::chrono::steady_clock::time_point opened_at, last_update;
+  // The growth thread for thumbnails missing from the cache (CPU only; GL stays on the main
+  // thread). It grows several presets at once on the job pool, cards on screen first (`wanted`).
   std::thread thread;
   std::mutex mutex;
   std::condition_variable wake;
   std::deque<thumbnail_job> todo, done;
+  std::set<std::string> wanted;
   bool quit = false;
   std::atomic<uint32_t> cancel{0};
   // The preset as last opened or saved: the edited document differs from it when it has unsaved changes.
@@ -60,8 +72,11 @@ void shutdown_preset_browser(preset_browser_state& b);
 // Records the document as it was opened or saved, for the unsaved-changes mark.
 void note_saved_preset(preset_browser_state& b, const preset& doc, const std::string& path);
 bool has_unsaved_changes(const preset_browser_state& b, const preset& doc);
-// Loads cached thumbnails and renders at most one new one (main thread, between frames).
+// Loads cached thumbnails and renders the grown ones (main thread, between frames), within about a
+// quarter of the frame time (at least 30 ms and one thumbnail per frame).
 void update_thumbnails(preset_browser_state& b);
+// Every entry has its thumbnail, or will not get one (an error, no preview).
+bool thumbnails_ready(const preset_browser_state& b);
 // Draws the browser window when open; returns the path of a preset the user clicked, or "".
 std::string draw_preset_browser(preset_browser_state& b, const preset& doc);
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "render/preset.h"
 
@@ -74,6 +75,25 @@ std::vector<preset_entry> scan_preset_folder(const std::string& dir, int thumbna
       }
     }
     out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::vector<preset_entry> scan_preset_folders(const std::vector<std::string>& dirs, int thumbnail_size) {
+  std::vector<preset_entry> out;
+  std::set<std::string> seen, same_file;
+  for (const std::string& d : dirs) {
+    for (preset_entry& e : scan_preset_folder(d, thumbnail_size)) {
+      std::error_code ec;
+      const std::string canonical = fs::weakly_canonical(e.path, ec).string();
+      if (!seen.insert(canonical).second) continue;
+      std::string bytes;
+      if (read_file(canonical, bytes, max_preset_bytes).empty() &&
+          !same_file.insert(fs::path(canonical).filename().string() + '\n' + bytes).second)
+        continue;
+      e.path = canonical;
+      out.push_back(std::move(e));
+    }
   }
   return out;
 }

@@ -25,6 +25,12 @@ std::string thumbnail_key(std::string_view preset_text, int thumbnail_size);
 // to load are kept with `error` set so the browser can say why.
 std::vector<preset_entry> scan_preset_folder(const std::string& dir, int thumbnail_size);
 
+// scan_preset_folder over each folder in order, with each path made canonical. One card per
+// preset: a folder reached twice (a link, "a/../a") is listed once, and a file with the same name
+// and bytes as one listed from an earlier folder (the binary's tree and the working folder both
+// shipping presets/) is left out.
+std::vector<preset_entry> scan_preset_folders(const std::vector<std::string>& dirs, int thumbnail_size);
+
 // Case-insensitive: every word of `query` must occur in the name, description, generator or a
 // tag, and the entry must carry every tag in `required_tags`.
 bool preset_matches(const preset_entry& e, std::string_view query, const std::vector<std::string>& required_tags);

@@ -15,46 +15,17 @@
 #include <unistd.h>
 
 #include "app/editor_files.h"
+#include "editor_script_run.h"
 #include "generators/tree_spec.h"
 #include "render/mesh_bound.h"
 #include "render/preset.h"
 
 namespace {
 
-bool have_display() {
-  const char* d = std::getenv("DISPLAY");
-  return d && *d;
-}
-
-struct run_result {
-  int code = -1;
-  std::string output;
-};
-
-// A folder of this test process's own, so that parallel runs do not share files.
-std::filesystem::path test_dir(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("sylva_editor_" + name + "_" + std::to_string(getpid()));
-}
-
-run_result run_script(const std::string& name, const std::string& script, const std::string& preset) {
-  namespace fs = std::filesystem;
-  const fs::path dir = test_dir(name);
-  fs::remove_all(dir);
-  fs::create_directories(dir / "home");
-  std::ofstream(dir / "script.txt") << script;
-  const std::string log = (dir / "log.txt").string();
-  const std::string cmd = "SYLVA_HOME='" + (dir / "home").string() + "' SYLVA_SCRIPT='" + (dir / "script.txt").string() +
-                          "' SYLVA_WINDOW=800x500 '" + std::string(SYLVA_BINARY) + "' '" + preset + "' > '" + log +
-                          "' 2>&1";
-  run_result r;
-  const int status = std::system(cmd.c_str());
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.output = ss.str();
-  return r;
-}
+using sylva_test::have_display;
+using sylva_test::run_result;
+using sylva_test::run_script;
+using sylva_test::test_dir;
 
 }  // namespace
 

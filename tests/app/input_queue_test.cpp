@@ -1,6 +1,8 @@
 // The editor's keyboard queue: taps shorter than a frame register, held keys repeat at the system rate.
 #include <gtest/gtest.h>
 
+#include <cfloat>
+
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -152,6 +154,31 @@ TEST(InputQueue, AMoveThenAQuickClickIsAClickNotADrag) {
   EXPECT_FALSE(ImGui::GetIO().MouseDown[0]);
   EXPECT_TRUE(q.mouse.empty());
   EXPECT_LT(ImGui::GetIO().MouseDragMaxDistanceSqr[0], 9);
+}
+
+// A window without the keyboard focus (another window has it, or there is no window manager): the
+// backend polls no position, yet a queued click still presses and releases over its button.
+TEST(InputQueue, AClickOnAnUnfocusedWindowIsAClick) {
+  imgui_context ctx;
+  input_queue q;
+  const ImVec2 nowhere(-FLT_MAX, -FLT_MAX);
+  q.push_move(200, 120);
+  q.push_button(0, true, 200, 120);
+  q.push_button(0, false, 200, 120);
+  int clicks = 0;
+  bool released_over_it = false;
+  for (int frame = 0; frame < 3; ++frame) {
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = nowhere;
+    for (bool& b : io.MouseDown) b = false;
+    feed_mouse(q, io);
+    ImGui::NewFrame();
+    clicks += ImGui::IsMouseClicked(0);
+    if (ImGui::IsMouseReleased(0)) released_over_it = io.MousePos.x == 200 && io.MousePos.y == 120;
+    ImGui::EndFrame();
+  }
+  EXPECT_EQ(clicks, 1);
+  EXPECT_TRUE(released_over_it);
 }
 
 // Two quick clicks inside one frame are two clicks, one per frame pair, never one.

@@ -100,6 +100,30 @@ TEST(PresetLibrary, BrokenFilesAreListedWithTheirError) {
   std::filesystem::remove_all(dir);
 }
 
+// The binary's tree and the working folder both ship presets/: a file with the same name and bytes
+// is one card (from the first folder), a folder named twice is scanned once, and a file that
+// differs (an edited copy) or has another name keeps its own card.
+TEST(PresetLibrary, APresetShippedInTwoFoldersIsOneCard) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "sylva_preset_library_twice";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "bin" / "presets");
+  fs::create_directories(dir / "work" / "presets");
+  preset p = default_preset();
+  p.name = "Oak";
+  ASSERT_EQ(save_preset_file(p, (dir / "bin" / "presets" / "oak.json").string()), "");
+  ASSERT_EQ(save_preset_file(p, (dir / "work" / "presets" / "oak.json").string()), "");
+  ASSERT_EQ(save_preset_file(p, (dir / "work" / "presets" / "oak_copy.json").string()), "");
+  p.spec.seed = 9;
+  ASSERT_EQ(save_preset_file(p, (dir / "work" / "presets" / "edited.json").string()), "");
+  const std::string bin = (dir / "bin" / "presets").string(), work = (dir / "work" / "presets").string();
+  const std::vector<preset_entry> entries = scan_preset_folders({bin, work, bin + "/../presets", work + "/"}, 128);
+  std::vector<std::string> paths;
+  for (const preset_entry& e : entries) paths.push_back(fs::relative(e.path, dir).string());
+  EXPECT_EQ(paths, (std::vector<std::string>{"bin/presets/oak.json", "work/presets/edited.json", "work/presets/oak_copy.json"}));
+  fs::remove_all(dir);
+}
+
 TEST(PresetLibrary, SearchMatchesEveryWordCaseInsensitivelyAndRequiresEveryTag) {
   preset_entry e;
   e.name = "Oak";
