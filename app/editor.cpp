@@ -36,10 +36,10 @@ void handle_keys(editor_state& e) {
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
   // Undo and redo take one step per press: a held Ctrl+Z does not run through the history.
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z) && !e.input.is_repeat(GLFW_KEY_Z)) {
-    if (shift) apply_undo(e, e.redo, e.undo);
-    else apply_undo(e, e.undo, e.redo);
+    if (shift) apply_undo(e, e.cur().redo, e.cur().undo);
+    else apply_undo(e, e.cur().undo, e.cur().redo);
   }
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.redo, e.undo);
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.cur().redo, e.cur().undo);
   // Front, right side and top views (Blender's numpad keys; Ctrl: the opposite side).
   const struct { int kp, row; view_axis axis, opposite; } views[] = {{GLFW_KEY_KP_1, GLFW_KEY_1, view_axis::front, view_axis::back},
                                                                      {GLFW_KEY_KP_3, GLFW_KEY_3, view_axis::right, view_axis::left},
@@ -54,7 +54,7 @@ void handle_keys(editor_state& e) {
   if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
   if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
   if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
-  const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
+  const int steps = e.cur().shown && e.cur().shown->skeleton ? e.cur().shown->skeleton->steps : 0;
   if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
   if (ImGui::IsKeyPressed(GLFW_KEY_END)) e.step = steps;
   if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) e.step = std::max(0, e.step - 1);
@@ -66,8 +66,8 @@ void handle_mouse(editor_state& e, const view_rect& view) {
   ImGuiIO& io = ImGui::GetIO();
   if (io.WantCaptureMouse) return;
   // A click that did not drag picks the branch under the mouse (Pruning).
-  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 9 && e.shown && e.shown->skeleton)
-    pick_in_view(e.prune, *e.shown->skeleton, e.step, e.camera, view, io.MousePos.x, io.MousePos.y);
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 9 && e.cur().shown && e.cur().shown->skeleton)
+    pick_in_view(e.prune, *e.cur().shown->skeleton, e.step, e.camera, view, io.MousePos.x, io.MousePos.y);
   const ImVec2 d = io.MouseDelta;
   // A drag starts past three pixels from the press (the pick's slack), so a click never orbits.
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 3)) orbit_camera_rotate(e.camera, d.x, d.y);
@@ -138,7 +138,9 @@ int run_editor(const std::string& preset_path) {
 
 int run_editor(const editor_options& o) {
   auto e = std::make_unique<editor_state>();
-  e->doc = default_preset();
+  editor_slot& a = e->ab.slots[0];   // the editor starts on slot A
+  a.worker = std::make_unique<worker_state>();
+  a.doc = default_preset();
   if (!o.preset_path.empty()) {
     preset loaded;
     load_result r = load_preset_file(o.preset_path, loaded);
@@ -146,8 +148,8 @@ int run_editor(const editor_options& o) {
       std::fprintf(stderr, "sylva: cannot open %s: %s\n", o.preset_path.c_str(), r.error.c_str());
       set_status(*e, "Cannot open " + o.preset_path + ": " + r.error + " (showing the default tree)", true);
     } else {
-      e->doc = loaded;
-      e->path = o.preset_path;
+      a.doc = loaded;
+      a.path = o.preset_path;
       if (!r.warnings.empty()) set_status(*e, r.warnings.front());
     }
   }
@@ -156,14 +158,14 @@ int run_editor(const editor_options& o) {
     for (const fs::path& d : preset_dirs()) {
       preset oak;
       if (const fs::path p = d / "species_oak.json"; fs::exists(p) && load_preset_file(p.string(), oak).ok) {
-        e->doc = oak;
-        e->path = p.string();
+        a.doc = oak;
+        a.path = p.string();
         break;
       }
     }
   }
-  e->undo_base = e->doc;
-  note_saved_preset(e->browser, e->doc, e->path);
+  a.undo_base = a.doc;
+  note_saved(*e, a.path);
   e->home = user_folder();
   script_state script;
   if (const char* s = std::getenv("SYLVA_SCRIPT")) {
@@ -174,7 +176,7 @@ int run_editor(const editor_options& o) {
   }
   const bool scripted = !script.lines.empty();
   const bool automated = !o.screenshot_path.empty();
-  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) e->worker->node_budget = std::max<int64_t>(1000, std::atoll(s));
+  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) a.worker->node_budget = std::max<int64_t>(1000, std::atoll(s));
   // Work left unsaved by a crash or a killed session: offered back (not in automatic screenshots).
   if (!automated) find_recovery(*e);
   e->show_overlays = o.overlays;
@@ -197,7 +199,7 @@ int run_editor(const editor_options& o) {
   editor_settings settings = load_settings(e->home, &setting_notes);
   if (!setting_notes.empty()) set_status(*e, setting_notes[0] + (setting_notes.size() > 1 ? " (more on stderr)" : ""), true);
   for (size_t i = 1; i < setting_notes.size(); ++i) std::fprintf(stderr, "sylva: %s\n", setting_notes[i].c_str());
-  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) e->worker->node_budget = settings.node_budget;
+  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) a.worker->node_budget = settings.node_budget;
   if (!scripted) e->recent = settings.recent;
   const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;
   int width = o.width, height = o.height, pos_x = -1, pos_y = -1;
@@ -253,8 +255,8 @@ int run_editor(const editor_options& o) {
   install_input_queue(window, &e->input);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
-  if (!init_renderer(e->renderer)) set_status(*e, e->renderer.error, true);
-  start_worker(*e->worker);
+  if (!init_renderer(a.renderer)) set_status(*e, a.renderer.error, true);
+  start_worker(*a.worker);
   {
     std::vector<std::string> folders;
     for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
@@ -290,7 +292,7 @@ int run_editor(const editor_options& o) {
 
     // Build the UI first; only then read the state for drawing (DESIGN §9).
     e->hold_post = false;
-    timeline_markers = !e->doc.spec.keyframes.empty() || !e->doc.spec.cuts.empty();
+    timeline_markers = !e->cur().doc.spec.keyframes.empty() || !e->cur().doc.spec.cuts.empty();
     e->prompts_shown.clear();
     if (e->close_requested) {
       e->close_requested = false;
@@ -308,16 +310,16 @@ int run_editor(const editor_options& o) {
     draw_message_log(*e);
     draw_shortcuts(*e);
     draw_dialogs(*e);
-    if (std::string p = draw_preset_browser(e->browser, e->doc); !p.empty()) request(*e, editor_state::then::open, p);
-    draw_export_dialog(e->exporter, export_context{e->shown, e->step, e->doc, e->renderer, e->camera, left, top}, e->message, e->message_is_error);
+    if (std::string p = draw_preset_browser(e->browser, e->cur().baseline_path, modified(*e)); !p.empty()) request(*e, editor_state::then::open, p);
+    draw_export_dialog(e->exporter, export_context{e->cur().shown, e->step, e->cur().doc, e->cur().renderer, e->camera, left, top}, e->message, e->message_is_error);
     handle_keys(*e);
     const view_rect view{left, top, float(win_w) - left, bottom - top};
     // A slot whose growth failed or waits marks its (older) tree stale.
-    const bool stale_mine = !ab_slot_problem(int(e->growth_state), e->growth_text).empty();
-    const bool stale_other = !ab_slot_problem(e->ab.other.growth, e->ab.other.growth_text).empty();
-    const bool ab_drag = draw_ab_overlay(e->ab, view.x, view.y, view.w, view.h, slot_label(e->ab.selected == 0 ? e->doc : e->ab.other_doc.doc),
-                                         slot_label(e->ab.selected == 0 ? e->ab.other_doc.doc : e->doc),
-                                         e->ab.selected == 0 ? stale_mine : stale_other, e->ab.selected == 0 ? stale_other : stale_mine);
+    const editor_slot& slot_a = e->ab.slots[0];
+    const editor_slot& slot_b = e->ab.slots[1];
+    const bool ab_drag = draw_ab_overlay(e->ab, view.x, view.y, view.w, view.h, slot_label(slot_a.doc), slot_label(slot_b.doc),
+                                         !ab_slot_problem(slot_a.growth, slot_a.growth_text).empty(),
+                                         !ab_slot_problem(slot_b.growth, slot_b.growth_text).empty());
     // Side by side: picking and the picked branch use the selected slot's half.
     view_rect pick_view = view;
     if (ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side) {
@@ -327,7 +329,7 @@ int run_editor(const editor_options& o) {
     // The gizmo sits in the view's corner; with A and B on screen it would cover one slot's tree only.
     const bool on_gizmo = !ab_showing(e->ab) && draw_view_gizmo(e->camera, view);
     if (!ab_drag && !on_gizmo) handle_mouse(*e, pick_view);
-    draw_prune_overlay(e->prune, e->shown && e->shown->skeleton ? e->shown->skeleton.get() : nullptr, e->step,
+    draw_prune_overlay(e->prune, e->cur().shown && e->cur().shown->skeleton ? e->cur().shown->skeleton.get() : nullptr, e->step,
                        e->camera, pick_view);
     record_undo(*e);
     autosave(*e, dt);
@@ -336,7 +338,7 @@ int run_editor(const editor_options& o) {
     take_new_tree(*e);
     restore_slot_b(*e);
     ab_poll_other(e->ab, e->step);
-    if (e->ab.other.worker) e->ab.other.worker->node_budget = e->worker->node_budget.load();
+    if (e->ab.other().worker) e->ab.other().worker->node_budget = e->cur().worker->node_budget.load();
     if (scripted && !script.failed && !script.finished) {
       if (script.frames_left > 0) --script.frames_left;
       else {
@@ -350,19 +352,19 @@ int run_editor(const editor_options& o) {
     }
 
     advance_playback(*e, dt);
-    if (e->frame_now && e->shown) {
+    if (e->frame_now && e->cur().shown) {
       // With A and B on screen, both trees fit (the same camera draws both).
-      glm::vec3 lo = e->renderer.bounds_min, hi = e->renderer.bounds_max;
-      if (ab_showing(e->ab) && e->ab.other.shown) {
-        lo = glm::min(lo, e->ab.other.renderer.bounds_min);
-        hi = glm::max(hi, e->ab.other.renderer.bounds_max);
+      glm::vec3 lo = e->cur().renderer.bounds_min, hi = e->cur().renderer.bounds_max;
+      if (ab_showing(e->ab) && e->ab.other().shown) {
+        lo = glm::min(lo, e->ab.other().renderer.bounds_min);
+        hi = glm::max(hi, e->ab.other().renderer.bounds_max);
       }
       frame_view(e->camera, lo, hi, e->view_aspect);
     }
     e->frame_now = false;
 
     update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
-    const std::string title = std::string("Sylva - ") + (e->ab.has_b ? (e->ab.selected == 0 ? "[A] " : "[B] ") : "") + e->doc.name + (has_unsaved_changes(e->browser, e->doc) ? " *" : "");
+    const std::string title = std::string("Sylva - ") + (e->ab.has_b ? (e->ab.selected == 0 ? "[A] " : "[B] ") : "") + e->cur().doc.name + (modified(*e) ? " *" : "");
     if (title != window_title) glfwSetWindowTitle(window, (window_title = title).c_str());
     ImGui::Render();
     // The 3D view fills the area between the panels (framebuffer pixels, origin bottom-left).
@@ -380,22 +382,22 @@ int run_editor(const editor_options& o) {
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.1f, 0.1f, 0.11f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
-    if (e->renderer.ok && e->shown && e->shown->skeleton)
-      editor_lod_update(e->lod, e->renderer, *e->shown->skeleton, e->shown->mesh, e->shown->mesh_settings, e->doc.render,
-                        e->camera, e->step);
+    editor_slot& c = e->cur();
+    if (c.renderer.ok && c.shown && c.shown->skeleton)
+      editor_lod_update(c.lod, c.renderer, *c.shown->skeleton, c.shown->mesh, c.shown->mesh_settings, c.doc.render, e->camera, e->step);
     // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
-    if (e->doc.render.wind.enabled) e->renderer.wind_time = float(std::fmod(double(e->renderer.wind_time) + dt, 3600.0));
-    if (e->renderer.ok && ab_showing(e->ab)) {   // A/B: both slots, same camera, sun and step
-      ab_view& o = e->ab.other;
+    if (c.doc.render.wind.enabled) c.renderer.wind_time = float(std::fmod(double(c.renderer.wind_time) + dt, 3600.0));
+    if (c.renderer.ok && ab_showing(e->ab)) {   // A/B: both slots, same camera, sun and step
+      editor_slot& o = e->ab.other();
       if (o.renderer.ok && o.shown && o.shown->skeleton)
-        editor_lod_update(o.lod, o.renderer, *o.shown->skeleton, o.shown->mesh, o.shown->mesh_settings, e->ab.other_doc.doc.render,
+        editor_lod_update(o.lod, o.renderer, *o.shown->skeleton, o.shown->mesh, o.shown->mesh_settings, o.doc.render,
                           e->camera, std::min(e->step, o.shown->skeleton->steps));
-      ab_draw(e->ab, e->renderer, e->doc.render, e->ab.other_doc.doc.render, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
-    } else if (e->renderer.ok) {
-      draw_frame(e->renderer, e->doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
+      ab_draw(e->ab, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
+    } else if (c.renderer.ok) {
+      draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
     }
-    if (e->renderer.texture_message != e->texture_message) {
-      e->texture_message = e->renderer.texture_message;
+    if (c.renderer.texture_message != e->texture_message) {
+      e->texture_message = c.renderer.texture_message;
       if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);
     }
     // F12 and Screenshot as: the 3D view alone, read before the menus and panels are drawn over it.
@@ -415,7 +417,7 @@ int run_editor(const editor_options& o) {
     glViewport(0, 0, fb_w, fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-    if (e->shown) ++frames_with_tree;
+    if (e->cur().shown) ++frames_with_tree;
     const bool auto_shot = !o.screenshot_path.empty() && frames_with_tree >= o.frames;
     const double waited = std::chrono::duration<double>(now - started).count();
     if (auto_shot || (!o.screenshot_path.empty() && waited > 60)) {   // SYLVA_SCREENSHOT: the whole window
@@ -445,15 +447,13 @@ int run_editor(const editor_options& o) {
     }
   }
   if (o.screenshot_path.empty() && !scripted) {
-    settings.node_budget = e->worker->node_budget.load();
+    settings.node_budget = e->cur().worker->node_budget.load();
     settings.recent = e->recent;
     save_settings(e->home, settings);
   }
   shutdown_export_dialog(e->exporter);
-  stop_worker(*e->worker);
-  ab_free_gl(e->ab);
+  ab_free_gl(e->ab);   // both slots: workers stopped, renderers freed
   shutdown_preset_browser(e->browser);
-  destroy_renderer(e->renderer);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();

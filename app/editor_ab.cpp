@@ -13,7 +13,7 @@ namespace sylva {
 
 namespace {
 
-void show_result(ab_view& v, const std::shared_ptr<const grow_result>& r, int step) {
+void show_result(slot_view& v, const std::shared_ptr<const grow_result>& r, int step) {
   v.shown = r;
   upload_tree(v.renderer, r->mesh);
   editor_lod_new_tree(v.lod);
@@ -24,9 +24,9 @@ void show_result(ab_view& v, const std::shared_ptr<const grow_result>& r, int st
 
 }  // namespace
 
-std::string ab_start_view(ab_view& v, const std::shared_ptr<const grow_result>& shown, int step) {
+std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step) {
   ab_stop_view(v);
-  v = ab_view{};
+  v = slot_view{};
   v.worker = std::make_unique<worker_state>();
   start_worker(*v.worker);
   if (!init_renderer(v.renderer)) return v.renderer.error;
@@ -40,18 +40,19 @@ std::string ab_start_view(ab_view& v, const std::shared_ptr<const grow_result>& 
   return "";
 }
 
-void ab_stop_view(ab_view& v) {
+void ab_stop_view(slot_view& v) {
   if (v.worker) stop_worker(*v.worker);
   v.worker.reset();
-  if (v.renderer.ok) impostor_cancel(v.lod.build), destroy_renderer(v.renderer);   // a half-built impostor atlas too
+  if (v.renderer.ok) impostor_cancel(v.lod.build);   // a half-built impostor atlas too
+  destroy_renderer(v.renderer);   // also what a failed init left
   v.renderer = renderer_gpu{};
   v.shown.reset();
   v.lod = editor_lod{};
 }
 
 void ab_poll_other(ab_state& s, int step) {
-  if (!s.has_b || !s.other.worker) return;
-  ab_view& v = s.other;
+  if (!s.has_b || !s.other().worker) return;
+  slot_view& v = s.other();
   if (std::shared_ptr<const grow_result> r = take_result(*v.worker, v.seen_generation))
     if (ab_take_other_result(v, *r) == ab_result_use::show) show_result(v, r, step);
   if (v.shown && v.shown->skeleton) {
@@ -60,16 +61,17 @@ void ab_poll_other(ab_state& s, int step) {
   }
 }
 
-void ab_draw(ab_state& s, renderer_gpu& selected, const render_params& selected_render, const render_params& other_render,
-             const orbit_camera& cam, int vx, int vy, int vw, int vh, const overlay_view* overlays) {
-  renderer_gpu& other = s.other.renderer;
+void ab_draw(ab_state& s, const orbit_camera& cam, int vx, int vy, int vw, int vh, const overlay_view* overlays) {
+  renderer_gpu& selected = s.cur().renderer;
+  renderer_gpu& other = s.other().renderer;
+  const render_params& selected_render = s.cur().doc.render;
   // The same sun for both: the selected slot's.
-  render_params other_p = other_render;
+  render_params other_p = s.other().doc.render;
   other_p.sun_azimuth = selected_render.sun_azimuth;
   other_p.sun_elevation = selected_render.sun_elevation;
   other.wind_time = selected.wind_time;
-  renderer_gpu& a = s.selected == 0 ? selected : other;
-  renderer_gpu& b = s.selected == 0 ? other : selected;
+  renderer_gpu& a = s.slots[0].renderer;
+  renderer_gpu& b = s.slots[1].renderer;
   const render_params& pa = s.selected == 0 ? selected_render : other_p;
   const render_params& pb = s.selected == 0 ? other_p : selected_render;
   const bool draw_b = other.ok;
@@ -110,7 +112,8 @@ void ab_draw(ab_state& s, renderer_gpu& selected, const render_params& selected_
 }
 
 void ab_free_gl(ab_state& s) {
-  ab_stop_view(s.other);
+  ab_stop_view(s.slots[1]);
+  ab_stop_view(s.slots[0]);
   if (s.keep_fbo) glDeleteFramebuffers(1, &s.keep_fbo);
   if (s.keep_color) glDeleteRenderbuffers(1, &s.keep_color);
   s.keep_fbo = s.keep_color = 0;

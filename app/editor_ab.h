@@ -1,9 +1,9 @@
 // A/B comparison: a second document slot B beside the edited tree A, shown side by side
 // or as a split view with the same camera, sun and timeline step.
 //
-// The editor keeps the *selected* slot in its own fields (document, undo, worker, renderer, shown
-// tree), so every panel, save, export and undo action acts on the selected slot without knowing
-// about A/B. The other slot waits here; selecting it swaps the two. Each slot has its own growth
+// The editor holds two slots of one struct (ab_state::slots) and the index of the selected one;
+// every panel, save, export and undo action reaches the selected slot through editor_state::cur(),
+// so nothing is copied between slots when the selection changes. Each slot has its own growth
 // worker, so an edit regrows only its slot and the newest request wins per slot.
 #pragma once
 
@@ -20,83 +20,88 @@
 
 namespace sylva {
 
+// What a slot's growth is doing; the status bar shows exactly one of these.
+enum class slot_growth { idle, growing, asking, done, cancelled, failed };
+
 // The document part of a slot: what is saved, undone and compared for "modified".
-struct ab_doc {
-  preset doc, undo_base;
+struct slot_document {
+  preset doc;                       // the edited copy (DESIGN §9: edit a copy, commit on change)
+  preset undo_base;                 // doc as of the last undo step
   std::vector<preset> undo, redo;
-  std::string path;                 // where Save writes ("" until saved)
+  std::string path;                 // where Save writes ("" until saved or opened)
   preset baseline;                  // as last opened or saved (the unsaved-changes mark)
   std::string baseline_path;
 };
 
-// The editor's growth states (editor.cpp's editor_state::growth), as a slot stores them.
-namespace ab_growth {
-inline constexpr int idle = 0, growing = 1, asking = 2, done = 3, cancelled = 4, failed = 5;
-}
-
-// The growth and drawing part of a slot (needs a GL context and a worker thread).
-struct ab_view {
+// The growth and drawing part of a slot (needs a GL context and a worker thread once started).
+struct slot_view {
   std::unique_ptr<worker_state> worker;
-  renderer_gpu renderer;
-  editor_lod lod;
-  std::shared_ptr<const grow_result> shown;
   tree_spec posted_spec;
   mesh_params posted_mesh;
   bool posted_once = false;
-  uint32_t seen_generation = 0, posted_generation = 0, stale_before = 0, error_after = 0, frame_generation = 0;
-  int growth = 0;                   // the editor's growth state, as an int (ab_growth)
-  std::string growth_text;
+  uint32_t seen_generation = 0;
+  uint32_t posted_generation = 0;   // the newest request
+  uint32_t stale_before = 0;        // results older than this were cancelled
+  uint32_t error_after = 0;         // a tree from a newer request clears the error
+  uint32_t frame_generation = 0;    // frame the first result at or after this generation (0: none)
+  slot_growth growth = slot_growth::idle;
+  std::string growth_text;          // detail for done / cancelled / failed / asking
   std::chrono::steady_clock::time_point posted_at{};
-  int overlay_generator = -1;
+  renderer_gpu renderer;
+  editor_lod lod;                   // level of detail shown in the view (app/editor_lod.h)
+  std::shared_ptr<const grow_result> shown;
+  int overlay_generator = -1;       // the generator whose default overlay layer is selected
 };
+
+// One slot, A or B: its document and its view.
+struct editor_slot : slot_document, slot_view {};
 
 enum class ab_mode { off, side_by_side, split };
 
 struct ab_state {
+  editor_slot slots[2];             // A and B
   bool has_b = false;
-  int selected = 0;                 // 0: the editor's fields hold A; 1: they hold B
+  int selected = 0;                 // the slot the panel, undo, Save and Export act on (0 A, 1 B)
   ab_mode mode = ab_mode::side_by_side;
   float divider = 0.5f;             // split view: the divider's place across the view, 0..1
   bool dragging = false;
-  ab_doc other_doc;                 // the slot that is not selected
-  ab_view other;
   // Split view: the left part of A is kept here while B is drawn over the whole view.
   unsigned keep_fbo = 0, keep_color = 0;
   int keep_w = 0, keep_h = 0;
   bool ask_drop = false;            // Drop B with edits in B: the prompt asks first
   bool drop_confirmed = false;      // the prompt's "Drop B": drop without asking again
+  editor_slot& cur() { return slots[selected]; }
+  const editor_slot& cur() const { return slots[selected]; }
+  editor_slot& other() { return slots[1 - selected]; }
+  const editor_slot& other() const { return slots[1 - selected]; }
 };
 
-// ---- Display-free logic (app/editor_ab_doc.cpp; tests/editor_ab_test.cpp).
+// ---- Display-free logic (app/editor_ab_doc.cpp; tests/app/editor_ab_test.cpp).
 
-// Copies the current (selected) document into slot B, with an empty undo history, no file and the
-// name marked " (B)". Only from A: returns false when B is selected.
-bool ab_duplicate_doc(ab_state& s, const ab_doc& current);
-// Makes `slot` (0 A, 1 B) the selected one by swapping `current` with the stored document. False
-// when nothing changes (already selected, or no B).
-bool ab_select_doc(ab_state& s, int slot, ab_doc& current);
-// The document of `slot`, given the selected one.
-const ab_doc& ab_slot_doc(const ab_state& s, int slot, const ab_doc& current);
+// Copies slot A's document into slot B, with an empty undo history, no file and the name marked
+// " (B)". Only from A: returns false when B is selected.
+bool ab_duplicate_doc(ab_state& s);
+// Makes `slot` (0 A, 1 B) the selected one. False when nothing changes (already selected, or no B).
+bool ab_select_doc(ab_state& s, int slot);
 // Saves slot `slot`'s document to `path` and records it as saved; returns "" or the error.
-std::string ab_save_slot(ab_state& s, int slot, ab_doc& current, const std::string& path);
-// Drops slot B; if B was selected, A becomes the current document again.
-void ab_drop_doc(ab_state& s, ab_doc& current);
+std::string ab_save_slot(ab_state& s, int slot, const std::string& path);
+// Drops slot B's document; A is selected again. (Its view: ab_stop_view.)
+void ab_drop_doc(ab_state& s);
 
-// Unsaved work in both slots (quit, window close, autosave). `current_doc` and `current_baseline`
-// are the selected slot's document and its saved state (the editor keeps the baseline in its
-// preset browser). Returns the slots (0 A, 1 B) with unsaved changes, the selected one first.
-std::vector<int> ab_unsaved_slots(const ab_state& s, const preset& current_doc, const preset& current_baseline);
+// Unsaved work in both slots (quit, window close, autosave): the slots (0 A, 1 B) with unsaved
+// changes, the selected one first.
+std::vector<int> ab_unsaved_slots(const ab_state& s);
 // "Slot B \"Oak (B)\" (no file yet)" for the quit prompt's list.
-std::string ab_unsaved_line(const ab_state& s, int slot, const preset& current_doc, const std::string& current_path);
+std::string ab_unsaved_line(const ab_state& s, int slot);
 
 // The unselected slot's growth: what to do with a result its worker published (ab_poll_other).
 // A newer tree is shown; a failed or over-budget answer keeps the last tree, and the slot's growth
 // state and text say so ("growth stopped: ...", "over the node budget ..."), so the comparison line
 // shows it and the tree is marked stale until the slot grows again.
 enum class ab_result_use { ignore, show, keep };
-ab_result_use ab_take_other_result(ab_view& v, const grow_result& r);
+ab_result_use ab_take_other_result(slot_view& v, const grow_result& r);
 // "" when the slot's tree is its document's; else why the tree shown is an older one.
-std::string ab_slot_problem(int growth, const std::string& growth_text);
+std::string ab_slot_problem(slot_growth growth, const std::string& growth_text);
 
 struct ab_counts {
   size_t nodes = 0, leaves = 0, triangles = 0;
@@ -115,16 +120,14 @@ bool ab_showing(const ab_state& s);   // B exists and the mode is not off
 
 // Sets up B's view as a copy of the shown tree: a started worker, an initialised renderer holding
 // the same mesh. Returns the renderer's error or "".
-std::string ab_start_view(ab_view& v, const std::shared_ptr<const grow_result>& shown, int step);
-void ab_stop_view(ab_view& v);   // stops the worker, frees the renderer
+std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step);
+void ab_stop_view(slot_view& v);   // stops the worker, frees the renderer
 // Once a frame: takes a newer result of the slot that is not selected, and follows the timeline step.
 void ab_poll_other(ab_state& s, int step);
-// Draws the two slots into the view rectangle (framebuffer pixels, origin bottom-left).
-// `selected` is the editor's renderer and render settings (the selected slot); the sun of the
-// selected slot lights both.
-void ab_draw(ab_state& s, renderer_gpu& selected, const render_params& selected_render, const render_params& other_render,
-             const orbit_camera& cam, int vx, int vy, int vw, int vh, const overlay_view* overlays);
-void ab_free_gl(ab_state& s);
+// Draws the two slots into the view rectangle (framebuffer pixels, origin bottom-left), each with
+// its own document's render settings; the sun and the wind time of the selected slot serve both.
+void ab_draw(ab_state& s, const orbit_camera& cam, int vx, int vy, int vw, int vh, const overlay_view* overlays);
+void ab_free_gl(ab_state& s);   // both slots' views and the split view's buffer
 
 // ImGui: the A/B controls for the top of the parameter panel. Returns what the user asked for.
 enum class ab_action { none, duplicate, select_a, select_b, drop };

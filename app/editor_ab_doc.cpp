@@ -6,34 +6,30 @@
 
 namespace sylva {
 
-bool ab_duplicate_doc(ab_state& s, const ab_doc& current) {
+bool ab_duplicate_doc(ab_state& s) {
   if (s.has_b && s.selected != 0) return false;
-  ab_doc b;
-  b.doc = current.doc;
-  b.doc.name = current.doc.name + " (B)";
+  const slot_document& a = s.slots[0];
+  slot_document b;
+  b.doc = a.doc;
+  b.doc.name = a.doc.name + " (B)";
   b.undo_base = b.doc;
   // B has never been saved: its baseline is an empty document, so it shows as modified.
   b.baseline = preset{};
   b.baseline.name.clear();
-  s.other_doc = std::move(b);
+  static_cast<slot_document&>(s.slots[1]) = std::move(b);
   s.has_b = true;
   s.selected = 0;
   return true;
 }
 
-bool ab_select_doc(ab_state& s, int slot, ab_doc& current) {
+bool ab_select_doc(ab_state& s, int slot) {
   if (!s.has_b || slot == s.selected || slot < 0 || slot > 1) return false;
-  std::swap(current, s.other_doc);
   s.selected = slot;
   return true;
 }
 
-const ab_doc& ab_slot_doc(const ab_state& s, int slot, const ab_doc& current) {
-  return slot == s.selected || !s.has_b ? current : s.other_doc;
-}
-
-std::string ab_save_slot(ab_state& s, int slot, ab_doc& current, const std::string& path) {
-  ab_doc& d = slot == s.selected || !s.has_b ? current : s.other_doc;
+std::string ab_save_slot(ab_state& s, int slot, const std::string& path) {
+  slot_document& d = s.slots[s.has_b ? slot : 0];
   if (std::string err = save_preset_file(d.doc, path); !err.empty()) return err;
   d.path = path;
   d.baseline = d.doc;
@@ -41,31 +37,30 @@ std::string ab_save_slot(ab_state& s, int slot, ab_doc& current, const std::stri
   return "";
 }
 
-void ab_drop_doc(ab_state& s, ab_doc& current) {
+void ab_drop_doc(ab_state& s) {
   if (!s.has_b) return;
-  if (s.selected == 1) std::swap(current, s.other_doc);
-  s.other_doc = ab_doc{};
+  static_cast<slot_document&>(s.slots[1]) = slot_document{};
   s.has_b = false;
   s.selected = 0;
 }
 
-std::vector<int> ab_unsaved_slots(const ab_state& s, const preset& current_doc, const preset& current_baseline) {
+std::vector<int> ab_unsaved_slots(const ab_state& s) {
   std::vector<int> out;
-  if (!(current_doc == current_baseline)) out.push_back(s.has_b ? s.selected : 0);
-  if (s.has_b && !(s.other_doc.doc == s.other_doc.baseline)) out.push_back(1 - s.selected);
+  const slot_document& cur = s.cur();
+  if (!(cur.doc == cur.baseline)) out.push_back(s.selected);
+  const slot_document& other = s.other();
+  if (s.has_b && !(other.doc == other.baseline)) out.push_back(1 - s.selected);
   return out;
 }
 
-std::string ab_unsaved_line(const ab_state& s, int slot, const preset& current_doc, const std::string& current_path) {
-  const bool selected = !s.has_b || slot == s.selected;
-  const preset& doc = selected ? current_doc : s.other_doc.doc;
-  const std::string& path = selected ? current_path : s.other_doc.path;
-  std::string line = std::string(s.has_b ? (slot == 0 ? "Slot A " : "Slot B ") : "") + "\"" + doc.name + "\"";
-  line += path.empty() ? " (no file yet)" : " (" + path + ")";
+std::string ab_unsaved_line(const ab_state& s, int slot) {
+  const slot_document& d = s.slots[s.has_b ? slot : s.selected];
+  std::string line = std::string(s.has_b ? (slot == 0 ? "Slot A " : "Slot B ") : "") + "\"" + d.doc.name + "\"";
+  line += d.path.empty() ? " (no file yet)" : " (" + d.path + ")";
   return line;
 }
 
-ab_result_use ab_take_other_result(ab_view& v, const grow_result& r) {
+ab_result_use ab_take_other_result(slot_view& v, const grow_result& r) {
   v.seen_generation = r.generation;
   if (int32_t(r.generation - v.stale_before) < 0) return ab_result_use::ignore;   // cancelled before it arrived
   const bool newest = r.generation == v.posted_generation;
@@ -78,27 +73,27 @@ ab_result_use ab_take_other_result(ab_view& v, const grow_result& r) {
     if (r.over_budget) {
       std::snprintf(b, sizeof b, "over the node budget (about %.0f nodes): select the slot to grow it anyway",
                     r.estimated_nodes);
-      v.growth = ab_growth::asking;
+      v.growth = slot_growth::asking;
       v.growth_text = b;
     } else {
-      v.growth = ab_growth::failed;
+      v.growth = slot_growth::failed;
       v.growth_text = r.report.message.empty() ? "the growth failed" : r.report.message;
     }
     return ab_result_use::keep;
   }
   if (newest) {
-    v.growth = ab_growth::done;
+    v.growth = slot_growth::done;
     v.growth_text = r.report.stop_reason;
     if (!r.report.message.empty()) v.growth_text += " (" + r.report.message + ")";
   }
   return ab_result_use::show;
 }
 
-std::string ab_slot_problem(int growth, const std::string& growth_text) {
+std::string ab_slot_problem(slot_growth growth, const std::string& growth_text) {
   switch (growth) {
-    case ab_growth::asking: return "waiting: " + growth_text;
-    case ab_growth::failed: return "growth stopped: " + growth_text;
-    case ab_growth::cancelled: return "cancelled: " + growth_text;
+    case slot_growth::asking: return "waiting: " + growth_text;
+    case slot_growth::failed: return "growth stopped: " + growth_text;
+    case slot_growth::cancelled: return "cancelled: " + growth_text;
     default: return "";
   }
 }

@@ -75,20 +75,20 @@ void draw_menu(editor_state& e) {
   }
   if (ImGui::BeginMenu("Edit")) {
     // Each entry says what it undoes ("Undo Influence radius").
-    const std::string undo_label = "Undo " + (e.undo.empty() ? std::string() : change_name(e.undo.back(), e.doc)) + "##undo";
-    const std::string redo_label = "Redo " + (e.redo.empty() ? std::string() : change_name(e.doc, e.redo.back())) + "##redo";
-    if (ImGui::MenuItem(undo_label.c_str(), "Ctrl+Z", false, !e.undo.empty())) apply_undo(e, e.undo, e.redo);
-    if (ImGui::MenuItem(redo_label.c_str(), "Ctrl+Shift+Z", false, !e.redo.empty())) apply_undo(e, e.redo, e.undo);
-    if (!e.undo.empty() && ImGui::BeginMenu("Undo history")) {   // newest first; a click goes back to it
+    const std::string undo_label = "Undo " + (e.cur().undo.empty() ? std::string() : change_name(e.cur().undo.back(), e.cur().doc)) + "##undo";
+    const std::string redo_label = "Redo " + (e.cur().redo.empty() ? std::string() : change_name(e.cur().doc, e.cur().redo.back())) + "##redo";
+    if (ImGui::MenuItem(undo_label.c_str(), "Ctrl+Z", false, !e.cur().undo.empty())) apply_undo(e, e.cur().undo, e.cur().redo);
+    if (ImGui::MenuItem(redo_label.c_str(), "Ctrl+Shift+Z", false, !e.cur().redo.empty())) apply_undo(e, e.cur().redo, e.cur().undo);
+    if (!e.cur().undo.empty() && ImGui::BeginMenu("Undo history")) {   // newest first; a click goes back to it
       int go_back = -1;
-      for (size_t k = e.undo.size(); k-- > 0 && e.undo.size() - k <= 20;) {
-        const preset& after = k + 1 < e.undo.size() ? e.undo[k + 1] : e.doc;
+      for (size_t k = e.cur().undo.size(); k-- > 0 && e.cur().undo.size() - k <= 20;) {
+        const preset& after = k + 1 < e.cur().undo.size() ? e.cur().undo[k + 1] : e.cur().doc;
         ImGui::PushID(int(k));
-        if (ImGui::MenuItem(change_name(e.undo[k], after).c_str())) go_back = int(e.undo.size() - k);
+        if (ImGui::MenuItem(change_name(e.cur().undo[k], after).c_str())) go_back = int(e.cur().undo.size() - k);
         ImGui::PopID();
       }
       ImGui::EndMenu();
-      for (int i = 0; i < go_back; ++i) apply_undo(e, e.undo, e.redo);
+      for (int i = 0; i < go_back; ++i) apply_undo(e, e.cur().undo, e.cur().redo);
     }
     ImGui::Separator();
     draw_node_budget(e);
@@ -96,7 +96,7 @@ void draw_menu(editor_state& e) {
   }
   if (ImGui::BeginMenu("View")) {
     ImGui::MenuItem("Growth overlays", nullptr, &e.show_overlays);
-    draw_overlay_menu(e.overlays, e.renderer.overlay);
+    draw_overlay_menu(e.overlays, e.cur().renderer.overlay);
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
@@ -138,21 +138,21 @@ void draw_mesh_budget_prompt(editor_state& e) {
   };
   if (b) {
     ImGui::Text("The mesh would take ~%.2f GB, over the mesh budget of %d MB (Mesh settings).", b->mesh_bound_bytes / 1e9,
-                e.doc.mesh.mesh_budget);
+                e.cur().doc.mesh.mesh_budget);
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
     ImGui::TextDisabled("%s", b->report.message.c_str());
     ImGui::PopTextWrapPos();
     ImGui::TextDisabled("The tree on screen stays until you choose.");
     const int fit = b->mesh_fit_segments;
     if (fit > 0 && scripted_button(e, ("Use " + std::to_string(fit) + " radial segments").c_str())) {
-      e.doc.mesh.radial_segments = fit;
+      e.cur().doc.mesh.radial_segments = fit;
       done();
     }
     const double need_mb = std::ceil(b->mesh_bound_bytes / 1e6);
     if (b && need_mb <= 32000) {
       if (fit > 0) ImGui::SameLine();
       if (scripted_button(e, ("Raise the mesh budget to " + std::to_string(int(need_mb)) + " MB").c_str())) {
-        e.doc.mesh.mesh_budget = int(need_mb);
+        e.cur().doc.mesh.mesh_budget = int(need_mb);
         done();
       }
     }
@@ -169,11 +169,11 @@ void draw_node_budget(editor_state& e) {
   static int64_t typed = 0;
   static bool editing = false;
   constexpr int64_t lo = 1000, hi = 50000000;
-  if (!editing) typed = e.worker->node_budget.load();
+  if (!editing) typed = e.cur().worker->node_budget.load();
   ImGui::SetNextItemWidth(130 * ui_scale);
   if (ImGui::InputScalar("Node budget", ImGuiDataType_S64, &typed, nullptr, nullptr, "%lld",
                          ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CharsDecimal))
-    e.worker->node_budget = std::clamp(typed, lo, hi);
+    e.cur().worker->node_budget = std::clamp(typed, lo, hi);
   editing = ImGui::IsItemActive();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("A request estimated to grow more nodes than this asks before growing (%s to %s; Enter applies)",
@@ -182,7 +182,7 @@ void draw_node_budget(editor_state& e) {
     ImGui::SameLine();
     ImGui::PushID(int(v / 1000));
     if (ImGui::SmallButton(v >= 1000000 ? (std::to_string(v / 1000000) + "M").c_str() : (std::to_string(v / 1000) + "k").c_str()))
-      e.worker->node_budget = v;
+      e.cur().worker->node_budget = v;
     ImGui::PopID();
   }
 }
@@ -274,7 +274,7 @@ void draw_dialogs(editor_state& e) {
     b.forbidden_folder_note = "The shipped presets are read-only: save your own copy in " + e.home;
   };
   if (e.open_picker) {
-    std::string folder = !e.path.empty() && !is_installed_preset(e.path) ? fs::path(e.path).parent_path().string() : e.home;
+    std::string folder = !e.cur().path.empty() && !is_installed_preset(e.cur().path) ? fs::path(e.cur().path).parent_path().string() : e.home;
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) {   // nothing of the user's yet: the shipped presets
       folder.clear();
@@ -347,12 +347,12 @@ void draw_dialogs(editor_state& e) {
     e.prompts_shown.push_back("Unsaved changes");
     const bool quitting = e.pending == editor_state::then::quit;
     // Quitting with A/B asks about both slots: the list names each slot with changes.
-    const std::vector<int> unsaved = quitting ? unsaved_slots(e) : std::vector<int>{e.ab.has_b ? e.ab.selected : 0};
+    const std::vector<int> unsaved = quitting ? unsaved_slots(e) : std::vector<int>{e.ab.selected};
     if (unsaved.size() == 1) {
-      ImGui::Text("%s has changes that are not saved.", ab_unsaved_line(e.ab, unsaved[0], e.doc, e.path).c_str());
+      ImGui::Text("%s has changes that are not saved.", ab_unsaved_line(e.ab, unsaved[0]).c_str());
     } else {
       ImGui::TextUnformatted("These have changes that are not saved:");
-      for (int slot : unsaved) ImGui::BulletText("%s", ab_unsaved_line(e.ab, slot, e.doc, e.path).c_str());
+      for (int slot : unsaved) ImGui::BulletText("%s", ab_unsaved_line(e.ab, slot).c_str());
     }
     ImGui::TextUnformatted(quitting ? (unsaved.size() > 1 ? "Save them all before quitting? (A slot without a file asks where.)"
                                                           : "Save them before quitting?")
@@ -363,10 +363,10 @@ void draw_dialogs(editor_state& e) {
       if (quitting) {   // every slot with changes, in turn (perform_pending)
         e.save_all = true;
         perform_pending(e);
-      } else if (e.path.empty() || is_installed_preset(e.path)) {
+      } else if (e.cur().path.empty() || is_installed_preset(e.cur().path)) {
         e.continue_after_save = true;
         e.open_save_as = true;
-      } else if (save_to(e, e.path)) {
+      } else if (save_to(e, e.cur().path)) {
         perform_pending(e);
       }
     }
@@ -396,7 +396,7 @@ void draw_dialogs(editor_state& e) {
       ImGui::Text("This will grow about %s nodes, ~%s, ~%.1f GB.", count_text(b->estimated_nodes).c_str(),
                   seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
       if (!b->estimate_note.empty()) ImGui::TextDisabled("Keyframes and cuts after the trial's reach are %s.", b->estimate_note.c_str());
-      ImGui::Text("The node budget is %s (the Edit menu or the Output tab).", count_text(double(e.worker->node_budget.load())).c_str());
+      ImGui::Text("The node budget is %s (the Edit menu or the Output tab).", count_text(double(e.cur().worker->node_budget.load())).c_str());
       if (!b->mesh_over_budget.empty()) {   // the trial's estimate of the mesh (render/mesh_bound.h)
         ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
         ImGui::TextWrapped("Its mesh is estimated over the mesh budget: %s. Grown anyway, it is meshed only if its own "
@@ -407,7 +407,7 @@ void draw_dialogs(editor_state& e) {
     }
     if (scripted_button(e, "Grow anyway") && b) {
       e.approve_next = true;
-      e.posted_once = false;   // post again, approved
+      e.cur().posted_once = false;   // post again, approved
       e.budget_answer.reset();
       ImGui::CloseCurrentPopup();
     }
@@ -465,10 +465,10 @@ void draw_dialogs(editor_state& e) {
     ImGui::TextDisabled("Autosaved in %s", recovery_path(e, e.recovered_a ? 0 : 1).c_str());
     if (scripted_button(e, "Restore")) {
       if (e.recovered_a) {
-        e.undo.push_back(e.doc);
-        e.doc = e.recovered;
-        e.undo_base = e.doc;
-        e.path = e.recovered_path;
+        e.cur().undo.push_back(e.cur().doc);
+        e.cur().doc = e.recovered;
+        e.cur().undo_base = e.cur().doc;
+        e.cur().path = e.recovered_path;
         e.frame_new = true;
       }
       e.restore_b_pending = e.recovered_b;   // once slot A's tree is shown (restore_slot_b)

@@ -43,13 +43,13 @@ void open_preset(editor_state& e, const std::string& path) {
     return;
   }
   if (!e.before_open) e.before_open = std::make_unique<editor_state::document>(
-      editor_state::document{e.doc, e.path, e.browser.baseline, e.browser.baseline_path});
-  e.undo.push_back(e.doc);
-  e.redo.clear();
-  e.doc = loaded;
-  e.undo_base = loaded;
-  e.path = path;
-  note_saved_preset(e.browser, e.doc, path);
+      editor_state::document{e.cur().doc, e.cur().path, e.cur().baseline, e.cur().baseline_path});
+  e.cur().undo.push_back(e.cur().doc);
+  e.cur().redo.clear();
+  e.cur().doc = loaded;
+  e.cur().undo_base = loaded;
+  e.cur().path = path;
+  note_saved(e, path);
   note_recent(e.recent, path);
   e.frame_new = true;
   std::string m = "Opened " + path;
@@ -57,16 +57,26 @@ void open_preset(editor_state& e, const std::string& path) {
   set_status(e, m, false);
 }
 
+// The selected slot's document as opened or saved (the unsaved-changes mark). The library
+// rescans: a save may have changed a listed file and so its thumbnail.
+void note_saved(editor_state& e, const std::string& path) {
+  editor_slot& s = e.cur();
+  s.baseline = s.doc;
+  std::error_code ec;
+  s.baseline_path = path.empty() ? "" : fs::weakly_canonical(path, ec).string();   // as the library lists it
+  e.browser.rescan = true;
+}
+
 bool save_to(editor_state& e, const std::string& path) {
   std::error_code ec;
   fs::create_directories(fs::path(path).parent_path(), ec);
-  std::string err = save_preset_file(e.doc, path);
+  std::string err = save_preset_file(e.cur().doc, path);
   if (!err.empty()) {
     set_status(e, "Save failed: " + err, true);
     return false;
   }
-  e.path = path;
-  note_saved_preset(e.browser, e.doc, path);
+  e.cur().path = path;
+  note_saved(e, path);
   note_recent(e.recent, path);
   set_status(e, "Saved " + path);
   return true;
@@ -95,17 +105,17 @@ bool is_installed_preset(const std::string& path) {
 
 // "My tree" -> "~/Sylva/my_tree.json".
 std::string default_save_path(const editor_state& e) {
-  if (!e.path.empty() && !is_installed_preset(e.path)) return e.path;
+  if (!e.cur().path.empty() && !is_installed_preset(e.cur().path)) return e.cur().path;
   std::string stem;
-  for (char c : e.doc.name) stem += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '_';
+  for (char c : e.cur().doc.name) stem += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(static_cast<unsigned char>(c))) : '_';
   if (stem.empty()) stem = "tree";
   return (fs::path(e.home) / (stem + ".json")).string();
 }
 
-bool modified(const editor_state& e) { return has_unsaved_changes(e.browser, e.doc); }
+bool modified(const editor_state& e) { return !(e.cur().doc == e.cur().baseline); }
 
 // The slots with unsaved changes (A/B: both slots; the selected one first).
-std::vector<int> unsaved_slots(const editor_state& e) { return ab_unsaved_slots(e.ab, e.doc, e.browser.baseline); }
+std::vector<int> unsaved_slots(const editor_state& e) { return ab_unsaved_slots(e.ab); }
 
 // Slot A's recovery file, or slot B's (hidden from the file browser).
 std::string recovery_path(const editor_state& e, int slot) {
@@ -199,11 +209,11 @@ void autosave(editor_state& e, double dt) {
   fs::create_directories(e.home, ec);
   for (int slot : unsaved) {
     if (e.autosave_off[slot]) continue;
-    const bool selected = !e.ab.has_b || slot == e.ab.selected;
-    const preset& doc = selected ? e.doc : e.ab.other_doc.doc;
+    const editor_slot& s = e.ab.slots[slot];
+    const preset& doc = s.doc;
     if (e.autosaved_any[slot] && doc == e.autosaved[slot]) continue;
     if (!save_preset_file(doc, recovery_path(e, slot)).empty()) continue;   // best effort; never interrupts
-    (void)write_file_atomic(recovery_path(e, slot) + ".source", selected ? e.path : e.ab.other_doc.path);
+    (void)write_file_atomic(recovery_path(e, slot) + ".source", s.path);
     e.autosaved[slot] = doc;
     e.autosaved_any[slot] = true;
   }
@@ -219,12 +229,12 @@ bool save_next_slot(editor_state& e) {
   const std::vector<int> unsaved = unsaved_slots(e);
   if (unsaved.empty()) return true;
   if (e.ab.has_b && unsaved.front() != e.ab.selected) select_slot(e, unsaved.front());
-  if (e.path.empty() || is_installed_preset(e.path)) {
+  if (e.cur().path.empty() || is_installed_preset(e.cur().path)) {
     e.continue_after_save = true;
     e.open_save_as = true;
     return false;
   }
-  if (!save_to(e, e.path)) {
+  if (!save_to(e, e.cur().path)) {
     e.save_all = false;
     e.pending = editor_state::then::nothing;
     return false;
@@ -266,20 +276,20 @@ void request(editor_state& e, editor_state::then what, const std::string& path) 
 
 // Save: to the document's own file, or Save as when it has none or it is a shipped preset.
 void save_command(editor_state& e) {
-  if (e.path.empty() || is_installed_preset(e.path)) e.open_save_as = true;
-  else save_to(e, e.path);
+  if (e.cur().path.empty() || is_installed_preset(e.cur().path)) e.open_save_as = true;
+  else save_to(e, e.cur().path);
 }
 
 // ---------------------------------------------------------------- undo
 
 void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>& to) {
   if (from.empty()) return;
-  const bool undoing = &from == &e.undo;
-  const std::string what = undoing ? change_name(from.back(), e.doc) : change_name(e.doc, from.back());
-  to.push_back(e.doc);
-  e.doc = from.back();
+  const bool undoing = &from == &e.cur().undo;
+  const std::string what = undoing ? change_name(from.back(), e.cur().doc) : change_name(e.cur().doc, from.back());
+  to.push_back(e.cur().doc);
+  e.cur().doc = from.back();
   from.pop_back();
-  e.undo_base = e.doc;
+  e.cur().undo_base = e.cur().doc;
   if (!what.empty()) set_status(e, (undoing ? "Undone: " : "Redone: ") + what);
 }
 
@@ -287,16 +297,16 @@ void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>&
 // A completed edit that would leave a document the loader refuses (keyframes or cuts on a text
 // L-system) is taken back with the reason, so every document the editor holds saves and reopens.
 void record_undo(editor_state& e) {
-  if (ImGui::IsAnyItemActive() || e.doc == e.undo_base) return;
-  if (std::string why = document_refusal(e.doc); !why.empty() && document_refusal(e.undo_base).empty()) {
-    e.doc = e.undo_base;
+  if (ImGui::IsAnyItemActive() || e.cur().doc == e.cur().undo_base) return;
+  if (std::string why = document_refusal(e.cur().doc); !why.empty() && document_refusal(e.cur().undo_base).empty()) {
+    e.cur().doc = e.cur().undo_base;
     set_status(e, "Not applied: " + why + ". Delete those keyframes or cuts first.", true);
     return;
   }
-  e.undo.push_back(e.undo_base);
-  if (e.undo.size() > 200) e.undo.erase(e.undo.begin());
-  e.redo.clear();
-  e.undo_base = e.doc;
+  e.cur().undo.push_back(e.cur().undo_base);
+  if (e.cur().undo.size() > 200) e.cur().undo.erase(e.cur().undo.begin());
+  e.cur().redo.clear();
+  e.cur().undo_base = e.cur().doc;
 }
 
 }  // namespace sylva::ed

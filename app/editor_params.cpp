@@ -254,7 +254,7 @@ namespace {
 // The Tree tab: the generator, its seed and its parameters (keyed at the step with "From this
 // step on"), and its own panels (L-system text, envelope mesh...).
 void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
-  tree_spec& spec = e.doc.spec;
+  tree_spec& spec = e.cur().doc.spec;
   if (!searching) {
     int g = int(spec.params.index());
     if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
@@ -268,7 +268,7 @@ void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
     // Randomize only where the seed changes something: Honda's model and L-systems without
     // stochastic productions or rand() are deterministic; then only the leaf scatter uses the seed.
     const bool random_tree = !skeleton_is_deterministic(spec);
-    const bool random_leaves = e.doc.mesh.leaves_enabled;
+    const bool random_leaves = e.cur().doc.mesh.leaves_enabled;
     if (!random_tree && !random_leaves) ImGui::BeginDisabled();
     if (ImGui::Button("Randomize")) spec.seed = std::random_device{}() & 0x7fffffff;
     if (!random_tree && !random_leaves) ImGui::EndDisabled();
@@ -287,12 +287,12 @@ void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
   } else {
     std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, spec.params);
   }
-  if (!searching) draw_generator_panel(e.generator_panels, spec, e.shown.get());
+  if (!searching) draw_generator_panel(e.generator_panels, spec, e.cur().shown.get());
 }
 
 // Time-of-day presets: a starting point for the lighting sliders.
 void draw_time_of_day(editor_state& e) {
-  render_params& rp = e.doc.render;
+  render_params& rp = e.cur().doc.render;
   ImGui::Separator();
   ImGui::TextUnformatted("Time of day");
   ImGui::SameLine();
@@ -328,7 +328,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
                    ImGuiWindowFlags_NoTitleBar);
   ImGui::PushItemWidth(-205 * ui_scale);
   if (const ab_action a = draw_ab_controls(e.ab); a != ab_action::none) handle_ab(e, a);
-  tree_spec& spec = e.doc.spec;
+  tree_spec& spec = e.cur().doc.spec;
   if (follow_step(e.keys, e.step)) set_status(e, "\"From this step on\" is off again: the timeline moved to another step");
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##search", "Search parameters: name, symbol or help", &e.panel_search);
@@ -340,37 +340,37 @@ void draw_panel(editor_state& e, float top, float bottom) {
       output{"Level of detail"};
   if (searching) {   // every tab's parameters at once, only those that match
     draw_tree_tab(e, key_error, true);
-    draw_params(e.doc.mesh, "Mesh", e);
+    draw_params(e.cur().doc.mesh, "Mesh", e);
     draw_params(spec.wood, "Wood", e);
-    draw_params(e.doc.render, "Render", e);
+    draw_params(e.cur().doc.render, "Render", e);
   } else if (ImGui::BeginTabBar("##panel_tabs")) {
     if (begin_tab(panel_tab::tree)) {
       draw_tree_tab(e, key_error, false);
       ImGui::EndTabItem();
     }
     if (begin_tab(panel_tab::leaves)) {
-      draw_params(e.doc.mesh, "Mesh", e, nullptr, &leaves);
+      draw_params(e.cur().doc.mesh, "Mesh", e, nullptr, &leaves);
       ImGui::EndTabItem();
     }
     if (begin_tab(panel_tab::wood)) {
       draw_params(spec.wood, "Wood", e);
-      draw_params(e.doc.mesh, "Mesh", e, nullptr, &bark_mesh);
-      draw_params(e.doc.render, "Render", e, nullptr, &materials);
+      draw_params(e.cur().doc.mesh, "Mesh", e, nullptr, &bark_mesh);
+      draw_params(e.cur().doc.render, "Render", e, nullptr, &materials);
       ImGui::EndTabItem();
     }
     if (begin_tab(panel_tab::scene)) {
-      draw_params(e.doc.render, "Render", e, nullptr, &season_wind);
+      draw_params(e.cur().doc.render, "Render", e, nullptr, &season_wind);
       draw_time_of_day(e);
-      draw_params(e.doc.render, "Render", e, nullptr, &sky);
+      draw_params(e.cur().doc.render, "Render", e, nullptr, &sky);
       ImGui::EndTabItem();
     }
     if (begin_tab(panel_tab::output)) {
-      draw_params(e.doc.render, "Render", e, nullptr, &output);
+      draw_params(e.cur().doc.render, "Render", e, nullptr, &output);
       draw_output_extras(e);
       ImGui::EndTabItem();
     }
     if (begin_tab(panel_tab::pruning)) {
-      if (draw_prune_panel(e.prune, spec, e.shown.get(), e.step, key_error)) clear_error(e);
+      if (draw_prune_panel(e.prune, spec, e.cur().shown.get(), e.step, key_error)) clear_error(e);
       if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
       ImGui::EndTabItem();
     }

@@ -55,34 +55,33 @@ bool run_script(editor_state& e, script_state& sc) {
     const size_t sp = line.find(' ');
     const std::string cmd = line.substr(0, sp), arg = sp == std::string::npos ? "" : line.substr(sp + 1);
     const double waited = std::chrono::duration<double>(clock::now() - sc.started_line).count();
-    const bool growing = e.growth_state == editor_state::growth::growing;
+    const bool growing = e.cur().growth == slot_growth::growing;
     bool done = true;   // false: wait and try again next frame
     auto shown_prompt = [&](const std::string& t) {
       return std::find(e.prompts_shown.begin(), e.prompts_shown.end(), t) != e.prompts_shown.end();
     };
     if (line.empty() || line[0] == '#') {
     } else if (cmd == "wait_tree") {
-      done = !growing && e.shown;
+      done = !growing && e.cur().shown;
       if (!done && waited > 120) return fail("no tree after 120 s");
     } else if (cmd == "set") {
-      if (std::string err = set_preset_param(e.doc, arg); !err.empty()) return fail(err);
+      if (std::string err = set_preset_param(e.cur().doc, arg); !err.empty()) return fail(err);
       sc.frames_left = 2;   // posted on the next frame
     } else if (cmd == "expect_recovery" || cmd == "expect_recovery_b") {
       // "1": the file is there and holds the slot's current document (an autosave taken before the
       // last edit is not yet the work that a crash would leave); "0": the file is gone.
       std::error_code ec;
       const int slot = cmd == "expect_recovery" ? 0 : 1;
-      const bool selected = !e.ab.has_b || slot == e.ab.selected;
-      const preset& now = selected ? e.doc : e.ab.other_doc.doc;
+      const preset& now = e.ab.slots[e.ab.has_b ? slot : 0].doc;
       const bool there = fs::exists(recovery_path(e, slot), ec);
       done = arg == "1" ? there && e.autosaved_any[slot] && e.autosaved[slot] == now : !there;
       if (!done && waited > 20) return fail(arg == "1" ? "no recovery file" : "the recovery file stays");
     } else if (cmd == "wait_growing") {
       if (!growing) return fail("the growth ended before " + arg + " s");
-      done = seconds_since(e.posted_at) >= std::atof(arg.c_str());
+      done = seconds_since(e.cur().posted_at) >= std::atof(arg.c_str());
     } else if (cmd == "expect_other_state") {
       static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
-      const int st = e.ab.has_b ? e.ab.other.growth : 0;
+      const int st = e.ab.has_b ? int(e.ab.other().growth) : 0;
       done = arg == names[std::clamp(st, 0, 5)];
       if (!done && waited > 60) return fail(std::string("the other slot's state is ") + names[std::clamp(st, 0, 5)]);
     } else if (cmd == "key" || cmd == "taps") {
@@ -184,19 +183,19 @@ bool run_script(editor_state& e, script_state& sc) {
       if (modified(e) != (arg == "1")) return fail(modified(e) ? "the document is modified" : "the document is not modified");
     } else if (cmd == "expect_state") {
       static const char* names[] = {"idle", "growing", "asking", "done", "cancelled", "failed"};
-      if (arg != names[int(e.growth_state)]) return fail(std::string("the state is ") + names[int(e.growth_state)]);
+      if (arg != names[int(e.cur().growth)]) return fail(std::string("the state is ") + names[int(e.cur().growth)]);
     } else if (cmd == "expect_param") {
-      preset copy = e.doc;
+      preset copy = e.cur().doc;
       if (std::string err = set_preset_param(copy, arg); !err.empty()) return fail(err);
-      if (!(copy == e.doc)) return fail("the parameter differs");
+      if (!(copy == e.cur().doc)) return fail("the parameter differs");
     } else if (cmd == "wait_progress") {
-      done = long_growth(e) && e.worker->busy;
+      done = long_growth(e) && e.cur().worker->busy;
       if (!done && waited > 30) return fail("no progress bar");
     } else if (cmd == "remember") {
-      sc.remembered_hold = e.shown;
-      sc.remembered = e.shown ? e.shown->skeleton.get() : nullptr;
+      sc.remembered_hold = e.cur().shown;
+      sc.remembered = e.cur().shown ? e.cur().shown->skeleton.get() : nullptr;
     } else if (cmd == "expect_same_tree" || cmd == "expect_new_tree") {
-      const bool same = e.shown && e.shown->skeleton.get() == sc.remembered;
+      const bool same = e.cur().shown && e.cur().shown->skeleton.get() == sc.remembered;
       if (same != (cmd == "expect_same_tree")) return fail(same ? "the tree did not change" : "the tree changed");
     } else if (cmd == "ab_duplicate") {
       handle_ab(e, ab_action::duplicate);
@@ -215,8 +214,8 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "ab_divider") {
       e.ab.divider = std::clamp(float(std::atof(arg.c_str())), 0.0f, 1.0f);
     } else if (cmd == "ab_wait") {   // until slot B's tree (in whichever slot is not selected) matches its document
-      const preset& other = e.ab.other_doc.doc;
-      done = e.ab.has_b && e.ab.other.shown && e.ab.other.shown->spec == other.spec && !growing && e.shown;
+      const editor_slot& other = e.ab.other();
+      done = e.ab.has_b && other.shown && other.shown->spec == other.doc.spec && !growing && e.cur().shown;
       if (!done && waited > 120) return fail("the other slot's tree did not arrive");
     } else if (cmd == "frame_median") {   // prints the median of N frame times (the A/B figure)
       sc.frame_times.push_back(clock::now());
@@ -235,7 +234,7 @@ bool run_script(editor_state& e, script_state& sc) {
         sc.frame_times.clear();
       }
     } else if (cmd == "budget") {
-      e.worker->node_budget = std::atoll(arg.c_str());
+      e.cur().worker->node_budget = std::atoll(arg.c_str());
     } else if (cmd == "shot") {
       e.script_shot = arg;
       sc.frames_left = 2;   // the UI is built before the script runs: the shot shows the next frame

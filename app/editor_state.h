@@ -36,39 +36,25 @@ inline float timeline_height() { return (timeline_markers ? 54 : 38) * ui_scale;
 inline float status_height() { return 26 * ui_scale; }
 
 struct editor_state {
-  editor_lod lod;                 // level of detail shown in the viewport (app/editor_lod.h)
-  preset doc;                     // the edited copy (DESIGN §9: edit a copy, commit on change)
-  preset undo_base;               // doc as of the last undo step
-  std::vector<preset> undo, redo;
-  std::string path;               // where Save writes ("" until saved or opened)
   // The document before an Open whose tree has not arrived yet: a cancelled or over-budget open
   // returns to it whole (name, file, saved state), not only to its tree.
   struct document { preset doc; std::string path; preset baseline; std::string baseline_path; };
   std::unique_ptr<document> before_open;
   // Growth.
-  std::unique_ptr<worker_state> worker = std::make_unique<worker_state>();   // the selected slot's (A/B)
-  tree_spec posted_spec;
-  mesh_params posted_mesh;
   render_params posted_render;    // the render settings the last edit left (a render-only edit posts nothing)
   param_class last_edit = param_class::regrow;   // what the last edit on screen needed (status bar)
   double upload_ms = 0;           // the last new tree's upload to the renderer
-  bool posted_once = false;
   bool hold_post = false;         // an apply-on-release slider is being dragged
-  uint32_t seen_generation = 0;
-  std::shared_ptr<const grow_result> shown;
   int step = 0;
   bool playing = false;
   float speed = 4;                // steps per second
   double play_accum = 0;
   // View.
-  renderer_gpu renderer;
   orbit_camera camera;
   float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
   bool framed_side_by_side = false;   // the A/B view was side by side when the tree was last framed
-  uint32_t frame_generation = 0;  // frame the first result at or after this generation (0: none)
-  int overlay_generator = -1;     // the generator whose default overlay layer is selected
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   std::string panel_search;       // the parameter panel's search box
@@ -87,7 +73,6 @@ struct editor_state {
   size_t message_edits = 0;                           // undo + redo depth when it was set
   std::chrono::steady_clock::time_point message_at;
   std::string toast;              // the last error in full, until dismissed or a success
-  uint32_t error_after = 0;       // a tree from a newer request clears the error
   struct log_line { std::string time, text; bool error; };
   std::vector<log_line> log;      // View > Messages
   bool show_log = false, show_shortcuts = false;
@@ -103,12 +88,6 @@ struct editor_state {
   prune_panel_state prune;                  // app/editor_prune.h: picking, cuts, the brush
   GLFWwindow* window = nullptr;
   float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
-  // Growth state: the status bar shows exactly one of these.
-  enum class growth { idle, growing, asking, done, cancelled, failed } growth_state = growth::idle;   // = ab_growth
-  std::string growth_text;        // detail for done / cancelled / failed
-  uint32_t posted_generation = 0; // the newest request
-  uint32_t stale_before = 0;      // results older than this were cancelled
-  std::chrono::steady_clock::time_point posted_at;
   std::shared_ptr<const grow_result> budget_answer;   // an over-budget estimate waiting for the user
   bool open_budget_prompt = false, approve_next = false;
   std::shared_ptr<const grow_result> mesh_answer;     // a tree over the mesh budget, not meshed, waiting for the user
@@ -142,12 +121,12 @@ struct editor_state {
   bool autosave_off[2] = {false, false};   // a slot's unusable autosave could not be moved aside
   std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
-  ab_state ab;                    // app/editor_ab.h: slot B and the A/B view
+  // The two document slots, A and B (app/editor_ab.h), and the A/B view. Everything about the
+  // document, its growth and its drawing is the selected slot's: reach it through cur().
+  ab_state ab;
+  editor_slot& cur() { return ab.cur(); }
+  const editor_slot& cur() const { return ab.cur(); }
 };
-
-static_assert(int(editor_state::growth::growing) == ab_growth::growing && int(editor_state::growth::asking) == ab_growth::asking &&
-              int(editor_state::growth::done) == ab_growth::done && int(editor_state::growth::cancelled) == ab_growth::cancelled &&
-              int(editor_state::growth::failed) == ab_growth::failed);
 
 // Status (editor_status.cpp): the status bar, the error toast, the overlay legend.
 // The status bar's message; errors also go to a dismissable toast, and every message to the log.
@@ -165,6 +144,7 @@ void draw_panel(editor_state& e, float top, float bottom);
 // The document (editor_document.cpp): presets, saving, unsaved work, recovery and undo.
 std::vector<fs::path> preset_dirs();
 void open_preset(editor_state& e, const std::string& path);
+void note_saved(editor_state& e, const std::string& path);
 bool save_to(editor_state& e, const std::string& path);
 std::string user_folder();
 bool is_installed_preset(const std::string& path);

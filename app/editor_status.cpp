@@ -19,13 +19,13 @@ namespace sylva::ed {
 void set_status(editor_state& e, const std::string& m, bool error) {
   e.message = m;
   e.message_is_error = error;
-  e.message_edits = e.undo.size() + e.redo.size();
+  e.message_edits = e.cur().undo.size() + e.cur().redo.size();
   e.message_at = std::chrono::steady_clock::now();
   if (error) std::fprintf(stderr, "sylva: %s\n", m.c_str());
   e.toast = error ? m : "";
   // A tree from a later request is a successful action that clears this error (the first request
   // is generation 1: an error while opening the start preset stays over its tree).
-  if (error) e.error_after = e.posted_once ? e.posted_generation : 1;
+  if (error) e.cur().error_after = e.cur().posted_once ? e.cur().posted_generation : 1;
   if (m.empty()) return;
   char stamp[16] = "";
   const std::time_t t = std::time(nullptr);
@@ -59,7 +59,7 @@ std::string seconds_text(double s) {
 
 // The overlays' legend in the viewport's bottom left corner: each visible layer, its colour and units.
 void draw_overlay_legend(editor_state& e, float left, float bottom) {
-  const overlay_gpu& g = e.renderer.overlay;
+  const overlay_gpu& g = e.cur().renderer.overlay;
   const overlay_view& v = e.overlays;
   const uint32_t shown = v.kinds & g.present;
   if (!e.show_overlays || !shown) return;
@@ -149,50 +149,52 @@ void draw_status(editor_state& e, float y, float w) {
   ImGui::Begin("Status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
-  const grow_result* r = e.shown.get();
+  const grow_result* r = e.cur().shown.get();
   // One state: growing (with progress and Cancel once it takes a while), done, cancelled or failed.
-  using g = editor_state::growth;
-  switch (e.growth_state) {
+  using g = slot_growth;
+  switch (e.cur().growth) {
     case g::growing:
       if (long_growth(e)) {
         ImGui::TextUnformatted("growing");
         ImGui::SameLine();
-        ImGui::ProgressBar(e.worker->progress.load(), ImVec2(160, 0));
+        ImGui::ProgressBar(e.cur().worker->progress.load(), ImVec2(160, 0));
         ImGui::SameLine();
         if (ImGui::SmallButton("Cancel (Esc)")) cancel_request(e);
       } else {
         ImGui::TextUnformatted("growing...");
       }
       break;
-    case g::asking: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", e.growth_text.c_str()); break;
-    case g::done: ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1), "done: %s", e.growth_text.c_str()); break;
-    case g::cancelled: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "cancelled: %s", e.growth_text.c_str()); break;
-    case g::failed: ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "failed: %s", e.growth_text.c_str()); break;
+    case g::asking: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", e.cur().growth_text.c_str()); break;
+    case g::done: ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1), "done: %s", e.cur().growth_text.c_str()); break;
+    case g::cancelled: ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "cancelled: %s", e.cur().growth_text.c_str()); break;
+    case g::failed: ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "failed: %s", e.cur().growth_text.c_str()); break;
     case g::idle: ImGui::TextDisabled("no tree yet"); break;
   }
   ImGui::SameLine();
   if (ab_showing(e.ab)) {   // A/B: both slots' counts and timings in place of the one tree's
-    ab_counts mine = ab_counts_of(e.shown.get()), other = ab_counts_of(e.ab.other.shown.get());
-    // A slot whose last growth failed or waits shows it, with the counts of the tree it still shows.
-    mine.problem = ab_slot_problem(int(e.growth_state), e.growth_text);
-    other.problem = ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text);
-    ImGui::Text("   %s   frame %.1f ms", (e.ab.selected == 0 ? ab_compare_text(mine, other) : ab_compare_text(other, mine)).c_str(),
-                e.frame_ms);
+    ab_counts c[2];
+    for (int i = 0; i < 2; ++i) {
+      const editor_slot& s = e.ab.slots[i];
+      c[i] = ab_counts_of(s.shown.get());
+      // A slot whose last growth failed or waits shows it, with the counts of the tree it still shows.
+      c[i].problem = ab_slot_problem(s.growth, s.growth_text);
+    }
+    ImGui::Text("   %s   frame %.1f ms", ab_compare_text(c[0], c[1]).c_str(), e.frame_ms);
   } else {
-    ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e), e.renderer.leaves_drawn,
-                e.renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
+    ImGui::Text("   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e), e.cur().renderer.leaves_drawn,
+                e.cur().renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
     // The hidden slot's failure still shows (A/B view off).
-    if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other.growth, e.ab.other.growth_text) : ""; !p.empty()) {
+    if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other().growth, e.ab.other().growth_text) : ""; !p.empty()) {
       ImGui::SameLine();
       ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "   %s: %s", e.ab.selected == 0 ? "B" : "A", p.c_str());
     }
   }
-  if (const std::string lod = editor_lod_status(e.lod); !lod.empty()) {
+  if (const std::string lod = editor_lod_status(e.cur().lod); !lod.empty()) {
     ImGui::SameLine();
     ImGui::Text("   %s", lod.c_str());
   }
   if (!e.message.empty() && !e.message_is_error &&
-      (e.undo.size() + e.redo.size() != e.message_edits || seconds_since(e.message_at) > 30))
+      (e.cur().undo.size() + e.cur().redo.size() != e.message_edits || seconds_since(e.message_at) > 30))
     e.message.clear();   // stale: the document changed since, or it is old news
   if (!e.message.empty()) {
     ImGui::SameLine();

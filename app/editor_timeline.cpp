@@ -19,7 +19,7 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
   ImGui::Begin("Timeline", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar);
-  const int steps = e.shown && e.shown->skeleton ? e.shown->skeleton->steps : 0;
+  const int steps = e.cur().shown && e.cur().shown->skeleton ? e.cur().shown->skeleton->steps : 0;
   if (ImGui::Button("|<")) e.step = 0;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Jump to the start (Home)");
   ImGui::SameLine();
@@ -48,10 +48,10 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
     const float grab = ImGui::GetStyle().GrabMinSize * 0.5f + ImGui::GetStyle().FramePadding.x;
     // Scaled to the steps the tree grew, which can be far fewer than the Growth steps setting.
-    const int span = steps > 0 ? steps : last_keyframe_step(e.doc.spec);
+    const int span = steps > 0 ? steps : last_keyframe_step(e.cur().doc.spec);
     std::string key_error;
-    draw_cut_markers(e.doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step);
-    draw_keyframe_markers(e.keys, e.doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step, key_error);
+    draw_cut_markers(e.cur().doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step);
+    draw_keyframe_markers(e.keys, e.cur().doc.spec, span, lo.x + grab, hi.x - grab, hi.y + 2, e.step, key_error);
     if (!key_error.empty()) set_status(e, key_error, true);
   }
   ImGui::End();
@@ -59,7 +59,7 @@ void draw_timeline(editor_state& e, float x, float y, float w) {
 
 // Nodes alive at the scrubbed step, like the leaf and triangle counts (O(n), once per step change).
 size_t nodes_at_step(editor_state& e) {
-  const tree_skeleton* t = e.shown ? e.shown->skeleton.get() : nullptr;
+  const tree_skeleton* t = e.cur().shown ? e.cur().shown->skeleton.get() : nullptr;
   if (!t) return 0;
   if (t != e.counted_tree || e.step != e.counted_step) {
     size_t n = 0;
@@ -71,8 +71,8 @@ size_t nodes_at_step(editor_state& e) {
 
 // Playback and scrubbing: draw counts plus a small per-node upload, never a re-mesh.
 void advance_playback(editor_state& e, double dt) {
-  if (!e.shown || !e.shown->skeleton) return;
-  const int steps = e.shown->skeleton->steps;
+  if (!e.cur().shown || !e.cur().shown->skeleton) return;
+  const int steps = e.cur().shown->skeleton->steps;
   if (e.playing) {
     e.play_accum += dt * e.speed;
     while (e.play_accum >= 1.0) {
@@ -81,7 +81,7 @@ void advance_playback(editor_state& e, double dt) {
     }
   }
   e.step = std::clamp(e.step, 0, steps);
-  if (e.step != e.renderer.step) set_tree_step(e.renderer, *e.shown->skeleton, e.shown->mesh_settings.min_radius, e.step);
+  if (e.step != e.cur().renderer.step) set_tree_step(e.cur().renderer, *e.cur().shown->skeleton, e.cur().shown->mesh_settings.min_radius, e.step);
 }
 
 }  // namespace sylva::ed

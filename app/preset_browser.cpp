@@ -108,15 +108,6 @@ void shutdown_preset_browser(preset_browser_state& b) {
   b.renderer.reset();
 }
 
-void note_saved_preset(preset_browser_state& b, const preset& doc, const std::string& path) {
-  b.baseline = doc;
-  std::error_code ec;
-  b.baseline_path = path.empty() ? "" : fs::weakly_canonical(path, ec).string();   // as the scan lists it
-  b.rescan = true;   // a save may have changed a listed file and so its thumbnail
-}
-
-bool has_unsaved_changes(const preset_browser_state& b, const preset& doc) { return !(doc == b.baseline); }
-
 void update_thumbnails(preset_browser_state& b) {
   if (!b.open) return;
   if (b.rescan) scan(b);
@@ -190,7 +181,7 @@ void update_thumbnails(preset_browser_state& b) {
   upload_tree(r, tree_mesh{});   // the thumbnail's buffers are not needed until the next one
 }
 
-std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
+std::string draw_preset_browser(preset_browser_state& b, const std::string& current_path, bool modified) {
   if (!b.open) return "";
   std::string clicked;
   ImGui::SetNextWindowSize(ImVec2(760, 640), ImGuiCond_FirstUseEver);
@@ -232,7 +223,6 @@ std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
     if (next_end < ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
   }
   ImGui::Separator();
-  const bool modified = has_unsaved_changes(b, doc);
   ImGui::BeginChild("grid");
   const float cell = float(thumbnail_size) + 16;
   const int columns = std::max(1, int(ImGui::GetContentRegionAvail().x / cell));
@@ -243,7 +233,7 @@ std::string draw_preset_browser(preset_browser_state& b, const preset& doc) {
     if (shown++ % columns) ImGui::SameLine();
     ImGui::PushID(int(i));
     ImGui::BeginGroup();
-    const bool current = !b.baseline_path.empty() && e.path == b.baseline_path;
+    const bool current = !current_path.empty() && e.path == current_path;
     const ImVec2 size{float(thumbnail_size), float(thumbnail_size)};
     auto tex = b.textures.find(e.thumbnail_key);
     bool pressed = false;

@@ -48,21 +48,17 @@ struct preset_browser_state {
   std::deque<thumbnail_job> todo, done;
   bool quit = false;
   std::atomic<uint32_t> cancel{0};
-  // The preset as last opened or saved: the edited document differs from it when it has unsaved changes.
-  preset baseline;
-  std::string baseline_path;
 };
 
 // `folders`: where presets live; missing ones are skipped. Starts the thumbnail thread.
 void init_preset_browser(preset_browser_state& b, const std::vector<std::string>& folders);
 // Stops the thread and frees the textures (needs the GL context).
 void shutdown_preset_browser(preset_browser_state& b);
-// Records the document as it was opened or saved, for the unsaved-changes mark.
-void note_saved_preset(preset_browser_state& b, const preset& doc, const std::string& path);
-bool has_unsaved_changes(const preset_browser_state& b, const preset& doc);
 // Loads cached thumbnails and renders at most one new one (main thread, between frames).
 void update_thumbnails(preset_browser_state& b);
 // Draws the browser window when open; returns the path of a preset the user clicked, or "".
-std::string draw_preset_browser(preset_browser_state& b, const preset& doc);
+// `current_path` (canonical) is the edited document's file, marked in the grid, and `modified`
+// whether it has unsaved changes.
+std::string draw_preset_browser(preset_browser_state& b, const std::string& current_path, bool modified);
 
 }  // namespace sylva
