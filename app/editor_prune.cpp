@@ -7,7 +7,6 @@
 #include <cstdio>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
 #include "generators/keyframes.h"
@@ -18,47 +17,15 @@ namespace sylva {
 
 namespace {
 
-struct camera_frame {
-  glm::vec3 eye, fwd, right, up;
-};
-
-camera_frame frame_of(const orbit_camera& cam) {
-  camera_frame f;
-  f.eye = camera_eye(cam);
-  f.fwd = glm::normalize(cam.target - f.eye);
-  f.right = glm::normalize(glm::cross(f.fwd, glm::vec3(0, 1, 0)));
-  f.up = glm::cross(f.right, f.fwd);
-  return f;
-}
-
-// Window pixel of a world point; false when it is behind the eye.
-bool project(const camera_frame& f, const orbit_camera& cam, const view_rect& v, const glm::vec3& p, ImVec2& out) {
-  const glm::vec3 d = p - f.eye;
-  const float z = glm::dot(d, f.fwd);
-  if (z < 1e-3f) return false;
-  const float t = std::tan(glm::radians(cam.fov) * 0.5f), aspect = v.w / v.h;
-  const float x = glm::dot(d, f.right) / (z * t * aspect), y = glm::dot(d, f.up) / (z * t);
-  out = ImVec2(v.x + (x + 1) * 0.5f * v.w, v.y + (1 - y) * 0.5f * v.h);
-  return true;
-}
-
-void line(ImDrawList* dl, const camera_frame& f, const orbit_camera& cam, const view_rect& v, const glm::vec3& a,
+void line(ImDrawList* dl, const camera_basis& f, const orbit_camera& cam, const view_rect& v, const glm::vec3& a,
           const glm::vec3& b, ImU32 col, float width) {
-  ImVec2 pa, pb;
-  if (project(f, cam, v, a, pa) && project(f, cam, v, b, pb)) dl->AddLine(pa, pb, col, width);
+  glm::vec2 pa, pb;
+  if (view_pixel(cam, f, v, a, pa) && view_pixel(cam, f, v, b, pb)) dl->AddLine(ImVec2(pa.x, pa.y), ImVec2(pb.x, pb.y), col, width);
 }
 
 const char* const brush_labels[] = {"Outside an ellipsoid", "Outside a box"};
 
 }  // namespace
-
-void view_ray(const orbit_camera& cam, const view_rect& v, float mx, float my, glm::vec3& origin, glm::vec3& dir) {
-  const camera_frame f = frame_of(cam);
-  const float t = std::tan(glm::radians(cam.fov) * 0.5f), aspect = v.w / std::max(v.h, 1.0f);
-  const float x = 2 * (mx - v.x) / std::max(v.w, 1.0f) - 1, y = 1 - 2 * (my - v.y) / std::max(v.h, 1.0f);
-  origin = f.eye;
-  dir = glm::normalize(f.fwd + x * t * aspect * f.right + y * t * f.up);
-}
 
 void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const orbit_camera& cam, const view_rect& v,
                   float mx, float my) {
@@ -66,7 +33,7 @@ void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const 
   glm::vec3 o, d;
   view_ray(cam, v, mx, my, o, d);
   // Three pixels of slack, so that a twig thinner than a pixel can be clicked.
-  const float pixel = 2 * std::tan(glm::radians(cam.fov) * 0.5f) / std::max(v.h, 1.0f);
+  const float pixel = view_pixel_angle(cam, v);
   const pick_hit h = pick_branch(t, radii_at_step(t, step), step, o, d, 3 * pixel);
   s.pick_ms = ms_since(t0);
   s.selected = h.node;
@@ -207,7 +174,7 @@ void draw_cut_markers(const tree_spec& spec, int steps, float x0, float x1, floa
 void draw_prune_overlay(prune_panel_state& s, const tree_skeleton* t, int step, const orbit_camera& cam,
                         const view_rect& v) {
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  const camera_frame f = frame_of(cam);
+  const camera_basis f = camera_basis_of(cam);
   if (t && s.picked_in == t && s.picked_step == step && s.selected >= 0 && size_t(s.selected) < t->size()) {
     // The picked branch: its internode and, thinner, everything it carries.
     std::vector<uint8_t> in(t->size(), 0);

@@ -7,7 +7,7 @@
 
 #include "app/worker.h"
 #include "generators/tree_spec.h"
-#include "render/gl/renderer.h"
+#include "render/camera.h"   // orbit_camera, view_rect, view_ray
 
 namespace sylva {
 
@@ -21,14 +21,6 @@ struct prune_panel_state {
   bool brush_preview = false;
   bool brush_open = false;               // the brush's section is open in the panel (this frame)
 };
-
-// The view rectangle in window pixels (origin top left), for rays and overlays.
-struct view_rect {
-  float x = 0, y = 0, w = 1, h = 1;
-};
-
-// The ray through window pixel (mx, my) for the editor's camera (the renderer's projection).
-void view_ray(const orbit_camera& cam, const view_rect& v, float mx, float my, glm::vec3& origin, glm::vec3& dir);
 
 // A click in the view at (mx, my): selects the branch under it in the tree at `step`.
 void pick_in_view(prune_panel_state& s, const tree_skeleton& t, int step, const orbit_camera& cam, const view_rect& v,

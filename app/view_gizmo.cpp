@@ -32,10 +32,8 @@ bool draw_view_gizmo(orbit_camera& c, const view_rect& v) {
   const float radius = 34 * scale, knob = 8 * scale;
   const ImVec2 centre(v.x + v.w - radius - 14 * scale, v.y + radius + 14 * scale);
   if (v.w < 4 * radius || v.h < 4 * radius) return false;
-  const glm::vec3 eye = camera_eye(c);
-  const glm::vec3 fwd = glm::normalize(c.target - eye);
-  const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0, 1, 0)));
-  const glm::vec3 up = glm::cross(right, fwd);
+  const camera_basis basis = camera_basis_of(c);
+  const glm::vec3 fwd = basis.forward, right = basis.right, up = basis.up;
   struct end { glm::vec3 dir; view_axis axis; ImU32 col; const char* label; };
   // The eye sits on the clicked axis end's side: the +Z end is the front view, +X the right.
   const std::array<end, 6> ends = {{{{1, 0, 0}, view_axis::right, IM_COL32(230, 80, 80, 255), "X"},

@@ -3,8 +3,7 @@
 // small axis gizmo in the corner of the 3D view whose axis ends snap the view when clicked.
 #pragma once
 
-#include "app/editor_prune.h"
-#include "render/gl/renderer.h"
+#include "render/camera.h"
 
 namespace sylva {
 

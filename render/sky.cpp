@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace sylva {
 
@@ -141,6 +142,11 @@ void compute_sky(const render_params& p, sky_model& s) {
   s.sh[0] = amb * 0.282095f * L[0];
   for (int k = 1; k < 4; ++k) s.sh[k] = amb * (2.0f / 3.0f) * 0.488603f * L[k];
   s.fog_ambient = amb * 0.282095f * L[0];
+}
+
+glm::vec3 sun_direction(const render_params& p) {
+  float a = glm::radians(p.sun_azimuth), e = glm::radians(p.sun_elevation);
+  return glm::vec3(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
 }
 
 }  // namespace sylva

@@ -27,6 +27,8 @@ struct sky_model {
   glm::vec3 legacy_zenith{0}, legacy_horizon{0};   // the gradient when physical is off
 };
 
+glm::vec3 sun_direction(const render_params& p);   // unit vector toward the sun
+
 // Everything the frame needs from the sky; the renderer recomputes it only when its inputs change.
 void compute_sky(const render_params& p, sky_model& out);
 // Radiance of the sky in direction d (unit), renderer units, without the sun disc.

@@ -184,9 +184,7 @@ frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_ca
   f.ground_extent = std::max(30.0f, f.scene * 10.0f);
   const float near_plane = std::max(cam.distance * 0.01f, 0.005f);
   f.far_plane = cam.distance + f.ground_extent * 3.0f;
-  const glm::mat4 proj = glm::perspective(glm::radians(cam.fov), float(width) / float(height), near_plane, f.far_plane);
-  const glm::mat4 view = glm::lookAt(f.eye, cam.target, glm::vec3(0, 1, 0));
-  f.viewproj = proj * view;
+  f.viewproj = camera_projection(cam, float(width) / float(height), near_plane, f.far_plane) * camera_view(cam);
   f.inv_viewproj = glm::inverse(f.viewproj);
   r.wind_reach = wind_reach(r, rp);
   f.light = light_viewproj(r, f.sun, &f.texel_world);
@@ -211,7 +209,7 @@ struct shaft_choice {
 shaft_choice choose_shafts(const renderer_gpu& r, const render_params& rp, const orbit_camera& cam, const frame_setup& f) {
   shaft_choice sh;
   sh.sun_clip = f.viewproj * glm::vec4(f.eye + f.sun * f.far_plane * 0.5f, 1.0f);
-  const glm::vec3 fwd = glm::normalize(cam.target - f.eye);
+  const glm::vec3 fwd = camera_basis_of(cam).forward;
   // Rays fade out as the sun leaves the view or goes behind the camera.
   sh.ray_fade = std::clamp((glm::dot(fwd, f.sun) - 0.1f) / 0.4f, 0.0f, 1.0f);
   sh.ray_fade *= std::clamp((f.sun.y + 0.05f) / 0.1f, 0.0f, 1.0f);

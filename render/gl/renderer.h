@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "generators/skeleton.h"
+#include "render/camera.h"   // orbit_camera: draw_frame's view
 #include "render/gl/gl_util.h"
 #include "render/gl/overlays.h"
 #include "render/mesh.h"
@@ -19,23 +20,6 @@
 #include "render/gl/wind_gl.h"   // upload_wind, set by every caller of upload_tree that shows wind
 
 namespace sylva {
-
-struct orbit_camera {
-  glm::vec3 target{0, 2, 0};
-  float distance = 8;
-  float yaw = 35;      // degrees around +Y: a three-quarter view
-  float pitch = 3;     // degrees above the horizon: the eye a little below the crown
-  float fov = 45;      // vertical, degrees
-};
-
-void orbit_camera_rotate(orbit_camera& c, float dx_pixels, float dy_pixels);
-void orbit_camera_pan(orbit_camera& c, float dx_pixels, float dy_pixels, int viewport_height);
-void orbit_camera_zoom(orbit_camera& c, float wheel);
-// Frames the box from the current direction so that it fills ~75% of the view's height (or 90% of
-// its width when that is tighter) for a view of width / height `aspect`.
-void frame_camera(orbit_camera& c, const glm::vec3& bounds_min, const glm::vec3& bounds_max, float aspect = 16.0f / 9.0f);
-glm::vec3 camera_eye(const orbit_camera& c);
-glm::vec3 sun_direction(const render_params& p);   // unit vector toward the sun
 
 // Milliseconds per pass (with measure_passes): occlusion + blur are the radial shafts, march the
 // volumetric ones, exposure the auto-exposure reduction; a pass that did not run reads 0.
