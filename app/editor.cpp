@@ -384,14 +384,13 @@ int run_editor(const editor_options& o) {
     glClear(GL_COLOR_BUFFER_BIT);
     editor_slot& c = e->cur();
     if (c.renderer.ok && c.shown && c.shown->skeleton)
-      editor_lod_update(c.lod, c.renderer, *c.shown->skeleton, c.shown->mesh, c.shown->mesh_settings, c.doc.render, e->camera, e->step);
+      editor_lod_update(c.lod, c.renderer, c.shown, c.doc.render, e->camera, e->step);
     // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
     if (c.doc.render.wind.enabled) c.renderer.wind_time = float(std::fmod(double(c.renderer.wind_time) + dt, 3600.0));
     if (c.renderer.ok && ab_showing(e->ab)) {   // A/B: both slots, same camera, sun and step
       editor_slot& o = e->ab.other();
       if (o.renderer.ok && o.shown && o.shown->skeleton)
-        editor_lod_update(o.lod, o.renderer, *o.shown->skeleton, o.shown->mesh, o.shown->mesh_settings, o.doc.render,
-                          e->camera, std::min(e->step, o.shown->skeleton->steps));
+        editor_lod_update(o.lod, o.renderer, o.shown, o.doc.render, e->camera, std::min(e->step, o.shown->skeleton->steps));
       ab_draw(e->ab, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
     } else if (c.renderer.ok) {
       draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});

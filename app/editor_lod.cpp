@@ -54,31 +54,52 @@ void advance_impostor(editor_lod& s, renderer_gpu& r, const tree_mesh& m, const 
   s.atlas_worst_ms = std::max(s.atlas_worst_ms, ms_since(t0));
 }
 
+bool same_budgets(const lod_params& a, const lod_params& b) {
+  return a.lod1_budget == b.lod1_budget && a.lod2_budget == b.lod2_budget && a.lod3_budget == b.lod3_budget;
+}
+
 }  // namespace
 
 void editor_lod_new_tree(editor_lod& s) {
   s.chain.reset();
   s.built_for = nullptr;
+  s.building = 0;   // a chain still building for the previous tree is dropped when it arrives
+  s.building_for = nullptr;
   s.uploaded = 0;
   s.wanted = 0;
   drop_impostor(s);
   s.tree_time = std::chrono::steady_clock::now();
 }
 
-void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, const tree_mesh& m,
-                       const mesh_params& mp, const render_params& rp, const orbit_camera& cam, int step) {
+void editor_lod_update(editor_lod& s, renderer_gpu& r, const std::shared_ptr<const grow_result>& tree,
+                       const render_params& rp, const orbit_camera& cam, int step) {
+  const tree_skeleton& t = *tree->skeleton;
+  const tree_mesh& m = tree->mesh;
+  const mesh_params& mp = tree->mesh_settings;
   const lod_params& p = rp.lod;
-  const bool budgets_changed = p.lod1_budget != s.built_params.lod1_budget || p.lod2_budget != s.built_params.lod2_budget ||
-                               p.lod3_budget != s.built_params.lod3_budget;
+  // A chain built off the UI thread has arrived: it replaces the one shown.
+  if (s.building && s.builder)
+    if (std::shared_ptr<const lod_result> res = take_lod_result(*s.builder); res && res->id == s.building) {
+      s.chain = res->chain;
+      s.build_ms = res->build_ms;
+      s.built_for = s.building_for;
+      s.built_params = s.building_params;
+      s.building = 0;
+      s.building_for = nullptr;
+      if (s.uploaded != 0) s.uploaded = -1;   // the uploaded level is stale: upload again
+      drop_impostor(s);
+    }
   const auto t0 = std::chrono::steady_clock::now();
   if (!s.chain && ms_between(s.tree_time, t0) < editor_lod_settle_ms) return;
-  if (!s.chain || s.built_for != &m || budgets_changed) {
-    s.chain = std::make_unique<lod_chain>(build_lods(t, m, mp, p));
-    s.build_ms = ms_since(t0);
-    s.built_for = &m;
-    s.built_params = p;
-    if (s.uploaded != 0) s.uploaded = -1;   // the uploaded level is stale: upload again
-    drop_impostor(s);
+  const bool this_tree = s.chain && s.built_for == &m;
+  if (!this_tree || !same_budgets(p, s.built_params)) {
+    if (!(s.building && s.building_for == &m && same_budgets(p, s.building_params))) {   // not asked for yet
+      if (!s.builder) s.builder = std::make_unique<lod_worker>();
+      s.building = post_lod_request(*s.builder, tree->skeleton, std::shared_ptr<const tree_mesh>(tree, &tree->mesh), mp, p);
+      s.building_for = &m;
+      s.building_params = p;
+    }
+    if (!this_tree) return;   // LOD0 shows until this tree's chain arrives; new budgets keep the previous chain
   }
   // The bounding sphere's size on screen picks the level; scrubbing the growth shows LOD0.
   const glm::vec3 half = 0.5f * (m.bounds_max - m.bounds_min);
@@ -128,7 +149,7 @@ void editor_lod_update(editor_lod& s, renderer_gpu& r, const tree_skeleton& t, c
 }
 
 std::string editor_lod_status(const editor_lod& s) {
-  if (!s.chain) return "";
+  if (!s.chain) return s.building ? "LOD0   (building the LOD chain...)" : "";
   char buf[200];
   const auto& n = s.chain->triangles;
   if (s.uploaded == lod_levels)
@@ -147,7 +168,12 @@ std::string editor_lod_status(const editor_lod& s) {
   }
   if (s.build.st == impostor_build::state::rendering)
     out += "   (impostor atlas: " + std::to_string(s.build.next) + " of " + std::to_string(s.build.atlas.views) + " views)";
+  if (s.building) out += "   (building the LOD chain...)";
   return s.chain->message.empty() ? out : out + "   (" + s.chain->message + ")";
+}
+
+bool editor_lod_wait(editor_lod& s, double timeout_ms) {
+  return s.building && s.builder && wait_lod_result(*s.builder, s.building, timeout_ms);
 }
 
 }  // namespace sylva

@@ -47,6 +47,17 @@ void range_bar(float value, const param_info& info) {
                                             IM_COL32(90, 150, 230, 255));
 }
 
+// A path parameter's field: typing edits `edit.text`; Enter or leaving the field applies it to `value`.
+void draw_path_field(const char* label, std::string& value, path_field_edit& edit) {
+  const ImGuiID id = ImGui::GetID(label);
+  std::string shown = edit.id == id ? edit.text : value;
+  const bool enter = ImGui::InputText(label, &shown, ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool active = ImGui::IsItemActive();
+  if (active) edit.id = id, edit.text = shown;
+  if (enter || ImGui::IsItemDeactivatedAfterEdit()) value = shown;
+  if (!active && edit.id == id) edit.id = 0, edit.text.clear();
+}
+
 struct param_drawer {
   const std::vector<const void*>& defaults;
   const char* section;     // header for parameters before the first group
@@ -66,6 +77,8 @@ struct param_drawer {
   const char* group_now = nullptr;             // the group of the parameter being visited
   const std::vector<const char*>* groups = nullptr;   // only these groups (nullptr: all)
   const std::string* filter = nullptr;         // the search box's text (nullptr or empty: no search)
+  path_field_edit* path_edit = nullptr;        // the path being typed, if any
+  std::map<std::string, std::array<float, 2>>* path_at = nullptr;   // where path fields are drawn
 
   // "symbol  label##key" in a fixed buffer: building the panel allocates nothing per frame.
   char buffer[256];
@@ -142,6 +155,11 @@ struct param_drawer {
       if (info.flags & param_multiline) {
         ImGui::TextUnformatted(info.label);
         ImGui::InputTextMultiline("##text", &value, ImVec2(-1, 180));
+      } else if (info.flags & param_path) {
+        // A path loads a file: it applies on Enter or when the field is left, not on every keystroke.
+        draw_path_field(l, value, *path_edit);
+        if (path_at) (*path_at)[info.key] = {0.5f * (ImGui::GetItemRectMin().x + ImGui::GetItemRectMax().x),
+                                             0.5f * (ImGui::GetItemRectMin().y + ImGui::GetItemRectMax().y)};
       } else {
         ImGui::InputText(l, &value);
       }
@@ -235,6 +253,8 @@ void draw_params(P& p, const char* section, editor_state& e, const tree_spec* ke
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
   d.groups = groups;
   d.filter = &e.panel_search;
+  d.path_edit = &e.path_edit;
+  d.path_at = &e.path_field_at;
   std::vector<step_column> steps = collect_step_columns(p);
   d.steps = &steps;
   d.keyed_spec = keyed;

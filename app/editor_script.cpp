@@ -142,6 +142,19 @@ bool run_script(editor_state& e, script_state& sc) {
       e.input.push_button(0, true, x, y);
       e.input.push_button(0, false, x, y);
       sc.frames_left = 6;
+    } else if (cmd == "search") {   // search TEXT: the parameter panel's search box
+      e.panel_search = arg;
+      sc.frames_left = 2;
+    } else if (cmd == "click_path") {   // click_path KEY: into a path parameter's field (shown by the panel)
+      const auto at = e.path_field_at.find(arg);
+      if (at == e.path_field_at.end()) return fail("no field for " + arg + " on screen");
+      e.input.push_move(at->second[0], at->second[1]);
+      e.input.push_button(0, true, at->second[0], at->second[1]);
+      e.input.push_button(0, false, at->second[0], at->second[1]);
+      sc.frames_left = 6;
+    } else if (cmd == "expect_texture_loads") {   // the user texture files read so far (bark, leaf, opacity)
+      if (e.cur().renderer.user_texture_loads != std::atoi(arg.c_str()))
+        return fail("texture files read: " + std::to_string(e.cur().renderer.user_texture_loads));
     } else if (cmd == "show_export") {
       e.exporter.open = arg != "0";
       sc.frames_left = 3;

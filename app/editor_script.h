@@ -36,6 +36,8 @@ namespace sylva::ed {
 //   expect_window shortcuts|library 0|1 / expect_message TEXT (contained; empty: no message)
 //   step N / expect_step N     the timeline's step
 //   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
+//   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
+//   expect_texture_loads N     the user texture files the renderer has read so far
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;

@@ -21,4 +21,11 @@ std::string param_unit(const param_info& info);
 // ("%.2f m", "%.1f°", "%.3g").
 std::string slider_format(const param_info& info);
 
+// A path parameter being typed (param_path: a user texture). The text applies to the document
+// only on Enter or when the field is left, so a half-typed path never loads a file.
+struct path_field_edit {
+  unsigned id = 0;    // the field being typed (its ImGui id; 0: none)
+  std::string text;   // what it holds so far
+};
+
 }  // namespace sylva

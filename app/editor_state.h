@@ -2,9 +2,11 @@
 // window; every part reads and edits it on the UI thread, between two frames.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "app/editor_keyframes.h"
 #include "app/editor_lod.h"
 #include "app/editor_prune.h"
+#include "app/editor_sliders.h"
 #include "app/export_dialog.h"
 #include "app/input_queue.h"
 #include "app/preset_browser.h"
@@ -58,6 +61,8 @@ struct editor_state {
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   std::string panel_search;       // the parameter panel's search box
+  path_field_edit path_edit;      // a file path being typed in the panel (app/editor_sliders.h)
+  std::map<std::string, std::array<float, 2>> path_field_at;   // where each path field was drawn (the scripted test's click)
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
   file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as

@@ -170,6 +170,7 @@ struct frame_setup {
   season_look season;
   float sky_distance = 0, fog_density = 0, haze = 0, fog_height = 1;
   int width = 0, height = 0, hw = 1, hh = 1;   // the frame, and the shafts' half resolution
+  wind_frame wind;                              // the sway of this frame, for every program that sways
   mutable pass_clock clock;
 };
 
@@ -186,7 +187,8 @@ frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_ca
   f.far_plane = cam.distance + f.ground_extent * 3.0f;
   f.viewproj = camera_projection(cam, float(width) / float(height), near_plane, f.far_plane) * camera_view(cam);
   f.inv_viewproj = glm::inverse(f.viewproj);
-  r.wind_reach = wind_reach(r, rp);
+  f.wind = wind_frame_of(r, rp);
+  r.wind_reach = wind_reach(r, f.wind);
   f.light = light_viewproj(r, f.sun, &f.texel_world);
   f.lit_ok = !r.bark.failed && !r.leaf.failed;
   f.season = with_card_seasons(season_leaf_look(rp), r.cards.get());   // baked cards fall with their leaves
@@ -238,7 +240,7 @@ void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setu
     glUseProgram(r.bark_depth.id);
     set_uniform(r.bark_depth, "u_viewproj", light);
     set_uniform(r.bark_depth, "u_radius", 2);
-    set_wind_uniforms(r, r.bark_depth, rp);
+    set_wind_uniforms(r, r.bark_depth, f.wind);
     draw_bark(r);
     glDisable(GL_CULL_FACE);
     glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
@@ -249,7 +251,7 @@ void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setu
     set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
     set_uniform(r.leaf_depth, "u_shadow_pass", 1);   // the impostor's sun card casts (render/gl/impostor.h)
-    set_wind_uniforms(r, r.leaf_depth, rp);
+    set_wind_uniforms(r, r.leaf_depth, f.wind);
     set_season_uniforms(r.leaf_depth, season);
     draw_leaves(r);
     glDisable(GL_POLYGON_OFFSET_FILL);
@@ -323,7 +325,7 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
       set_uniform(r.bark, "u_bark_rough", 7);
       set_uniform(r.bark, "u_eye", eye);
       set_uniform(r.bark, "u_bark_color", rp.bark_color);
-      set_wind_uniforms(r, r.bark, rp);
+      set_wind_uniforms(r, r.bark, f.wind);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
       glUseProgram(r.leaf.id);
@@ -342,14 +344,14 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
       set_uniform(r.leaf, "u_crown_centre", r.crown_centre);
       set_uniform(r.leaf, "u_crown_radii", r.crown_radii);
       set_uniform(r.leaf, "u_normal_blend", rp.leaf_normal_blend);
-      set_wind_uniforms(r, r.leaf, rp);
+      set_wind_uniforms(r, r.leaf, f.wind);
       draw_leaves(r);
     } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
       glUseProgram(r.fallback.id);
       set_uniform(r.fallback, "u_viewproj", viewproj);
       set_uniform(r.fallback, "u_radius", 2);
       set_uniform(r.fallback, "u_color", rp.bark_color);
-      set_wind_uniforms(r, r.fallback, rp);
+      set_wind_uniforms(r, r.fallback, f.wind);
       draw_bark(r);
     }
   }

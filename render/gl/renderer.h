@@ -31,6 +31,7 @@ struct frame_counts {
   int draw_calls = 0;        // every glDraw* of the frame
   int leaf_draw_calls = 0;   // of which leaf draws (one instanced call per pass, whatever the leaf count)
   int uploads = 0;           // GL data uploads or storage (re)allocations made inside the frame
+  int wind_motions = 0;      // wind motions computed (render/gl/wind_gl.h): one per frame, whatever the programs
 };
 
 struct renderer_gpu {
@@ -47,6 +48,7 @@ struct renderer_gpu {
   // Textures: the user's PNG paths as last loaded, and why a load failed ("" when none).
   std::string bark_texture_path, leaf_texture_path, leaf_opacity_path, texture_message;
   bool user_bark = false, user_leaf = false;
+  int user_texture_loads = 0;         // user texture files read so far (bark, leaf, opacity)
   int bark_shown = -1;                // the bark archetype uploaded; -1 none or the user's texture
   // LOD levels' baked cluster cards (render/lod_cards.h): layers after the archetypes' in the leaf arrays.
   std::shared_ptr<const baked_card_textures> cards;

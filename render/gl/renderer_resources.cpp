@@ -180,7 +180,8 @@ void upload_procedural_bark(renderer_gpu& r, bark_archetype a) {
 }
 
 // A user's texture through load_user_texture's checks, and within this GL's size limit.
-static std::string load_checked(const std::string& path, image& out) {
+static std::string load_checked(renderer_gpu& r, const std::string& path, image& out) {
+  ++r.user_texture_loads;
   if (std::string err = load_user_texture(path, out); !err.empty()) return err;
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
@@ -207,7 +208,7 @@ void update_user_textures(renderer_gpu& r, const render_params& rp) {
     r.user_bark = r.user_leaf = false;
     image bark;
     if (!rp.bark_texture.empty()) {
-      if (std::string err = load_checked(rp.bark_texture, bark); !err.empty()) say("bark texture", err);
+      if (std::string err = load_checked(r, rp.bark_texture, bark); !err.empty()) say("bark texture", err);
       else r.user_bark = true;
     }
     if (r.user_bark) {
@@ -220,13 +221,13 @@ void update_user_textures(renderer_gpu& r, const render_params& rp) {
     }
     image leaf;
     if (!rp.leaf_texture.empty()) {
-      if (std::string err = load_checked(rp.leaf_texture, leaf); !err.empty()) {
+      if (std::string err = load_checked(r, rp.leaf_texture, leaf); !err.empty()) {
         say("leaf texture", err);
       } else {
         r.user_leaf = true;
         image opacity;
         if (!rp.leaf_opacity.empty()) {
-          if (std::string err2 = load_checked(rp.leaf_opacity, opacity); !err2.empty())
+          if (std::string err2 = load_checked(r, rp.leaf_opacity, opacity); !err2.empty())
             r.texture_message += (r.texture_message.empty() ? "" : "; ") + ("leaf opacity: " + err2 + "; using the texture's alpha");
           else if (opacity.width != leaf.width || opacity.height != leaf.height)
             r.texture_message += (r.texture_message.empty() ? "" : "; ") +

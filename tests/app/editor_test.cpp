@@ -400,3 +400,35 @@ expect_has_b 0
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok answer Keep B"), std::string::npos) << r.output;
 }
+
+// A path parameter loads its file on Enter, not on every keystroke: typing a texture path in
+// several bursts (frames apart) reads no file until Enter, then one.
+TEST(EditorSession, ATexturePathLoadsOnEnterNotWhileTyped) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = test_dir("path_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string script = R"(wait_tree
+expect_texture_loads 0
+search leaf texture
+frames 3
+click_path leaf_texture
+type /no
+frames 3
+type /such
+frames 3
+type /leaf.png
+frames 3
+expect_texture_loads 0
+expect_param leaf_texture=
+key enter
+frames 4
+expect_texture_loads 1
+expect_param leaf_texture=/no/such/leaf.png
+)";
+  run_result r = run_script("texture_path", script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+}
