@@ -64,7 +64,8 @@ std::string measure_ab(const preset& pa, const preset& pb, int repeat, int width
   renderer_gpu ra, rb;
   gl_texture color, keep_color;
   gl_framebuffer target, keep;
-  if (!init_renderer(ra) || !init_renderer(rb)) error = "renderer initialisation failed: " + ra.error + rb.error;
+  if (!init_renderer(ra) || !init_renderer(rb, ra.shared))   // one context: one set of programs
+    error = "renderer initialisation failed: " + ra.error + rb.error;
   if (error.empty()) error = create_color_target(width, height, color, target);
   if (error.empty()) error = create_color_target(width, height, keep_color, keep);
   if (error.empty()) {

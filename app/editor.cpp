@@ -260,6 +260,7 @@ int run_editor(const editor_options& o) {
   {
     std::vector<std::string> folders;
     for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
+    e->browser.share = a.renderer.shared;   // the library's thumbnails: the same context, the same programs
     init_preset_browser(e->browser, folders);
   }
   std::string window_title;

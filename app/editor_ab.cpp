@@ -24,12 +24,13 @@ void show_result(slot_view& v, const std::shared_ptr<const grow_result>& r, int 
 
 }  // namespace
 
-std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step) {
+std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step,
+                          std::shared_ptr<gl_shared> shared) {
   ab_stop_view(v);
   v = slot_view{};
   v.worker = std::make_unique<worker_state>();
   start_worker(*v.worker);
-  if (!init_renderer(v.renderer)) return v.renderer.error;
+  if (!init_renderer(v.renderer, std::move(shared))) return v.renderer.error;
   if (shown && shown->skeleton) {
     show_result(v, shown, step);
     v.posted_spec = shown->spec;

@@ -119,8 +119,10 @@ bool ab_showing(const ab_state& s);   // B exists and the mode is not off
 // ---- GL and worker side (app/editor_ab.cpp), main thread.
 
 // Sets up B's view as a copy of the shown tree: a started worker, an initialised renderer holding
-// the same mesh. Returns the renderer's error or "".
-std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step);
+// the same mesh, drawn with `shared` (A's programs and textures: one GL context). Returns the
+// renderer's error or "".
+std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step,
+                          std::shared_ptr<gl_shared> shared);
 void ab_stop_view(slot_view& v);   // stops the worker, frees the renderer
 // Once a frame: takes a newer result of the slot that is not selected, and follows the timeline step.
 void ab_poll_other(ab_state& s, int step);

@@ -155,6 +155,13 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "expect_texture_loads") {   // the user texture files read so far (bark, leaf, opacity)
       if (e.cur().renderer.user_texture_loads != std::atoi(arg.c_str()))
         return fail("texture files read: " + std::to_string(e.cur().renderer.user_texture_loads));
+    } else if (cmd == "remember_programs") {   // the GL programs compiled so far
+      sc.programs = gl_programs_compiled();
+    } else if (cmd == "expect_new_programs") {   // programs compiled since remember_programs
+      std::printf("sylva script: programs compiled %d (%d since remember_programs)\n", gl_programs_compiled(),
+                  gl_programs_compiled() - sc.programs);
+      if (gl_programs_compiled() - sc.programs != std::atoi(arg.c_str()))
+        return fail(std::to_string(gl_programs_compiled() - sc.programs) + " programs compiled since");
     } else if (cmd == "show_export") {
       e.exporter.open = arg != "0";
       sc.frames_left = 3;

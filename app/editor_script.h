@@ -38,12 +38,14 @@ namespace sylva::ed {
 //   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
 //   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
 //   expect_texture_loads N     the user texture files the renderer has read so far
+//   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
   size_t next = 0;
   std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
   int frames_left = -1;
+  int programs = 0;   // remember_programs
   const tree_skeleton* remembered = nullptr;
   std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
   bool failed = false, finished = false;

@@ -156,7 +156,7 @@ void update_thumbnails(preset_browser_state& b) {
   }
   if (!b.renderer) {
     b.renderer = std::make_unique<renderer_gpu>();
-    if (!init_renderer(*b.renderer)) {
+    if (!init_renderer(*b.renderer, b.share)) {
       b.renderer_failed = true;
       b.failed.insert(finished.key);
       return;

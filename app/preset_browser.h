@@ -40,6 +40,7 @@ struct preset_browser_state {
   std::unordered_map<std::string, unsigned> textures;
   std::set<std::string> pending, failed;
   std::unique_ptr<renderer_gpu> renderer;  // a second renderer so the edited tree stays uploaded
+  std::shared_ptr<gl_shared> share;        // the editor's programs and textures (one GL context): not compiled again
   bool renderer_failed = false;
   // The growth thread for thumbnails missing from the cache (CPU only; GL stays on the main thread).
   std::thread thread;

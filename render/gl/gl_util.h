@@ -34,6 +34,8 @@ void delete_gl(gl_program& p);
 // Compiles and links; on failure logs "<name>: <driver log>" to stderr and to gl_last_message(),
 // and returns a program marked failed (id 0).
 gl_program compile_program(const char* name, const char* vertex_src, const char* fragment_src);
+// Programs compile_program has been asked for so far in this process (the startup count).
+int gl_programs_compiled();
 
 // Counts GL errors: a KHR_debug callback where the driver has one, plus glGetError polls.
 void install_gl_debug_output();

@@ -432,3 +432,23 @@ expect_param leaf_texture=/no/such/leaf.png
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
 }
+
+// Slot B draws with slot A's programs (one GL context, one set): duplicating compiles none.
+TEST(EditorSession, SlotBCompilesNoProgramsOfItsOwn) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  sylva::preset bush;
+  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
+  bush.mesh.leaves_enabled = false;
+  const std::string preset = test_dir("programs_bush.json").string();
+  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string script = R"(wait_tree
+remember_programs
+ab_duplicate
+frames 4
+expect_has_b 1
+expect_new_programs 0
+)";
+  run_result r = run_script("programs", script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+}

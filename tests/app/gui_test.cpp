@@ -184,8 +184,8 @@ TEST(HeadlessRender, BrokenShaderIsReportedAndFallsBack) {
   // A renderer whose lit bark program failed still draws a frame (flat fallback), without GL errors.
   renderer_gpu r;
   ASSERT_TRUE(init_renderer(r));
-  delete_gl(r.bark);
-  r.bark = bad;
+  delete_gl(r.shared->bark);
+  r.shared->bark = bad;
   preset p = honda_a();
   tree_skeleton t = grow(p.spec, {});
   upload_tree(r, mesh_tree(t, p.mesh));
