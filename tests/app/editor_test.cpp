@@ -36,6 +36,16 @@ std::filesystem::path test_dir(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("sylva_editor_" + name + "_" + std::to_string(getpid()));
 }
 
+// The bush without its leaves (llvmpipe draws its frames fast), saved in the tests' folder as
+// `file`; "" when it cannot be loaded or saved.
+std::string leafless_bush(const std::string& file) {
+  sylva::preset bush;
+  if (!sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok) return "";
+  bush.mesh.leaves_enabled = false;
+  const std::string path = test_dir(file).string();
+  return sylva::save_preset_file(bush, path).empty() ? path : "";
+}
+
 run_result run_script(const std::string& name, const std::string& script, const std::string& preset) {
   namespace fs = std::filesystem;
   const fs::path dir = test_dir(name);
@@ -327,11 +337,8 @@ TEST(EditorBench, EditLatencyIsReportedPerPreset) {
 // one step, not the history; F1 and Ctrl+L open their windows on the first press.
 TEST(EditorSession, SlowFramesLoseNoTypingAndHeldUndoTakesOneStep) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  sylva::preset bush;
-  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
-  bush.mesh.leaves_enabled = false;
-  const std::string preset = test_dir("newcomer_bush.json").string();
-  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string preset = leafless_bush("newcomer_bush.json");
+  ASSERT_FALSE(preset.empty());
   const std::string script = R"(wait_tree
 show_export 1
 export_path 
@@ -371,11 +378,8 @@ expect_window library 1
 // Drop B throws B away at once while B holds nothing of its own, and asks once B has edits.
 TEST(EditorSession, DropBAsksOnlyWhenBHasEdits) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  sylva::preset bush;
-  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
-  bush.mesh.leaves_enabled = false;
-  const std::string preset = test_dir("dropb_bush.json").string();
-  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string preset = leafless_bush("dropb_bush.json");
+  ASSERT_FALSE(preset.empty());
   const std::string script = R"(wait_tree
 ab_duplicate
 ab_drop
@@ -405,11 +409,8 @@ expect_has_b 0
 // several bursts (frames apart) reads no file until Enter, then one.
 TEST(EditorSession, ATexturePathLoadsOnEnterNotWhileTyped) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  sylva::preset bush;
-  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
-  bush.mesh.leaves_enabled = false;
-  const std::string preset = test_dir("path_bush.json").string();
-  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string preset = leafless_bush("path_bush.json");
+  ASSERT_FALSE(preset.empty());
   const std::string script = R"(wait_tree
 expect_texture_loads 0
 search leaf texture
@@ -436,11 +437,8 @@ expect_param leaf_texture=/no/such/leaf.png
 // Slot B draws with slot A's programs (one GL context, one set): duplicating compiles none.
 TEST(EditorSession, SlotBCompilesNoProgramsOfItsOwn) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  sylva::preset bush;
-  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
-  bush.mesh.leaves_enabled = false;
-  const std::string preset = test_dir("programs_bush.json").string();
-  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string preset = leafless_bush("programs_bush.json");
+  ASSERT_FALSE(preset.empty());
   const std::string script = R"(wait_tree
 remember_programs
 ab_duplicate
