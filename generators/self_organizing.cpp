@@ -9,9 +9,11 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "generators/job_pool.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
+#include "generators/self_organizing_cone.h"
 #include "generators/self_organizing_grid.h"
 #include "generators/vec_util.h"
 
@@ -108,12 +110,7 @@ struct so_state : so_vars {
   const self_organizing_params& p;
   tree_skeleton& t;
   rng& r;
-  std::vector<glm::ivec3> cone;      // voxel offsets within the perception distance
-  std::vector<glm::vec3> cone_offset; // the same in metres
-  std::vector<float> cone_x, cone_y, cone_z;   // cone_offset by component, for the vectorised cone test
-  std::vector<uint8_t> in_cone;               // scratch: which offsets pass the cone test
-  int cone_radius = 0;
-  std::vector<const float*> near_chunks;
+  perception_cone cone;              // voxel offsets within the perception distance
   float reach = 0;                   // perception reach in metres
   float l = 0.1f;
   // k^e for whole k, filled on first use: tip counts and bud ages repeat every step, and std::pow
@@ -151,70 +148,6 @@ struct so_state : so_vars {
   glm::vec3 lateral_direction(int32_t i) const {
     const float b = glm::radians(p.branch_angle);
     return safe_normalize(std::cos(b) * heading(i) + std::sin(b) * side[i], heading(i));
-  }
-
-  // Palubicki 2009 §4.2: the direction to the least-shadowed voxel in the perception cone. Ties go
-  // to the voxel closest to the default direction, then to the seeded RNG: seed 000's trees leaned
-  // because ties took the first voxel found.
-  glm::vec3 optimal_shadow_direction(const glm::vec3& pos, const glm::ivec3& v0, const glm::vec3& def) {
-    // The few chunks around the bud, looked up once rather than once per voxel.
-    const glm::ivec3 c0 = (v0 - cone_radius) >> shadow_grid::chunk_bits;
-    const glm::ivec3 c1 = (v0 + cone_radius) >> shadow_grid::chunk_bits;
-    const glm::ivec3 cn = c1 - c0 + 1;
-    near_chunks.resize(size_t(cn.x * cn.y * cn.z));
-    for (int z = 0; z < cn.z; ++z)
-      for (int y = 0; y < cn.y; ++y)
-        for (int x = 0; x < cn.x; ++x) near_chunks[(z * cn.y + y) * cn.x + x] = shadow_chunk(grid, c0 + glm::ivec3(x, y, z));
-    const glm::vec3 base = voxel_centre(grid, v0) - pos;
-    const float reach2 = reach * reach, cos2 = cos_theta * cos_theta;
-    float best_s = 0, best_dot = -2;
-    glm::vec3 best = def;
-    int ties = 0;
-    // Pass 1, branch-free so that it vectorises: most offsets lie outside the cone, and testing them
-    // one by one was a quarter of a default tree's growth. Same operations in the same order as
-    // glm::dot, so the same verdicts, NaN included (each test is the negation of a rejection).
-    const size_t n = cone.size();
-    in_cone.resize(n);
-    if (cos_theta >= 0) {
-      const float bx = base.x, by = base.y, bz = base.z, ex = def.x, ey = def.y, ez = def.z;
-      const float* ox = cone_x.data();
-      const float* oy = cone_y.data();
-      const float* oz = cone_z.data();
-      uint8_t* pass = in_cone.data();
-      for (size_t k = 0; k < n; ++k) {
-        const float dx = bx + ox[k], dy = by + oy[k], dz = bz + oz[k];
-        const float c = dx * ex + dy * ey + dz * ez, len2 = dx * dx + dy * dy + dz * dz;
-        pass[k] = uint8_t(!(c <= 0) & !(len2 > reach2) & !(len2 < 1e-12f) & !(c * c < cos2 * len2));
-      }
-    } else {
-      for (size_t k = 0; k < n; ++k) {
-        const glm::vec3 d = base + cone_offset[k];
-        const float c = glm::dot(d, def), len2 = glm::dot(d, d);
-        in_cone[k] = !(len2 > reach2 || len2 < 1e-12f) && !(c < cos_theta * std::sqrt(len2));
-      }
-    }
-    for (size_t k = 0; k < n; ++k) {
-      if (!in_cone[k]) continue;
-      const glm::vec3 d = base + cone_offset[k];
-      const float c = glm::dot(d, def), len2 = glm::dot(d, d);
-      const glm::ivec3 v = v0 + cone[k];
-      const glm::ivec3 cc = (v >> shadow_grid::chunk_bits) - c0;
-      const float* chunk = near_chunks[(cc.z * cn.y + cc.y) * cn.x + cc.x];
-      const float s = chunk ? chunk[shadow_cell(v)] : 0.0f;
-      constexpr float eps = 1e-6f;
-      if (ties > 0 && s > best_s + eps) continue;
-      const float len = std::sqrt(len2);
-      const float cd = c / len;
-      if (ties == 0 || s < best_s - eps) {
-        best_s = s, best_dot = cd, best = d / len, ties = 1;
-      } else if (cd > best_dot + eps) {
-        best_dot = cd, best = d / len, ties = 1;
-      } else if (cd >= best_dot - eps) {
-        ++ties;  // reservoir sampling keeps each tied voxel with probability 1/ties
-        if (r.uniform_int(ties) == 0) best = d / len;
-      }
-    }
-    return best;
   }
 
   // Bud light l from the environment, then seed 001 eq. 1: Q = l^((T−T₀)^σ).
@@ -479,22 +412,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   st.grid.voxel_size = p.voxel_size * p.internode_length;
   st.cos_theta = std::cos(glm::radians(p.perception_angle));
   st.reach = p.perception_distance * p.internode_length;
-  {
-    // Offsets whose voxel can hold a point within the reach of a bud somewhere in voxel 0.
-    const float rv = p.perception_distance / p.voxel_size + 0.87f;
-    const int R = int(std::ceil(rv));
-    for (int z = -R; z <= R; ++z)
-      for (int y = -R; y <= R; ++y)
-        for (int x = -R; x <= R; ++x)
-          if (float(x * x + y * y + z * z) <= rv * rv) {
-            st.cone.push_back({x, y, z});
-            st.cone_offset.push_back(glm::vec3(x, y, z) * st.grid.voxel_size);
-            st.cone_x.push_back(st.cone_offset.back().x);
-            st.cone_y.push_back(st.cone_offset.back().y);
-            st.cone_z.push_back(st.cone_offset.back().z);
-          }
-    st.cone_radius = R;
-  }
+  st.cone = make_perception_cone(p.perception_distance, p.voxel_size, st.grid.voxel_size);
 
   float div = glm::radians(p.divergence);
   int step = 0;
@@ -561,6 +479,15 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   }  // !resumed
 
   std::vector<int32_t> grown;  // nodes made this step
+  std::vector<glm::ivec3> grown_voxels;
+  struct shoot {
+    int32_t node;
+    int k;                     // 0: the main bud, 1: the lateral
+    shoot_plan plan;
+    uint32_t first, count;     // its cone's choices in choices[its index / scan_chunk]
+  };
+  std::vector<shoot> shoots;
+  std::vector<std::vector<cone_choice>> choices;
   std::vector<float> last_flow;
   // What is recorded from here on is replaced; the state resumed from stays (it is this state).
   if (resume && resume->record) snaps->resize(size_t(first) + (resumed ? 1 : 0));
@@ -601,13 +528,40 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     // does not depend on the order in which buds are visited.
     grown.clear();
     const size_t n_before = t.size();
-    for (size_t i = 0; i < n_before && !rep.hit_node_cap; ++i) {
-      if ((i & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
+    // The shoots this step grows, in bud order; in the shadow environment their cones are scanned
+    // in parallel chunks first (scan_cone reads the grid only), then replayed in this order.
+    shoots.clear();
+    for (size_t i = 0; i < n_before; ++i) {
       if (t.died[i] != never_died) continue;
-      for (int k = 0; k < 2 && !rep.hit_node_cap; ++k) {
+      for (int k = 0; k < 2; ++k) {
         if ((k == 0 ? st.main[i] : st.lat[i]) != bud_here) continue;
         const shoot_plan plan = plan_shoot(st.q[2 * i + k], p.internode_length);
-        if (plan.metamers == 0) continue;
+        if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan, 0, 0});
+      }
+    }
+    constexpr size_t scan_chunk = 256;
+    if (shadow) {
+      const size_t chunks = (shoots.size() + scan_chunk - 1) / scan_chunk;
+      if (choices.size() < chunks) choices.resize(chunks);
+      parallel_jobs(chunks, [&](size_t c) {
+        cone_scratch sc;
+        std::vector<cone_choice>& out = choices[c];
+        out.clear();
+        for (size_t j = c * scan_chunk; j < std::min(shoots.size(), (c + 1) * scan_chunk); ++j) {
+          shoot& sh = shoots[j];
+          const glm::vec3 def = sh.k == 0 ? st.heading(sh.node) : st.lateral_direction(sh.node);
+          sh.first = uint32_t(out.size());
+          scan_cone(st.grid, st.cone, st.cos_theta, st.reach, t.position[size_t(sh.node)], st.voxel[size_t(sh.node)], def, sc, out);
+          sh.count = uint32_t(out.size()) - sh.first;
+        }
+      });
+    }
+    for (size_t j = 0; j < shoots.size() && !rep.hit_node_cap; ++j) {
+      if ((j & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
+      const size_t i = size_t(shoots[j].node);
+      const int k = shoots[j].k;
+      {
+        const shoot_plan plan = shoots[j].plan;
         int32_t prev = int32_t(i);
         const glm::vec3 def = k == 0 ? st.heading(int32_t(i)) : st.lateral_direction(int32_t(i));
         glm::vec3 ref = k == 0 ? st.side[i] : st.heading(int32_t(i));
@@ -615,7 +569,8 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[2 * i + k], def);
         // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
-        const glm::vec3 optimal = shadow ? st.optimal_shadow_direction(t.position[i], st.voxel[i], def) : marker_dir;
+        const glm::vec3 optimal =
+            shadow ? pick_optimal(r, choices[j / scan_chunk].data() + shoots[j].first, shoots[j].count, def) : marker_dir;
         const glm::vec3 dir = safe_normalize(p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism, def);
         for (int m = 0; m < plan.metamers; ++m) {
           if (int64_t(t.size()) >= p.node_cap) { rep.hit_node_cap = true; break; }
@@ -639,9 +594,12 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
       }
     }
     // Grow the environment with the new nodes.
-    for (int32_t i : grown) {
-      if (shadow) add_shadow_pyramid(st.grid, st.voxel[i], p.shadow_a, p.shadow_b, p.q_max);
-      else st.remove_markers_near(t.position[i]);
+    if (shadow) {
+      grown_voxels.clear();
+      for (int32_t i : grown) grown_voxels.push_back(st.voxel[size_t(i)]);
+      add_shadow_pyramids(st.grid, grown_voxels, p.shadow_a, p.shadow_b, p.q_max);
+    } else {
+      for (int32_t i : grown) st.remove_markers_near(t.position[i]);
     }
     step = T;
     if (o.progress) o.progress(float(T) / float(std::max(steps, 1)));

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generators/job_pool.h"
+
 namespace sylva {
 namespace {
 
@@ -120,29 +122,89 @@ float shadow_at(const shadow_grid& g, const glm::ivec3& v) {
   return c ? c[cell_index(v)] : 0.0f;
 }
 
-void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
+namespace {
+
+// A few recently used chunks by coordinates, direct-mapped: the pyramids of one step lie close
+// together, so most lookups end here instead of in the grid's large hash. Chunk indices stay
+// valid as chunks are added (only the cells move), and chunks are never removed.
+struct chunk_cache {
+  static constexpr size_t size = 256;
+  uint64_t key[size];
+  int32_t id[size];
+  chunk_cache() { std::fill(key, key + size, shadow_grid::empty_key); }
+};
+
+// The chunk of each chunk row segment a pyramid visits (layer by layer, z then x: the order in
+// which chunks are created), appended to ids; -1 where the memory cap sends the write nowhere.
+void pyramid_chunks(shadow_grid& g, const glm::ivec3& v, int q_max, chunk_cache& cache, std::vector<int32_t>& ids) {
+  constexpr int bits = shadow_grid::chunk_bits;
+  for (int q = 0; q <= q_max; ++q) {
+    const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
+    for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz)
+      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
+        const glm::ivec3 c{cx, y >> bits, cz};
+        const uint64_t key = pack(c);
+        const size_t slot = size_t((key ^ (key >> 21) ^ (key >> 42)) & (chunk_cache::size - 1));
+        if (cache.key[slot] != key) {
+          const float* cells = get_chunk(g, c);
+          if (cells == g.scratch.data()) { ids.push_back(-1); continue; }   // over the cap: not remembered
+          cache.key[slot] = key;
+          cache.id[slot] = int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells);
+        }
+        ids.push_back(cache.id[slot]);
+      }
+  }
+}
+
+// Adds one pyramid's Δs to the chunks in ids (pyramid_chunks' order) whose index is `part` modulo
+// `parts`. Each chunk row takes one fixed 8-wide add (two SIMD adds) of ds inside [x0, x1] and
+// ds·0 = ±0 outside. Adding ±0 changes no value a cell can hold: cells start at +0 and a sum is -0
+// only when both terms are, so no cell is ever -0.
+const int32_t* add_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign,
+                           const int32_t* ids, size_t part, size_t parts) {
   constexpr int side = shadow_grid::chunk_side, bits = shadow_grid::chunk_bits, m = side - 1;
   float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
   for (int q = 0; q <= q_max; ++q, ds /= b) {
-    const int y = v.y - q;
-    const int x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
-    // Visit the layer chunk by chunk: one hash lookup per chunk, not per voxel. This loop is the
-    // largest cost of a default tree's growth, so each chunk row takes one fixed 8-wide add (two
-    // SIMD adds) of ds inside [x0, x1] and ds·0 = ±0 outside. Adding ±0 changes no value a cell can
-    // hold: cells start at +0 and a sum is -0 only when both terms are, so no cell is ever -0.
+    const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
     for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
       const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
-      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {   // z then x: chunks are created in that order
+      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
+        const int32_t id = *ids++;
+        if (id < 0 || size_t(id) % parts != part) continue;
         const int xa = std::max(x0, cx * side) & m, xb = std::min(x1, cx * side + m) & m;
         const float* mask = row_masks.m[xa][xb];
         float add[side];
         for (int k = 0; k < side; ++k) add[k] = ds * mask[k];
-        float* row = get_chunk(g, {cx, y >> bits, cz}) + cell_index({0, y, za});
+        float* row = g.cells.data() + size_t(id) * shadow_grid::chunk_cells + cell_index({0, y, za});
         for (int z = za; z <= zb; ++z, row += side)
           for (int k = 0; k < side; ++k) row[k] += add[k];
       }
     }
   }
+  return ids;
+}
+
+}  // namespace
+
+void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
+  std::vector<int32_t> ids;
+  chunk_cache cache;
+  pyramid_chunks(g, v, q_max, cache, ids);
+  add_pyramid(g, v, a, b, q_max, sign, ids.data(), 0, 1);
+}
+
+void add_shadow_pyramids(shadow_grid& g, const std::vector<glm::ivec3>& voxels, float a, float b, int q_max, float sign) {
+  // The chunks first, made in the order one pyramid after another makes them (so the grid's layout
+  // is the same); then the adds in parts by chunk, so each cell (and cache line) is written by one
+  // part only, in pyramid order, and holds the bits one thread gives.
+  std::vector<int32_t> ids;
+  chunk_cache cache;
+  for (const glm::ivec3& v : voxels) pyramid_chunks(g, v, q_max, cache, ids);
+  const size_t parts = voxels.size() < 64 ? 1 : size_t(std::min(job_pool_helpers() + 1, 4));
+  parallel_jobs(parts, [&](size_t part) {
+    const int32_t* at = ids.data();
+    for (const glm::ivec3& v : voxels) at = add_pyramid(g, v, a, b, q_max, sign, at, part, parts);
+  });
 }
 
 size_t count_shadowed_voxels(const shadow_grid& g) {

@@ -120,14 +120,37 @@ void bake_crown_occlusion(tree_mesh& m) {
     const float sky = near ? g.sample(p) : 1.0f;
     return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
   };
-  // Visibility is a function of the position alone, and the mesh repeats positions in runs (a ring's
-  // seam vertex is its first one again; a cap's apex ring is one point stride times): a vertex equal
-  // to the one before takes its value instead of sampling again, which changes no bit.
-  // Chunks of vertices and leaves on the shared pool: each writes only its own, so the bytes are the
-  // single thread's.
-  parallel_chunks(m.position.size(), 8192, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
+  // Bark comes in rings of radial_segments + 1 vertices of one node. The field changes over a
+  // cell, so a ring whose box is under a quarter of a cell (a twig's, most of a tree's rings)
+  // takes the value at its box's centre for all its vertices: one sample instead of one per
+  // vertex. Wider rings (the trunk, the limbs) sample each vertex; a vertex equal to the one
+  // before (a ring's seam, a cap's apex) takes its value. Chunks of whole rings on the shared
+  // pool, each writing only its own vertices, so the bytes do not depend on the chunking.
+  const size_t stride = size_t(std::max(m.radial_segments, 0)) + 1, nv = m.position.size();
+  const bool rings = stride > 1 && nv % stride == 0 && m.node.size() == nv;
+  const size_t block = rings ? stride : 8192;
+  const float small = 0.25f * g.cell;
+  parallel_chunks((nv + block - 1) / block, rings ? 1024 : 1, [&](size_t b0, size_t b1) {
+    for (size_t b = b0; b < b1; ++b) {
+      const size_t begin = b * block, end = std::min(begin + block, nv);
+      if (rings) {
+        glm::vec3 lo(m.position[begin]), hi(lo);
+        bool one_node = true;
+        for (size_t i = begin + 1; i < end; ++i) {
+          lo = glm::min(lo, m.position[i]);
+          hi = glm::max(hi, m.position[i]);
+          one_node = one_node && m.node[i] == m.node[begin];
+        }
+        const glm::vec3 size = hi - lo;
+        if (one_node && std::max({size.x, size.y, size.z}) < small) {   // false for NaN: sampled per vertex
+          std::fill(m.occlusion.begin() + std::ptrdiff_t(begin), m.occlusion.begin() + std::ptrdiff_t(end),
+                    visibility(0.5f * (lo + hi)));
+          continue;
+        }
+      }
+      for (size_t i = begin; i < end; ++i)
+        m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
+    }
   });
   parallel_chunks(m.leaves.size(), 8192, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) m.leaves[k].occlusion = uint8_t(std::lround(255.0f * visibility(m.leaves[k].position)));

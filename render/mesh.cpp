@@ -249,20 +249,44 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   }
   // One ring: centre c, axis tan, frame normal nrm, radius r, v coordinate v. With h >= 0 it is a
   // trunk ring h metres above the root, widened into buttress lobes; its normals then come from
-  // the partial derivatives of the lobed surface.
+  // the partial derivatives of the lobed surface. A cap's apex ring (apex) has every vertex at c,
+  // its normal along tan. The walk below only plans the rings (their frames are carried from ring
+  // to ring, so it is sequential); their vertices are written afterwards, in parallel chunks of
+  // rings, each ring at the vertex index the walk gave it.
+  struct ring_plan {
+    glm::vec3 c, tan, nrm;
+    float r, v, h, fh, phase;
+    uint32_t node;
+    bool apex;
+  };
+  std::vector<ring_plan> plans;
   auto emit_ring = [&](const glm::vec3& c, const glm::vec3& tan, const glm::vec3& nrm, float r, float v,
                        uint32_t node, float h, float fh, float phase) {
-    const glm::vec3 bin = glm::cross(tan, nrm);
-    const float w = wraps[node];
-    const size_t at = m.position.size();
-    m.position.resize(at + size_t(stride));
-    m.normal.resize(at + size_t(stride));
-    m.uv.resize(at + size_t(stride));
-    m.node.resize(at + size_t(stride));
+    plans.push_back({c, tan, nrm, r, v, h, fh, phase, node, false});
+    return uint32_t((plans.size() - 1) * size_t(stride));
+  };
+  auto emit_apex = [&](const glm::vec3& c, const glm::vec3& nrm, float v, uint32_t node) {
+    plans.push_back({c, nrm, nrm, 0, v, -1, 0, 0, node, true});
+    return uint32_t((plans.size() - 1) * size_t(stride));
+  };
+  auto write_ring = [&](const ring_plan& rp, size_t at) {
     glm::vec3* out_pos = m.position.data() + at;
     glm::vec3* out_nrm = m.normal.data() + at;
     glm::vec2* out_uv = m.uv.data() + at;
     uint32_t* out_node = m.node.data() + at;
+    const float w = wraps[rp.node];
+    if (rp.apex) {
+      for (int k = 0; k < stride; ++k) {
+        out_pos[k] = rp.c;
+        out_nrm[k] = rp.tan;
+        out_uv[k] = {(u_of[k] + rp.v * twist / w) * w, rp.v};
+        out_node[k] = rp.node;
+      }
+      return;
+    }
+    const glm::vec3 &c = rp.c, &tan = rp.tan, &nrm = rp.nrm;
+    const float r = rp.r, v = rp.v, h = rp.h, fh = rp.fh, phase = rp.phase;
+    const glm::vec3 bin = glm::cross(tan, nrm);
     const bool flared = h >= 0 && h < fh && fh > 0;
     const float s = flared ? 1.0f - h / fh : 0.0f;
     const float f = flare_strength * s * s, df = flared ? -2.0f * flare_strength * s / fh : 0.0f;
@@ -284,21 +308,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       out_pos[k] = c + d * rr;
       out_nrm[k] = normal;
       out_uv[k] = {(u_of[k] + v * twist / w) * w, v};
-      out_node[k] = node;
+      out_node[k] = rp.node;
     }
-    return uint32_t(at);
-  };
-  // A cap's apex ring: every vertex at the apex, normal along the axis.
-  auto emit_apex = [&](const glm::vec3& c, const glm::vec3& nrm, float v, uint32_t node) {
-    const size_t at = m.position.size();
-    const float w = wraps[node];
-    for (int k = 0; k < stride; ++k) {
-      m.position.push_back(c);
-      m.normal.push_back(nrm);
-      m.uv.push_back({(u_of[k] + v * twist / w) * w, v});
-      m.node.push_back(node);
-    }
-    return uint32_t(at);
   };
 
   lap(st.frame);
@@ -384,9 +395,9 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
 
   lap(st.budget);
 
-  // Every ring the loop below can emit (a ring too close to the last is skipped): the vertex
-  // arrays are allocated once, at no more than this, so the mesh bound (render/mesh_bound.h) holds
-  // with no vector slack.
+  // Every ring the loop below can plan (a ring too close to the last is skipped): the plans are
+  // allocated once, at no more than this, and the vertex arrays at exactly the planned rings, so
+  // the mesh bound (render/mesh_bound.h) holds with no vector slack.
   {
     size_t rings = n + tips, inner = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -395,11 +406,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       if (par >= 0 && cont[par] != int32_t(i)) ++rings;   // a lateral's base ring
     }
     rings += inner + fixed_rings;
-    const size_t vertices = rings * size_t(stride);
-    m.position.reserve(vertices);
-    m.normal.reserve(vertices);
-    m.uv.reserve(vertices);
-    m.node.reserve(vertices);
+    plans.reserve(rings);
   }
 
   constexpr uint32_t none = UINT32_MAX;
@@ -529,6 +536,20 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     if (p.caps && cont[i] < 0) cap_apex[i] = emit_apex(b + tangent[i] * ri, tangent[i], v + ri * uv_repeat, uint32_t(i));
   }
   off[n] = uint32_t(chain.size());
+  // What only the walk needed goes before the vertex arrays come, so the plans cost no peak memory.
+  auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(q), release(dir), release(best), release(vel), release(tangent), release(trunk_h), release(flare_h);
+  release(flare_phase), release(m1s), release(m2s), release(want_score), release(collar_score), release(want);
+  release(keep), release(collared), release(frame), release(vcoord), release(us);
+  const size_t vertices = plans.size() * size_t(stride);
+  m.position.resize(vertices);
+  m.normal.resize(vertices);
+  m.uv.resize(vertices);
+  m.node.resize(vertices);
+  parallel_chunks(plans.size(), 1024, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) write_ring(plans[k], k * size_t(stride));
+  });
+  release(plans);
   lap(st.rings);
 
   // Each node's triangles (its internode through its rings, and its cap) sorted by born step so
