@@ -10,7 +10,7 @@
 #include "generators/memory_bound.h"
 #include "generators/resume.h"
 #include "generators/timing.h"
-#include "render/mesh_bound.h"
+#include "render/io/mesh_bound.h"
 
 namespace sylva {
 
@@ -170,7 +170,7 @@ void run_worker(worker_state& w) {
             w.busy = false;
             continue;
           }
-          // The tree and its mesh as the trial foresees them (render/mesh_bound.h). An estimate is
+          // The tree and its mesh as the trial foresees them (render/io/mesh_bound.h). An estimate is
           // no bound (a growth may stop sooner at another cap), so a mesh estimated over the mesh
           // budget asks as a tree over the node budget does; grown anyway, the skeleton's own
           // mesh bound decides before meshing.

@@ -11,9 +11,9 @@
 
 #include "generators/estimate.h"
 #include "generators/tree_spec.h"
-#include "render/lod.h"
-#include "render/mesh.h"
-#include "render/overlay_geometry.h"
+#include "render/mesh/lod.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/overlay_geometry.h"
 
 namespace sylva {
 
@@ -37,7 +37,7 @@ struct grow_result {
   double estimated_nodes = 0, estimated_seconds = 0, estimated_bytes = 0;
   std::string estimate_note;   // how later keyframes and cuts were counted (growth_estimate::note)
   std::string mesh_over_budget; // "": the estimated mesh fits its budget; else why it would not be meshed
-  // Over the mesh budget (render/mesh_bound.h): not meshed. A failure (report.error, the refusal as
+  // Over the mesh budget (render/io/mesh_bound.h): not meshed. A failure (report.error, the refusal as
   // its message) that keeps the previous tree; the editor offers the settings that fit.
   bool over_mesh_budget = false;
   double mesh_bound_bytes = 0;   // the mesh's bound (estimated from the trial when refused before growth)
@@ -88,7 +88,7 @@ uint32_t cancel_growth(worker_state& w);
 // The newest published result if it is newer than `seen_generation`, else nullptr. Never blocks on work.
 std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation);
 
-// ---- The LOD chain of a shown tree (render/lod.h build_lods: about half a second for a forest),
+// ---- The LOD chain of a shown tree (render/mesh/lod.h build_lods: about half a second for a forest),
 // built off the UI thread so that no frame waits for it. The newest request wins: a build in
 // progress finishes, but only the newest request's chain is handed out.
 struct lod_request {

@@ -1,5 +1,5 @@
-// Atomic writes and bounded reads (render/file_io.h).
-#include "render/file_io.h"
+// Atomic writes and bounded reads (render/files.h).
+#include "render/files.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

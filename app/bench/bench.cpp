@@ -1,5 +1,5 @@
 // `sylva bench` and `sylva bench --render` (bench.h): grow, mesh, export and frame timings.
-#include "app/bench.h"
+#include "app/bench/bench.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -16,14 +16,14 @@
 
 #include <epoxy/gl.h>
 
-#include "app/bench_set.h"
-#include "app/cli.h"
+#include "app/bench/bench_set.h"
+#include "app/messages.h"
 #include "app/gl_window.h"
 #include "generators/timing.h"
-#include "render/export.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/preset.h"
 #include "render/gl/renderer.h"
-#include "render/overlay_geometry.h"
+#include "render/mesh/overlay_geometry.h"
 
 namespace sylva {
 
@@ -199,7 +199,7 @@ int bench_presets(std::vector<std::string> paths, int repeat, bool as_json, bool
   if (!as_json)
     std::printf("medians over %d runs; peak_MB is each preset's own peak RSS (measured in a child process), grow_MB "
                 "that peak right after the first grow, before meshing%s\n",
-                repeat, stages ? "; stages: ms of each mesh_tree stage, each its own median (render/mesh.h)" : "");
+                repeat, stages ? "; stages: ms of each mesh_tree stage, each its own median (render/mesh/mesh.h)" : "");
   return failures ? 1 : 0;
 }
 

@@ -18,7 +18,7 @@ int run_bench(std::vector<std::string> paths, int repeat, bool as_json, bool wit
 int run_bench_render(std::vector<std::string> paths, int repeat, bool as_json, int width, int height,
                      bool preset_light);
 
-// `--render --ab PRESET_B` (app/bench_ab.cpp): each preset as slot A beside PRESET_B as slot B, the
+// `--render --ab PRESET_B` (app/bench/bench_ab.cpp): each preset as slot A beside PRESET_B as slot B, the
 // A/B view's frame (side by side, and split) against A's single frame, with the ratio.
 int run_bench_render_ab(std::vector<std::string> paths, const std::string& b_path, int repeat, bool as_json, int width,
                         int height, bool preset_light);

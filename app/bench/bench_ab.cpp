@@ -2,7 +2,7 @@
 //
 // Issue 18's goal: "A/B doubles the GPU work at most". The editor draws two slots side by side (each
 // tree into one half of the view, with the same camera and the selected slot's sun) or as a split
-// view (both trees over the whole view, with two blits for the divider; app/editor_ab.cpp). Here the
+// view (both trees over the whole view, with two blits for the divider; app/editor/editor_ab.cpp). Here the
 // same draws are timed off screen, frame by frame closed by glFinish, interleaved with single frames
 // of A and of B at the full size so that a change in the machine's load touches all of them alike.
 #include <algorithm>
@@ -15,14 +15,14 @@
 #include <epoxy/gl.h>
 #include <glm/common.hpp>
 
-#include "app/bench.h"
-#include "app/bench_set.h"
-#include "app/cli.h"
+#include "app/bench/bench.h"
+#include "app/bench/bench_set.h"
+#include "app/messages.h"
 #include "app/gl_window.h"
 #include "generators/timing.h"
 #include "render/gl/renderer.h"
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 

@@ -1,11 +1,11 @@
-// `sylva bench --set`: the CLI's assignments, kept for the bench loops (app/bench.cpp and friends).
-#include "app/bench_set.h"
+// `sylva bench --set`: the CLI's assignments, kept for the bench loops (app/bench/bench.cpp and friends).
+#include "app/bench/bench_set.h"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "app/cli.h"
-#include "render/preset.h"
+#include "app/messages.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 

@@ -1,5 +1,5 @@
 // `sylva bench --edit`: slider release to the new tree on screen (editor_bench.h).
-#include "app/editor_bench.h"
+#include "app/bench/editor_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,12 +9,12 @@
 
 #include <epoxy/gl.h>
 
-#include "app/bench.h"
-#include "app/bench_set.h"
+#include "app/bench/bench.h"
+#include "app/bench/bench_set.h"
 #include "app/gl_window.h"
 #include "generators/timing.h"
 #include "app/worker.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

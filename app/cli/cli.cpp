@@ -1,10 +1,10 @@
 // The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
-#include "app/cli.h"
-#include "app/bench.h"
-#include "app/bench_set.h"
-#include "app/cli_batch.h"
-#include "app/cli_lods.h"
-#include "app/editor_bench.h"
+#include "app/cli/cli.h"
+#include "app/bench/bench.h"
+#include "app/bench/bench_set.h"
+#include "app/cli/cli_batch.h"
+#include "app/cli/cli_lods.h"
+#include "app/bench/editor_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,28 +21,16 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/cli_textures.h"
+#include "app/cli/cli_textures.h"
 #include "app/gl_window.h"
 #include "generators/timing.h"
 #include "generators/lsystem_engine.h"
 #include "generators/memory_bound.h"
-#include "render/export.h"
-#include "render/mesh_bound.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/mesh_bound.h"
+#include "render/io/preset.h"
 
 namespace sylva {
-
-int fail(const std::string& command, const std::string& reason) {
-  std::fprintf(stderr, "sylva %s: %s\n", command.c_str(), reason.c_str());
-  return 1;
-}
-int usage_error(const std::string& command, const std::string& reason) {
-  std::fprintf(stderr, "sylva %s: %s (see sylva %s --help)\n", command.c_str(), reason.c_str(), command.c_str());
-  return 2;
-}
-void warn(const std::string& what, const std::string& message) {
-  std::fprintf(stderr, "warning: %s: %s\n", what.c_str(), message.c_str());
-}
 
 namespace {
 
@@ -282,7 +270,7 @@ int run_export(const export_args& a) {
       if (std::string e = set_preset_param(p, set); !e.empty()) return usage_error(cmd, e);
   }
   // --shard I/N: this job's share of the batch; the manifest records every file written and lets
-  // a rerun skip those still complete (app/cli_batch.h).
+  // a rerun skip those still complete (app/cli/cli_batch.h).
   int shard_index = 1, shard_count = 1;
   if (!a.shard.empty() && !parse_shard(a.shard, shard_index, shard_count))
     return usage_error(cmd, "--shard expects I/N with 1 <= I <= N, got \"" + a.shard + "\"");
@@ -344,7 +332,7 @@ int run_export(const export_args& a) {
     }
     auto t0 = clock_type::now();
     // A mesh over the mesh budget is refused before meshing, on a trial's estimate before growth
-    // when it can be (render/mesh_bound.h); the skeleton JSON is never meshed.
+    // when it can be (render/io/mesh_bound.h); the skeleton JSON is never meshed.
     budgeted_growth g;
     if (format->mesh) g = grow_for_mesh(p.spec, p.mesh, format);
     else g.tree = grow(p.spec, grow_options{}, &g.report);
@@ -369,7 +357,7 @@ int run_export(const export_args& a) {
     o.seconds_per_step = a.seconds_per_step;
     o.mesh = p.mesh;
     apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
-    lod_export_data lods;   // --lods (app/cli_lods.h): LOD1-3 and the impostor
+    lod_export_data lods;   // --lods (app/cli/cli_lods.h): LOD1-3 and the impostor
     if (a.lods)
       for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
     if (wind && format->wind && !format->render) o.wind_seconds = a.wind;
@@ -413,7 +401,7 @@ bool is_cli_command(const char* arg) {
 }
 
 int run_cli(int argc, char** argv) {
-  if (argc >= 2 && !std::strcmp(argv[1], "textures")) return run_textures_cli(argc, argv);  // app/cli_textures.cpp
+  if (argc >= 2 && !std::strcmp(argv[1], "textures")) return run_textures_cli(argc, argv);  // app/cli/cli_textures.cpp
   CLI::App app{"Sylva: a tree designer. Without a command, `sylva [PRESET.json]` opens the editor.", "sylva"};
   app.require_subcommand(1);
 

@@ -3,13 +3,9 @@
 
 #include <string>
 
-namespace sylva {
+#include "app/messages.h"   // fail, usage_error, warn
 
-// The commands' shared messages (DESIGN §7): a failure is one line on stderr and exit 1, a usage
-// error exit 2 with a pointer to --help; a warning does not change the exit code.
-int fail(const std::string& command, const std::string& reason);
-int usage_error(const std::string& command, const std::string& reason);
-void warn(const std::string& what, const std::string& message);
+namespace sylva {
 
 // True for the names of the headless commands ("params", "export", "bench").
 bool is_cli_command(const char* arg);

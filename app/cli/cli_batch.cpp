@@ -1,5 +1,5 @@
-// Batch manifests and shards (app/cli_batch.h).
-#include "app/cli_batch.h"
+// Batch manifests and shards (app/cli/cli_batch.h).
+#include "app/cli/cli_batch.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "render/file_io.h"
+#include "render/files.h"
 
 namespace sylva {
 

@@ -1,5 +1,5 @@
 // `sylva export --lods` and `sylva bench --lods`.
-#include "app/cli_lods.h"
+#include "app/cli/cli_lods.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,8 +7,8 @@
 #include <ctime>
 #include <filesystem>
 
-#include "app/bench.h"
-#include "app/bench_set.h"
+#include "app/bench/bench.h"
+#include "app/bench/bench_set.h"
 #include "app/gl_window.h"
 #include "generators/timing.h"
 #include "generators/tree_spec.h"
@@ -31,7 +31,7 @@ std::string make_impostor(const tree_mesh& m, const tree_skeleton& t, const pres
     out = render_impostor(r, p.render, p.render.lod.impostor_views, p.render.lod.impostor_size);
     error = out.error;
     if (error.empty() && worst_frame_ms) {
-      // The editor's way (app/editor_lod.cpp): begin, one view per step, the read-back, then the layers.
+      // The editor's way (app/editor/editor_lod.cpp): begin, one view per step, the read-back, then the layers.
       impostor_build b;
       error = impostor_begin(b, r, p.render, p.render.lod.impostor_views, p.render.lod.impostor_size, &m);
       if (error.empty())

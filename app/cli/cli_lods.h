@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "render/export.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/preset.h"
 #include "render/gl/impostor.h"
-#include "render/lod.h"
+#include "render/mesh/lod.h"
 
 namespace sylva {
 

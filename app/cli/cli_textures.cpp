@@ -1,6 +1,6 @@
-// `sylva textures`: writes the archetype texture sets (render/textures.h) for people to look at,
+// `sylva textures`: writes the archetype texture sets (render/assets/textures.h) for people to look at,
 // composes the contact sheet docs/archetypes.png, and times their generation.
-#include "app/cli_textures.h"
+#include "app/cli/cli_textures.h"
 
 #include <algorithm>
 #include <iterator>
@@ -15,7 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "generators/timing.h"
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 namespace sylva {
 namespace {

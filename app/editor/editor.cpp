@@ -1,6 +1,6 @@
 // The editor: the window and frame loop (DESIGN §5): each frame builds the UI from editor_state
-// (app/editor_state.h; its parts live in app/editor_*.cpp), then draws the tree under it.
-#include "app/editor.h"
+// (app/editor/editor_state.h; its parts live in app/editor/editor_*.cpp), then draws the tree under it.
+#include "app/editor/editor.h"
 
 #include <algorithm>
 #include <chrono>
@@ -17,11 +17,11 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
-#include "app/editor_script.h"
-#include "app/editor_settings.h"
-#include "app/editor_state.h"
+#include "app/editor/editor_script.h"
+#include "app/editor/editor_settings.h"
+#include "app/editor/editor_state.h"
 #include "app/gl_window.h"
-#include "app/view_gizmo.h"
+#include "app/editor/view_gizmo.h"
 
 namespace sylva {
 

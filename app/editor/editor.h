@@ -6,7 +6,7 @@
 namespace sylva {
 
 struct editor_options {
-  std::string preset_path;       // "" opens default_preset() (render/preset.h)
+  std::string preset_path;       // "" opens default_preset() (render/io/preset.h)
   std::string screenshot_path;   // non-empty: render `frames` frames after the tree is shown, save, quit
   int frames = 3;
   int width = 1600, height = 1000;
@@ -14,7 +14,7 @@ struct editor_options {
   bool overlays = false;         // start with the growth-debug overlays shown
 };
 
-// Opens the editor window on a preset file, or on default_preset() (render/preset.h) when the path
+// Opens the editor window on a preset file, or on default_preset() (render/io/preset.h) when the path
 // is empty. Returns the process exit code. The environment can ask for an automatic screenshot
 // (used by the GUI smoke test): SYLVA_SCREENSHOT=PATH, SYLVA_FRAMES=N, SYLVA_WINDOW=WxH,
 // SYLVA_OVERLAYS=1.

@@ -1,5 +1,5 @@
-// A/B comparison, the GL, worker and ImGui part. See app/editor_ab.h.
-#include "app/editor_ab.h"
+// A/B comparison, the GL, worker and ImGui part. See app/editor/editor_ab.h.
+#include "app/editor/editor_ab.h"
 
 #include <algorithm>
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "app/editor_lod.h"
+#include "app/editor/editor_lod.h"
 #include "app/worker.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {
@@ -48,7 +48,7 @@ struct slot_view {
   std::string growth_text;          // detail for done / cancelled / failed / asking
   std::chrono::steady_clock::time_point posted_at{};
   renderer_gpu renderer;
-  editor_lod lod;                   // level of detail shown in the view (app/editor_lod.h)
+  editor_lod lod;                   // level of detail shown in the view (app/editor/editor_lod.h)
   std::shared_ptr<const grow_result> shown;
   int overlay_generator = -1;       // the generator whose default overlay layer is selected
 };
@@ -76,7 +76,7 @@ struct ab_state {
   const editor_slot& other() const { return slots[1 - selected]; }
 };
 
-// ---- Display-free logic (app/editor_ab_doc.cpp; tests/app/editor_ab_test.cpp).
+// ---- Display-free logic (app/editor/editor_ab_doc.cpp; tests/app/editor_ab_test.cpp).
 
 // Copies slot A's document into slot B, with an empty undo history, no file and the name marked
 // " (B)". Only from A: returns false when B is selected.
@@ -116,7 +116,7 @@ std::string ab_compare_text(const ab_counts& a, const ab_counts& b);
 const char* ab_mode_label(ab_mode m);
 bool ab_showing(const ab_state& s);   // B exists and the mode is not off
 
-// ---- GL and worker side (app/editor_ab.cpp), main thread.
+// ---- GL and worker side (app/editor/editor_ab.cpp), main thread.
 
 // Sets up B's view as a copy of the shown tree: a started worker, an initialised renderer holding
 // the same mesh, drawn with `shared` (A's programs and textures: one GL context). Returns the

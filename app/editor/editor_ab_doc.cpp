@@ -1,5 +1,5 @@
 // A/B comparison, the display-free part: the two slots' documents.
-#include "app/editor_ab.h"
+#include "app/editor/editor_ab.h"
 
 #include <cstdio>
 #include <utility>

@@ -1,6 +1,6 @@
 // The menu bar and the dialogs: file browsers, unsaved changes, large tree, recovery, shortcuts, messages.
-#include "app/editor_state.h"
-#include "app/editor_undo_names.h"
+#include "app/editor/editor_state.h"
+#include "app/editor/editor_undo_names.h"
 
 #include <algorithm>
 #include <cmath>
@@ -121,7 +121,7 @@ void open_export_dialog(editor_state& e) {
     e.exporter.path = (fs::path(e.home) / (fs::path(default_save_path(e)).stem().string() + fs::path(e.exporter.path).extension().string())).string();
 }
 
-// A tree over the mesh budget (render/mesh_bound.h) was not meshed: the tree on screen stays, and the
+// A tree over the mesh budget (render/io/mesh_bound.h) was not meshed: the tree on screen stays, and the
 // prompt offers the radial segment count that fits or the budget the mesh needs (as edits: undoable).
 void draw_mesh_budget_prompt(editor_state& e) {
   if (e.open_mesh_prompt) {
@@ -397,7 +397,7 @@ void draw_dialogs(editor_state& e) {
                   seconds_text(b->estimated_seconds).c_str(), b->estimated_bytes / 1e9);
       if (!b->estimate_note.empty()) ImGui::TextDisabled("Keyframes and cuts after the trial's reach are %s.", b->estimate_note.c_str());
       ImGui::Text("The node budget is %s (the Edit menu or the Output tab).", count_text(double(e.cur().worker->node_budget.load())).c_str());
-      if (!b->mesh_over_budget.empty()) {   // the trial's estimate of the mesh (render/mesh_bound.h)
+      if (!b->mesh_over_budget.empty()) {   // the trial's estimate of the mesh (render/io/mesh_bound.h)
         ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
         ImGui::TextWrapped("Its mesh is estimated over the mesh budget: %s. Grown anyway, it is meshed only if its own "
                            "bound fits.", b->mesh_over_budget.c_str());

@@ -1,7 +1,7 @@
 // The document: presets opened and saved, unsaved work (the quit and open prompts, recovery), undo.
-#include "app/editor_state.h"
-#include "app/editor_settings.h"
-#include "app/editor_undo_names.h"
+#include "app/editor/editor_state.h"
+#include "app/editor/editor_settings.h"
+#include "app/editor/editor_undo_names.h"
 
 #include <algorithm>
 #include <cmath>

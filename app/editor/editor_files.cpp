@@ -1,5 +1,5 @@
 // The editor's in-app file browser (editor_files.h).
-#include "app/editor_files.h"
+#include "app/editor/editor_files.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,5 +1,5 @@
 // Generator-specific editor panels: L-system text, constants and inspector; per-step tables; overlay toggles.
-#include "app/editor_generators.h"
+#include "app/editor/editor_generators.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,5 +1,5 @@
 // Growth requests to the worker (app/worker.h) and the trees it sends back.
-#include "app/editor_state.h"
+#include "app/editor/editor_state.h"
 
 #include "generators/timing.h"
 

@@ -1,5 +1,5 @@
 // Growth phases in the editor: "from this step on" edits, the keyframe list and the timeline markers.
-#include "app/editor_keyframes.h"
+#include "app/editor/editor_keyframes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Growth phases in the editor, the display-free part: "from this step on" edits, moving markers,
-// the keyed steps and their text (app/editor_keyframes.h). Shared by the editor and the edit fuzzer.
-#include "app/editor_keyframes.h"
+// the keyed steps and their text (app/editor/editor_keyframes.h). Shared by the editor and the edit fuzzer.
+#include "app/editor/editor_keyframes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The editor's LOD choice.
-#include "app/editor_lod.h"
+#include "app/editor/editor_lod.h"
 
 #include <chrono>
 #include <algorithm>

@@ -10,7 +10,7 @@
 #include "app/worker.h"
 #include "render/gl/impostor.h"
 #include "render/gl/renderer.h"
-#include "render/lod.h"
+#include "render/mesh/lod.h"
 
 namespace sylva {
 

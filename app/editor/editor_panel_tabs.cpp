@@ -1,5 +1,5 @@
 // The parameter panel's tabs and search (see editor_panel_tabs.h).
-#include "app/editor_panel_tabs.h"
+#include "app/editor/editor_panel_tabs.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,7 +1,7 @@
 // The parameter panel: one slider per declared parameter (visit_params), grouped as declared.
-#include "app/editor_state.h"
-#include "app/editor_panel_tabs.h"
-#include "app/editor_sliders.h"
+#include "app/editor/editor_state.h"
+#include "app/editor/editor_panel_tabs.h"
+#include "app/editor/editor_sliders.h"
 
 #include <algorithm>
 #include <cmath>
@@ -296,7 +296,7 @@ void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
       ImGui::SetTooltip(random_leaves ? "This generator is deterministic: a new seed only scatters the leaves differently"
                                       : "This generator is deterministic and leaves are off: the seed changes nothing");
     // Growth phases: with "from this step on", the panel shows the values in effect at the scrubbed
-    // step and an edit keys the new value there (app/editor_keyframes.h).
+    // step and an edit keys the new value there (app/editor/editor_keyframes.h).
     draw_from_step_switch(e.keys, spec, e.step);
   }
   if (e.keys.from_step && e.step >= 1) {

@@ -1,5 +1,5 @@
 // Pruning in the editor: click a branch in the view, "cut here", the list of cuts and the brush.
-#include "app/editor_prune.h"
+#include "app/editor/editor_prune.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,7 @@
 
 #include "generators/keyframes.h"
 #include "generators/timing.h"
-#include "render/pick.h"
+#include "render/mesh/pick.h"
 
 namespace sylva {
 

@@ -1,4 +1,4 @@
-#include "app/editor_script.h"
+#include "app/editor/editor_script.h"
 
 #include <algorithm>
 #include <cctype>

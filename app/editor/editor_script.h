@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "app/editor_state.h"
+#include "app/editor/editor_state.h"
 
 namespace sylva::ed {
 
 // SYLVA_SCRIPT=FILE drives the real window from a script, one command per line, for the editor's
-// end-to-end test (tests/editor_test.cpp). Commands that wait give up after a timeout and fail.
+// end-to-end test (tests/app/editor_test.cpp). Commands that wait give up after a timeout and fail.
 //   wait_tree                  until no growth is in progress and a tree is shown
 //   set KEY=VALUE              an edit, as the panel would make it (set_preset_param)
 //   key [ctrl+][shift+]NAME    a press and release queued between two frames (NAME: a-z, escape, f12, ...)

@@ -1,5 +1,5 @@
-// ~/Sylva/settings.ini and the recovery files, checked field by field (app/editor_settings.h).
-#include "app/editor_settings.h"
+// ~/Sylva/settings.ini and the recovery files, checked field by field (app/editor/editor_settings.h).
+#include "app/editor/editor_settings.h"
 
 #include <algorithm>
 #include <charconv>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "render/file_io.h"
+#include "render/files.h"
 
 namespace sylva {
 

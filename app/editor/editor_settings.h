@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 

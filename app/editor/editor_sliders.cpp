@@ -1,5 +1,5 @@
 // Slider behaviour for the parameter panel (see editor_sliders.h).
-#include "app/editor_sliders.h"
+#include "app/editor/editor_sliders.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// A/B comparison in the editor: selecting, duplicating, dropping and restoring slots (app/editor_ab.h).
-#include "app/editor_state.h"
+// A/B comparison in the editor: selecting, duplicating, dropping and restoring slots (app/editor/editor_ab.h).
+#include "app/editor/editor_state.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The editor's state and the functions its parts share (app/editor*.cpp). One editor_state per
+// The editor's state and the functions its parts share (app/editor/editor*.cpp). One editor_state per
 // window; every part reads and edits it on the UI thread, between two frames.
 #pragma once
 
@@ -11,18 +11,18 @@
 #include <string>
 #include <vector>
 
-#include "app/editor_ab.h"
-#include "app/editor_files.h"
-#include "app/editor_generators.h"
-#include "app/editor_keyframes.h"
-#include "app/editor_lod.h"
-#include "app/editor_prune.h"
-#include "app/editor_sliders.h"
-#include "app/export_dialog.h"
-#include "app/input_queue.h"
-#include "app/preset_browser.h"
+#include "app/editor/editor_ab.h"
+#include "app/editor/editor_files.h"
+#include "app/editor/editor_generators.h"
+#include "app/editor/editor_keyframes.h"
+#include "app/editor/editor_lod.h"
+#include "app/editor/editor_prune.h"
+#include "app/editor/editor_sliders.h"
+#include "app/editor/export_dialog.h"
+#include "app/editor/input_queue.h"
+#include "app/editor/preset_browser.h"
 #include "app/worker.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 #include "render/gl/renderer.h"
 
 struct GLFWwindow;
@@ -61,11 +61,11 @@ struct editor_state {
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   std::string panel_search;       // the parameter panel's search box
-  path_field_edit path_edit;      // a file path being typed in the panel (app/editor_sliders.h)
+  path_field_edit path_edit;      // a file path being typed in the panel (app/editor/editor_sliders.h)
   std::map<std::string, std::array<float, 2>> path_field_at;   // where each path field was drawn (the scripted test's click)
   // Dialogs.
   bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
-  file_browser files;             // app/editor_files.h: Open, Save as, Screenshot as
+  file_browser files;             // app/editor/editor_files.h: Open, Save as, Screenshot as
   enum class browsing { open, save_as, screenshot, export_to } browse = browsing::open;
   std::vector<std::string> recent;
   std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
@@ -86,11 +86,11 @@ struct editor_state {
   std::string screenshot_to;            // Screenshot as...: this path
   std::string screenshot_path;
   std::string texture_message;    // the renderer's last texture error, once shown
-  export_dialog_state exporter;   // app/export_dialog.h
-  preset_browser_state browser;   // app/preset_browser.h; also holds the last saved preset
-  generator_panel_state generator_panels;   // app/editor_generators.h
-  keyframe_panel_state keys;                // app/editor_keyframes.h: growth phases
-  prune_panel_state prune;                  // app/editor_prune.h: picking, cuts, the brush
+  export_dialog_state exporter;   // app/editor/export_dialog.h
+  preset_browser_state browser;   // app/editor/preset_browser.h; also holds the last saved preset
+  generator_panel_state generator_panels;   // app/editor/editor_generators.h
+  keyframe_panel_state keys;                // app/editor/editor_keyframes.h: growth phases
+  prune_panel_state prune;                  // app/editor/editor_prune.h: picking, cuts, the brush
   GLFWwindow* window = nullptr;
   float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
   std::shared_ptr<const grow_result> budget_answer;   // an over-budget estimate waiting for the user
@@ -126,7 +126,7 @@ struct editor_state {
   bool autosave_off[2] = {false, false};   // a slot's unusable autosave could not be moved aside
   std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
-  // The two document slots, A and B (app/editor_ab.h), and the A/B view. Everything about the
+  // The two document slots, A and B (app/editor/editor_ab.h), and the A/B view. Everything about the
   // document, its growth and its drawing is the selected slot's: reach it through cur().
   ab_state ab;
   editor_slot& cur() { return ab.cur(); }

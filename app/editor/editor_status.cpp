@@ -1,5 +1,5 @@
 // The status bar, the error toast and the growth overlays' legend.
-#include "app/editor_state.h"
+#include "app/editor/editor_state.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The timeline: transport buttons, the step slider, keyframe markers and playback.
-#include "app/editor_state.h"
+#include "app/editor/editor_state.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Names for undo entries (see editor_undo_names.h).
-#include "app/editor_undo_names.h"
+#include "app/editor/editor_undo_names.h"
 
 #include <type_traits>
 #include <vector>

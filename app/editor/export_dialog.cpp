@@ -1,5 +1,5 @@
 // Export window: the exporter runs on a helper thread (it takes progress/cancel); PNG renders on the main thread.
-#include "app/export_dialog.h"
+#include "app/editor/export_dialog.h"
 
 #include <cstdio>
 #include <filesystem>

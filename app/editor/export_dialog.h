@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "app/worker.h"
-#include "render/export.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 

@@ -1,5 +1,5 @@
 // Keyboard input queue for ImGui 1.86 (see input_queue.h).
-#include "app/input_queue.h"
+#include "app/editor/input_queue.h"
 
 #include <bitset>
 #include <cfloat>

@@ -1,5 +1,5 @@
 // Preset browser: thumbnails are grown on a helper thread, rendered on the main thread, cached on disk.
-#include "app/preset_browser.h"
+#include "app/editor/preset_browser.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <imgui_stdlib.h>
 
 #include "app/gl_window.h"
-#include "render/file_io.h"
+#include "render/files.h"
 
 namespace sylva {
 

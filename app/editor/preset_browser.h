@@ -12,8 +12,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "app/preset_library.h"
-#include "render/preset.h"
+#include "app/editor/preset_library.h"
+#include "render/io/preset.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

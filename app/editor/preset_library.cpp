@@ -1,5 +1,5 @@
 // Preset library logic shared by the editor's browser and the tests: no GL, no ImGui.
-#include "app/preset_library.h"
+#include "app/editor/preset_library.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <map>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 

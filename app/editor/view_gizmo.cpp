@@ -1,5 +1,5 @@
 // The view gizmo and the front / side / top views (see view_gizmo.h).
-#include "app/view_gizmo.h"
+#include "app/editor/view_gizmo.h"
 
 #include <algorithm>
 #include <array>

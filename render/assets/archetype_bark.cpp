@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "render/archetype_canvas.h"
+#include "render/assets/archetype_canvas.h"
 
 namespace sylva::archetype {
 namespace {

@@ -1,10 +1,10 @@
-// The archetype textures' shared primitives (render/archetype_canvas.h): sRGB tables, normal maps
+// The archetype textures' shared primitives (render/assets/archetype_canvas.h): sRGB tables, normal maps
 // from height fields, the stroke primitive and the last steps that turn a canvas or a bark field
 // into a texture set.
 #include <algorithm>
 #include <cmath>
 
-#include "render/archetype_canvas.h"
+#include "render/assets/archetype_canvas.h"
 
 namespace sylva::archetype {
 

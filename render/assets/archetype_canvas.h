@@ -1,6 +1,6 @@
-// Internal to the archetype textures (render/archetype_*.cpp): the shared drawing kit.
+// Internal to the archetype textures (render/assets/archetype_*.cpp): the shared drawing kit.
 // Noise and colour helpers, the leaf canvas with its primitives (blades, strokes), the bark field,
-// and the draw / fill functions each file defines. Not part of the public API (render/textures.h).
+// and the draw / fill functions each file defines. Not part of the public API (render/assets/textures.h).
 #pragma once
 
 #include <algorithm>
@@ -14,7 +14,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 namespace sylva::archetype {
 
@@ -311,8 +311,8 @@ struct leaf_look {
 // normal from the height layer (h: scratch for it), thickness.
 leaf_texture_set finish_leaf(const leaf_canvas& c, std::vector<float>& h, const leaf_look& look, uint64_t seed);
 
-// The cards (render/archetype_leaves.cpp: broadleaves and the palm frond;
-// render/archetype_conifers.cpp: needles and scale sprays).
+// The cards (render/assets/archetype_leaves.cpp: broadleaves and the palm frond;
+// render/assets/archetype_conifers.cpp: needles and scale sprays).
 void draw_ovate(leaf_canvas& c, rng& g);
 void draw_lobed(leaf_canvas& c, rng& g);
 void draw_palmate(leaf_canvas& c, rng& g);
@@ -350,7 +350,7 @@ struct bark_field {
 
 inline vec3 mix3(vec3 a, vec3 b, float t) { return a + (b - a) * t; }
 
-// The barks (render/archetype_bark.cpp).
+// The barks (render/assets/archetype_bark.cpp).
 void bark_furrowed(bark_field& f, uint64_t seed);
 void bark_plated(bark_field& f, uint64_t seed);
 void bark_smooth(bark_field& f, uint64_t seed);

@@ -1,9 +1,9 @@
 // Conifer foliage cards: pine needle fascicles, flat needle sprays (spruce, fir) and
-// scale-leaf sprays (cypress, thuja) and the needle rosettes of true cedars (Cedrus), drawn with the strokes and blades of render/archetype_canvas.h.
+// scale-leaf sprays (cypress, thuja) and the needle rosettes of true cedars (Cedrus), drawn with the strokes and blades of render/assets/archetype_canvas.h.
 #include <algorithm>
 #include <cmath>
 
-#include "render/archetype_canvas.h"
+#include "render/assets/archetype_canvas.h"
 
 namespace sylva::archetype {
 

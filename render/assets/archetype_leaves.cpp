@@ -1,10 +1,10 @@
 // Broadleaf cards and the palm frond: blades and strokes on the leaf canvas
-// (render/archetype_canvas.h). Each card: petiole at the bottom edge's centre, blade up the image.
+// (render/assets/archetype_canvas.h). Each card: petiole at the bottom edge's centre, blade up the image.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "render/archetype_canvas.h"
+#include "render/assets/archetype_canvas.h"
 
 namespace sylva::archetype {
 

@@ -1,6 +1,6 @@
 // Archetype texture sets: leaf cards drawn from analytic primitives (blades, strokes)
 // into float layers, and periodic bark height/colour fields; normal maps from the height fields.
-// The drawing lives in render/archetype_canvas.h (shared kit), archetype_leaves.cpp,
+// The drawing lives in render/assets/archetype_canvas.h (shared kit), archetype_leaves.cpp,
 // archetype_conifers.cpp and archetype_bark.cpp; this file holds the tables, the cache and the
 // parallel preparation.
 #include <algorithm>
@@ -14,8 +14,8 @@
 #include <tuple>
 
 #include "generators/job_pool.h"
-#include "render/archetype_canvas.h"
-#include "render/textures.h"
+#include "render/assets/archetype_canvas.h"
+#include "render/assets/textures.h"
 
 namespace sylva {
 namespace {

@@ -1,6 +1,6 @@
 // PNG I/O through stb and the checked loading of user textures (the procedural archetype sets are
 // made in archetype_textures.cpp).
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,7 +12,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
-#include "render/file_io.h"
+#include "render/files.h"
 
 namespace sylva {
 

@@ -12,7 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "generators/timing.h"
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 namespace sylva {
 
@@ -32,7 +32,7 @@ in vec3 v_normal; in vec2 v_uv;
 uniform sampler2D u_bark; uniform vec3 u_tint;
 layout(location = 0) out vec4 o_color; layout(location = 1) out vec4 o_normal;
 void main() {
-  // The viewport's tint (render/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
+  // The viewport's tint (render/assets/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
   vec3 albedo = min(vec3(1.0), u_tint * texture(u_bark, v_uv).rgb);
   o_color = vec4(pow(albedo, vec3(1.0 / 2.2)), 1.0);
   o_normal = vec4(normalize(v_normal) * 0.5 + 0.5, 1.0);

@@ -9,7 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/gl/renderer.h"
-#include "render/lod_cards.h"
+#include "render/mesh/lod_cards.h"
 
 namespace sylva {
 

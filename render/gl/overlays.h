@@ -1,4 +1,4 @@
-// Growth-debug overlays on the GPU: the geometry built on the worker (render/overlay_geometry.h),
+// Growth-debug overlays on the GPU: the geometry built on the worker (render/mesh/overlay_geometry.h),
 // uploaded when first shown, each kind with a View toggle, filtered by the timeline step on the GPU.
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "render/gl/gl_util.h"
-#include "render/overlay_geometry.h"
+#include "render/mesh/overlay_geometry.h"
 
 namespace sylva {
 

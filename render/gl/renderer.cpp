@@ -5,9 +5,9 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
-#include "render/lod_cards.h"
-#include "render/season.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,7 +47,7 @@ glm::mat4 light_viewproj(const renderer_gpu& r, const glm::vec3& sun, float* tex
 void set_lighting(const renderer_gpu& r, const gl_program& p, const render_params& rp, const glm::vec3& sun,
                   const glm::mat4& light, float texel_world) {
   set_uniform(p, "u_sun_dir", sun);
-  // The sun's colour and the sky light come from the sky model (render/sky.h); the sun dims as it sets.
+  // The sun's colour and the sky light come from the sky model (render/gl/sky.h); the sun dims as it sets.
   set_uniform(p, "u_sun_light", r.daylight.sun_light);
   static const char* const sh_names[4] = {"u_sh[0]", "u_sh[1]", "u_sh[2]", "u_sh[3]"};
   for (int k = 0; k < 4; ++k) set_uniform(p, sh_names[k], r.daylight.sh[k]);
@@ -126,7 +126,7 @@ uint32_t leaf_count(const renderer_gpu& r) {
 }
 
 // All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
-// The season's leaf colours, fallen share and size (render/season.h), for the leaf vertex shader.
+// The season's leaf colours, fallen share and size (render/mesh/season.h), for the leaf vertex shader.
 void set_season_uniforms(const gl_program& p, const season_look& s) {
   set_uniform(p, "u_leaf_color", s.evergreen_color);
   set_uniform(p, "u_autumn_a", s.deciduous_color_a);

@@ -16,9 +16,9 @@
 #include "render/gl/gl_shared.h"
 #include "render/gl/gl_util.h"
 #include "render/gl/overlays.h"
-#include "render/mesh.h"
-#include "render/render_params.h"
-#include "render/sky.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/render_params.h"
+#include "render/gl/sky.h"
 #include "render/gl/wind_gl.h"   // upload_wind, set by every caller of upload_tree that shows wind
 
 namespace sylva {
@@ -53,7 +53,7 @@ struct tree_gpu {
   bool user_bark = false, user_leaf = false;
   int user_texture_loads = 0;         // user texture files read so far (bark, leaf, opacity)
   int bark_shown = -1;                // the bark archetype shown; -1 none or the user's texture
-  // LOD levels' baked cluster cards (render/lod_cards.h): layers after the archetypes' in the leaf arrays.
+  // LOD levels' baked cluster cards (render/mesh/lod_cards.h): layers after the archetypes' in the leaf arrays.
   std::shared_ptr<const baked_card_textures> cards;
   const void* cards_shown = nullptr;
   // The uploaded tree.
@@ -62,7 +62,7 @@ struct tree_gpu {
   std::vector<float> radius_upload;   // reused scratch: (bend offset xyz, shown - built radius) per node
   int steps = 0, step = 0, node_count = 0;
   glm::vec3 bounds_min{-1, 0, -1}, bounds_max{1, 2, 1};
-  glm::vec3 crown_centre{0, 1, 0}, crown_radii{1};   // the leaves' ellipsoid (render/leaf_shading.h)
+  glm::vec3 crown_centre{0, 1, 0}, crown_radii{1};   // the leaves' ellipsoid (render/mesh/leaf_shading.h)
   bool has_tree = false;
   glm::vec3 root{0};                  // centre of the trunk's base ring, and its radius (ground contact)
   float root_radius = 0.1f;
@@ -86,7 +86,7 @@ struct renderer_gpu : tree_gpu {
   gl_framebuffer shadow_fbo, hdr_fbo, occlusion_fbo, rays_fbo, march_fbo, average_fbo, msaa_fbo;
   gl_renderbuffer msaa_color, msaa_depth;   // multisampled lit pass, resolved into hdr_color/hdr_depth
   int shadow_size = 0, width = 0, height = 0, samples = 0;
-  // The sky (render/sky.h), recomputed only when the parameters it depends on change.
+  // The sky (render/gl/sky.h), recomputed only when the parameters it depends on change.
   sky_model daylight;
   render_params sky_inputs;
   bool sky_valid = false;

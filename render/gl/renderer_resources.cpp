@@ -5,9 +5,9 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
-#include "render/lod_cards.h"
-#include "render/season.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -172,7 +172,7 @@ image scaled_to(const image& im, int size) {
   return out;
 }
 
-// The archetypes' layers, then the LOD levels' baked cluster cards (render/lod_cards.h), if any.
+// The archetypes' layers, then the LOD levels' baked cluster cards (render/mesh/lod_cards.h), if any.
 }  // namespace
 
 void upload_procedural_leaves(renderer_gpu& r) {

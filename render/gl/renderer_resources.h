@@ -3,7 +3,7 @@
 #pragma once
 
 #include "render/gl/renderer.h"
-#include "render/render_params.h"
+#include "render/mesh/render_params.h"
 
 namespace sylva {
 

@@ -1,15 +1,15 @@
 // The renderer's lifetime (programs, buffers, textures) and the tree upload (render/gl/renderer.h).
 #include "render/gl/renderer_resources.h"
-#include "render/leaf_shading.h"
+#include "render/mesh/leaf_shading.h"
 #include "render/gl/renderer.h"
 #include "render/gl/shaders.h"
 #include "render/gl/renderer_resources.h"
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
-#include "render/lod_cards.h"
-#include "render/season.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -100,7 +100,7 @@ bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.node_radius.id);
 
-  // Procedural textures (render/textures.h): the app needs no asset files. All archetype sets are
+  // Procedural textures (render/assets/textures.h): the app needs no asset files. All archetype sets are
   // made once per process, on two threads, and uploaded once per context (gl_shared).
   prepare_archetype_textures(512, 1, 2);
   upload_procedural_bark(r, bark_archetype::furrowed);

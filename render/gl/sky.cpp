@@ -1,5 +1,5 @@
 // Preetham et al. 1999 daylight: Perez sky distribution, zenith values and sun transmittance.
-#include "render/sky.h"
+#include "render/gl/sky.h"
 
 #include <algorithm>
 #include <cmath>

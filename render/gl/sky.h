@@ -5,7 +5,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "render/render_params.h"
+#include "render/mesh/render_params.h"
 
 namespace sylva {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "render/gl/renderer.h"
-#include "render/wind.h"
+#include "render/mesh/wind.h"
 
 namespace sylva {
 

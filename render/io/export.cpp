@@ -1,8 +1,8 @@
 // Exporters' front door: the format dispatch, the season pass, the skeleton JSON and the render
 // parameters an export takes (glTF in export_gltf.cpp, OBJ in export_obj.cpp, FBX in export_fbx.cpp).
-#include "render/export.h"
-#include "render/lod_cards.h"
-#include "render/export_wind.h"
+#include "render/io/export.h"
+#include "render/mesh/lod_cards.h"
+#include "render/io/export_wind.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -31,9 +31,9 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
-#include "render/preset.h"
-#include "render/textures.h"
-#include "render/export_internal.h"
+#include "render/io/preset.h"
+#include "render/assets/textures.h"
+#include "render/io/export_internal.h"
 
 namespace sylva {
 

@@ -10,13 +10,13 @@
 
 #include "generators/archetypes.h"
 #include "generators/tree_spec.h"
-#include "render/mesh.h"
-#include "render/render_params.h"
-#include "render/season.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/render_params.h"
+#include "render/mesh/season.h"
 
 namespace sylva {
 
-// Level of detail (render/lod.h): the lower levels written beside the main mesh (LOD0).
+// Level of detail (render/mesh/lod.h): the lower levels written beside the main mesh (LOD0).
 struct export_lod_level {
   const tree_mesh* mesh = nullptr;   // node ids of the exported skeleton, final tree
   float coverage = 0;                // screen coverage down to which this level is shown
@@ -54,8 +54,8 @@ struct export_options {
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
   float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
-  float leaf_normal_blend = 0.6f;       // leaf normals bent toward the crown (render/leaf_shading.h)
-  // The season (render/season.h): deciduous archetypes' materials take the middle of its colour
+  float leaf_normal_blend = 0.6f;       // leaf normals bent toward the crown (render/mesh/leaf_shading.h)
+  // The season (render/mesh/season.h): deciduous archetypes' materials take the middle of its colour
   // range, and its fallen leaves are left out. The default changes nothing (leaf_color is used).
   season_look season;
   // The user's PNGs instead of the procedural textures ("" = procedural). A user leaf texture
@@ -67,7 +67,7 @@ struct export_options {
   std::vector<export_lod_level> lods;
   float lod0_coverage = 0;
   const export_impostor* impostor = nullptr;   // glTF only: a textured quad node after the levels
-  // glTF and FBX: > 0 bakes the wind (render/export_wind.h) as a skin and a loop of this many seconds.
+  // glTF and FBX: > 0 bakes the wind (render/io/export_wind.h) as a skin and a loop of this many seconds.
   float wind_seconds = 0;
   wind_params wind;                     // from the preset's render section (apply_render_params)
 };
@@ -103,7 +103,7 @@ struct export_format {
   bool gltf;            // the glTF family: --animation, --instancing and --compact apply
   bool mesh;            // written from the mesh (the skeleton JSON needs none: nothing is meshed for it)
   // What the writer (or the renderer) holds on top of the mesh, per bark triangle and per leaf, for
-  // the mesh budget (render/mesh_bound.h): measured peaks (`/usr/bin/time -v sylva export`) on bark-
+  // the mesh budget (render/io/mesh_bound.h): measured peaks (`/usr/bin/time -v sylva export`) on bark-
   // and leaf-heavy trees, with room for vector slack (docs/DESIGN-NOTES.md "Mesh bound").
   float writer_triangle_bytes, writer_leaf_bytes;
 };

@@ -1,6 +1,6 @@
 // Compact exports through meshoptimizer: vertex-cache and vertex-fetch order for every exported
 // primitive, EXT_meshopt_compression of a glTF's buffer views, and JPEG for opaque textures.
-#include "render/export_internal.h"
+#include "render/io/export_internal.h"
 
 #include <algorithm>
 #include <cstring>

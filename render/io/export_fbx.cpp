@@ -1,7 +1,7 @@
 // FBX export through assimp (Debian's libassimp): the bark and leaf materials with their PNGs
 // beside the file, the LOD levels as "<tree>_LOD<k>" nodes (Unity's LODGroup convention), and the
 // wind skin's joints with the loop as an animation. One all-or-nothing write of every file.
-#include "render/export_internal.h"
+#include "render/io/export_internal.h"
 
 #include <cstring>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
 
-#include "render/export_wind.h"
+#include "render/io/export_wind.h"
 
 namespace sylva::export_internal {
 
@@ -128,7 +128,7 @@ struct fbx_builder {
     return int(meshes.size()) - 1;
   }
 
-  // The wind skin's weights (the glTF skin's, render/export_wind.h) as one bone per joint used.
+  // The wind skin's weights (the glTF skin's, render/io/export_wind.h) as one bone per joint used.
   void add_bones(aiMesh* m, const geometry& g) {
     const wind_skin& skin = wind->skin;
     std::vector<std::vector<aiVertexWeight>> per_joint(skin.joints.size());

@@ -1,9 +1,9 @@
 // glTF 2.0 export (.glb / .gltf + .bin + PNGs): the document, materials, nodes, LODs, animation.
-#include "render/export_internal.h"
+#include "render/io/export_internal.h"
 
-#include "render/export.h"
-#include "render/lod_cards.h"
-#include "render/export_wind.h"
+#include "render/io/export.h"
+#include "render/mesh/lod_cards.h"
+#include "render/io/export_wind.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -32,8 +32,8 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
-#include "render/preset.h"
-#include "render/textures.h"
+#include "render/io/preset.h"
+#include "render/assets/textures.h"
 
 namespace sylva::export_internal {
 namespace {

@@ -1,6 +1,6 @@
-// Internals shared by the exporters (render/export*.cpp): the per-tree parts with leaves baked
+// Internals shared by the exporters (render/io/export*.cpp): the per-tree parts with leaves baked
 // into cards, the step view, the all-or-nothing write, and the materials' textures. Not for use
-// outside render/export*.cpp; the public interface is render/export.h.
+// outside render/io/export*.cpp; the public interface is render/io/export.h.
 #pragma once
 
 #include <array>
@@ -15,10 +15,10 @@
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
-#include "render/export.h"
-#include "render/leaf_shading.h"
-#include "render/lod_cards.h"
-#include "render/textures.h"
+#include "render/io/export.h"
+#include "render/mesh/leaf_shading.h"
+#include "render/mesh/lod_cards.h"
+#include "render/assets/textures.h"
 
 namespace sylva::export_internal {
 
@@ -37,7 +37,7 @@ struct geometry {
 
 // Leaves go into one geometry per material slot: the archetype index, or slot 0 for everything
 // when the user's leaf texture replaces the archetypes; a LOD level's baked cluster cards
-// (render/lod_cards.h) take the slots after the archetypes'.
+// (render/mesh/lod_cards.h) take the slots after the archetypes'.
 constexpr int leaf_slots = leaf_archetype_count + max_baked_cards;
 
 struct tree_part {
@@ -71,7 +71,7 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material);
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
 // petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). A face per
-// side with two_sided (render/leaf_shading.h), the side looking out of the crown first; with a
+// side with two_sided (render/mesh/leaf_shading.h), the side looking out of the crown first; with a
 // crown, each side's normal is bent toward its outward direction by normal_blend.
 struct leaf_bake {
   const crown_ellipsoid* crown = nullptr;
@@ -92,7 +92,7 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t);
 // Splits a mesh into one part per plant (a forest's trees one each; a stool one); leaves alive
 // at `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which
 // case they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
-// normal_blend (render/leaf_shading.h).
+// normal_blend (render/mesh/leaf_shading.h).
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
                                    float normal_blend);
 
@@ -132,7 +132,7 @@ std::string load_user_image(const std::string& path, user_image& out);
 std::shared_ptr<const material_pngs> procedural_pngs(bool bark, int archetype, int size, uint64_t seed,
                                                      const glm::vec3& tint, std::string& error);
 
-// render/export_compact.cpp (meshoptimizer): vertex-cache and fetch order of one primitive (the
+// render/io/export_compact.cpp (meshoptimizer): vertex-cache and fetch order of one primitive (the
 // same triangles); a glTF's buffer views under EXT_meshopt_compression (returns the new binary
 // buffer, `j` gets the views' extensions and the two buffers); an opaque image as JPEG.
 void optimize_geometry(geometry& g);
@@ -143,7 +143,7 @@ bool jpeg_if_opaque(const std::string& png, std::string& jpeg);
 export_result export_gltf(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
                           const export_options& o, bool binary);
 
-// FBX through assimp (render/export_fbx.cpp): PNGs beside the file, --lods as "<tree>_LOD<k>"
+// FBX through assimp (render/io/export_fbx.cpp): PNGs beside the file, --lods as "<tree>_LOD<k>"
 // nodes, the wind skin and its loop with wind_seconds > 0.
 export_result export_fbx(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
                          const export_options& o);

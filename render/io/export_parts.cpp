@@ -1,10 +1,10 @@
 // Export parts: a tree split per forest member, leaves baked into cards, step views, and the
 // all-or-nothing write of an export's files.
-#include "render/export_internal.h"
+#include "render/io/export_internal.h"
 
-#include "render/export.h"
-#include "render/lod_cards.h"
-#include "render/export_wind.h"
+#include "render/io/export.h"
+#include "render/mesh/lod_cards.h"
+#include "render/io/export_wind.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -33,8 +33,8 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
-#include "render/preset.h"
-#include "render/textures.h"
+#include "render/io/preset.h"
+#include "render/assets/textures.h"
 
 namespace sylva::export_internal {
 
@@ -45,7 +45,7 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material) {
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
 // petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). Each side
-// is a face of its own (render/leaf_shading.h): the side that looks out of the crown first, then,
+// is a face of its own (render/mesh/leaf_shading.h): the side that looks out of the crown first, then,
 // with b.two_sided, the other a hair behind it; each normal is that side's, bent toward the
 // crown's outward direction by b.normal_blend.
 void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
@@ -130,7 +130,7 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t) {
   return out;
 }
 
-// Splits a mesh into one part per plant (render/export_internal.h); leaves alive at `step` are
+// Splits a mesh into one part per plant (render/io/export_internal.h); leaves alive at `step` are
 // baked into quads (one geometry per leaf slot) unless `bake` is false, in which case they are
 // left to the caller.
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,

@@ -1,5 +1,5 @@
-// The wind's glTF skin and looping animation (see render/export_wind.h).
-#include "render/export_wind.h"
+// The wind's glTF skin and looping animation (see render/io/export_wind.h).
+#include "render/io/export_wind.h"
 
 #include <algorithm>
 #include <cmath>

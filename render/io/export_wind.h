@@ -1,6 +1,6 @@
 // `sylva export … --wind SECONDS`: the wind baked into glTF as a skin (joints on the
 // trunk and the major branches, weights from the branch hierarchy) and a seamless looping animation.
-// Used by render/export.cpp; kept apart so that the exporter only carries small hooks.
+// Used by render/io/export.cpp; kept apart so that the exporter only carries small hooks.
 #pragma once
 
 #include <string>
@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generators/skeleton.h"
-#include "render/wind.h"
+#include "render/mesh/wind.h"
 
 namespace sylva {
 

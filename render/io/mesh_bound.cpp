@@ -1,10 +1,10 @@
 // The memory bound of one mesh_tree call (mesh_bound.h). Every count below follows mesh_tree
-// (render/mesh.cpp) step by step; where the mesher decides on geometry (the continuing child, the
+// (render/mesh/mesh.cpp) step by step; where the mesher decides on geometry (the continuing child, the
 // curve rings the detail budget keeps) the count takes the most it can decide.
-#include "render/mesh_bound.h"
+#include "render/io/mesh_bound.h"
 
 #include "generators/memory_bound.h"
-#include "render/export.h"
+#include "render/io/export.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // leaves the mesher can make from a skeleton (or, before growth, from a node count alone), and the
 // peak bytes that take with the mesher's own per-node work arrays. mesh_tree allocates its vertex
 // arrays once at the ring count it counts the same way, so the estimate is an upper bound with no
-// vector slack in it (tests/mesh_bound_test.cpp checks it against real meshes of every preset and
+// vector slack in it (tests/render/io/mesh_bound_test.cpp checks it against real meshes of every preset and
 // extreme settings). Over the mesh budget (mesh_params::mesh_budget, MB) nothing is meshed: the
 // CLI stops with mesh_budget_refusal's message, the editor asks (docs/DESIGN-NOTES.md "Mesh bound").
 #pragma once
@@ -12,7 +12,7 @@
 
 #include "generators/skeleton.h"
 #include "generators/tree_spec.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 namespace sylva {
 
@@ -25,7 +25,7 @@ struct mesh_estimate {
   double mesh_bytes = 0;   // the tree_mesh mesh_tree returns
   double peak_bytes = 0;   // mesh_tree's peak: the mesh, its per-node work arrays and the leaves being placed
   // What is made from the mesh next (an exporter's buffers, the renderer's upload), per bark
-  // triangle and per leaf (render/export.h's table): its bytes sit beside the mesh, not its work arrays.
+  // triangle and per leaf (render/io/export.h's table): its bytes sit beside the mesh, not its work arrays.
   double writer_triangle_bytes = 0, writer_leaf_bytes = 0;
   double writer_bytes() const { return triangles * writer_triangle_bytes + leaves * writer_leaf_bytes; }
   // The bound the budget holds: mesh_tree's peak, or the mesh with what is made from it.

@@ -1,6 +1,6 @@
 // Growth under the mesh budget (mesh_bound.h: grow_for_mesh).
 #include "generators/estimate.h"
-#include "render/mesh_bound.h"
+#include "render/io/mesh_bound.h"
 
 namespace sylva {
 

@@ -1,6 +1,6 @@
 // Preset JSON (DESIGN §6) driven by visit_params (`--set`: preset_set.cpp; file writes: file_io.cpp).
-#include "render/preset.h"
-#include "render/preset_detail.h"
+#include "render/io/preset.h"
+#include "render/io/preset_detail.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

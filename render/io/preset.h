@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "generators/tree_spec.h"
-#include "render/file_io.h"
-#include "render/mesh.h"
-#include "render/render_params.h"
+#include "render/files.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/render_params.h"
 
 namespace sylva {
 

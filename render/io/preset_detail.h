@@ -9,7 +9,7 @@
 #include <variant>
 #include <vector>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 namespace sylva::preset_detail {
 

@@ -1,7 +1,7 @@
-// `--set KEY=VALUE` and `--set KEY=a:b:n` sweeps on a preset (render/preset.h): strict text ->
+// `--set KEY=VALUE` and `--set KEY=a:b:n` sweeps on a preset (render/io/preset.h): strict text ->
 // value parsing, L-system #define constants and growth-phase keys.
-#include "render/preset.h"
-#include "render/preset_detail.h"
+#include "render/io/preset.h"
+#include "render/io/preset_detail.h"
 
 #include <algorithm>
 #include <charconv>

@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/job_pool.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 namespace sylva {
 namespace {

@@ -1,5 +1,5 @@
-// Leaves shaded as a volume (render/leaf_shading.h).
-#include "render/leaf_shading.h"
+// Leaves shaded as a volume (render/mesh/leaf_shading.h).
+#include "render/mesh/leaf_shading.h"
 
 #include <algorithm>
 #include <cmath>

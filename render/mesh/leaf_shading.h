@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 namespace sylva {
 

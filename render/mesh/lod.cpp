@@ -1,6 +1,6 @@
 // LOD1-LOD3 from the final tree: a tolerance-driven bark simplifier and a leaf-card merger,
 // each searched for the largest mesh within its share of the triangle budget.
-#include "render/lod.h"
+#include "render/mesh/lod.h"
 
 #include <algorithm>
 #include <array>
@@ -11,8 +11,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/lod_cards.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/assets/textures.h"
 #include "generators/vec_util.h"
 
 namespace sylva {
@@ -183,7 +183,7 @@ void emit_bark(const bark_input& b, const std::vector<kept_axis>& axes, const me
       m.node.push_back(node);
     }
     // Padding up to LOD0's ring stride with copies of the seam vertex, unindexed: exporters find a
-    // vertex's ring neighbours by that stride (render/export.cpp, tangents).
+    // vertex's ring neighbours by that stride (render/io/export.cpp, tangents).
     for (int k = seg + 1; k <= b.most_segments; ++k) {
       m.position.push_back(m.position[start]);
       m.normal.push_back(m.normal[start]);
@@ -367,7 +367,7 @@ std::vector<std::pair<size_t, size_t>> group_leaves(const leaf_input& in, size_t
 // One card per group: centred on the group's leaves, oriented as the member nearest that centre,
 // covering the leaves' opaque area (sum of sides^2 times each texture's alpha coverage, over the
 // card texture's) but no wider than 3x the group's spread, so the crown's outline stays.
-// The card texture is baked from the tree's own leaves (render/lod_cards.h): a few representative
+// The card texture is baked from the tree's own leaves (render/mesh/lod_cards.h): a few representative
 // groups of the level, at evenly spaced quantiles of their expected coverage, are rasterised onto
 // their cards' planes into `baked`, and every merged card takes the one whose expected coverage is
 // nearest its own; the card's area rule then uses that texture's own opaque share. Without room
@@ -437,7 +437,7 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
     // The card's opaque area matches its leaves' opaque area (each texture's alpha coverage), so a
     // sparse card texture standing for solid leaves grows to cover as many pixels. The cap, 3x
     // the group's spread, lets a tight whorl's card reach the disc its leaves sweep; 2x held oak
-    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/lod_render_test.cpp, docs/LOD.md).
+    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/gl/lod_render_test.cpp, docs/LOD.md).
     card.size = std::min(std::sqrt(p.opaque / share * area_gain), 3.0f * p.spread);
     card.position = p.centre - rotate(card.orientation, glm::vec3(0, 0.5f * card.size, 0));
   }
@@ -507,7 +507,7 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
 
   c.reduced = true;
   std::vector<kept_axis> axes;
-  // Merged cards get textures baked from the tree's own leaves (render/lod_cards.h), shared by the
+  // Merged cards get textures baked from the tree's own leaves (render/mesh/lod_cards.h), shared by the
   // three levels (every level's mesh points at the same set).
   auto baked = std::make_shared<baked_card_textures>();
   for (int k = 1; k < lod_levels; ++k) {

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <string>
 
-#include "render/lod_params.h"
+#include "render/mesh/lod_params.h"
 #include "generators/skeleton.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 namespace sylva {
 

@@ -1,5 +1,5 @@
 // Cluster cards baked from the tree's own leaves.
-#include "render/lod_cards.h"
+#include "render/mesh/lod_cards.h"
 
 #include <algorithm>
 #include <array>

@@ -10,15 +10,15 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "render/mesh.h"
-#include "render/textures.h"
+#include "render/mesh/mesh.h"
+#include "render/assets/textures.h"
 
 namespace sylva {
 
 // Edge in pixels of a baked card texture; the renderer scales it to its 512 px leaf layers.
 inline constexpr int card_texture_size = 128;
 // Cards per LOD level and in all: leaf_instance::texture = leaf_archetype_count + k stays below 32,
-// the width of the season's deciduous mask (render/season.h).
+// the width of the season's deciduous mask (render/mesh/season.h).
 inline constexpr int cards_per_level = 6;
 inline constexpr int max_baked_cards = 3 * cards_per_level;
 

@@ -1,4 +1,4 @@
-// Level-of-detail settings, plain data saved in presets under "render" (render/lod.h).
+// Level-of-detail settings, plain data saved in presets under "render" (render/mesh/lod.h).
 #pragma once
 
 #include "generators/params.h"

@@ -1,5 +1,5 @@
 // Skeleton -> generalized-cylinder bark (one ring per node) and leaf instances, sorted by birth step.
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 #include "generators/wood.h"
 
@@ -397,7 +397,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
 
   // Every ring the loop below can plan (a ring too close to the last is skipped): the plans are
   // allocated once, at no more than this, and the vertex arrays at exactly the planned rings, so
-  // the mesh bound (render/mesh_bound.h) holds with no vector slack.
+  // the mesh bound (render/io/mesh_bound.h) holds with no vector slack.
   {
     size_t rings = n + tips, inner = 0;
     for (size_t i = 0; i < n; ++i) {

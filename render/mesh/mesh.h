@@ -18,7 +18,7 @@ namespace sylva {
 
 struct mesh_params {
   int radial_segments = 8;      // vertices per ring
-  int mesh_budget = 4000;       // MB: a mesh whose bound (render/mesh_bound.h) is larger is not made
+  int mesh_budget = 4000;       // MB: a mesh whose bound (render/io/mesh_bound.h) is larger is not made
   float uv_repeat = 2.0f;       // bark texture repeats per metre along a branch
   float min_radius = 0.0005f;   // radii below this are raised to it (keeps thin twigs visible)
   // Bark shape: curved axes, gnarl, twist, collars, root flare, caps.
@@ -84,7 +84,7 @@ struct leaf_instance {
   uint8_t occlusion = 255; // sky visibility baked from the depth inside the crown (255: open sky)
 };
 
-struct baked_card_textures;   // render/lod_cards.h
+struct baked_card_textures;   // render/mesh/lod_cards.h
 
 struct tree_mesh {
   // Bark: rings of radial_segments+1 vertices (the seam is duplicated for UVs): one per node, a
@@ -107,7 +107,7 @@ struct tree_mesh {
   int steps = 0;
   int radial_segments = 0;           // ring stride is radial_segments + 1
   std::string message;               // for the status bar, e.g. the leaf cap was reached
-  // LOD levels only (render/lod_cards.h): cluster cards baked from the tree's own leaves; a leaf
+  // LOD levels only (render/mesh/lod_cards.h): cluster cards baked from the tree's own leaves; a leaf
   // with texture leaf_archetype_count + k uses card k. Null for LOD0.
   std::shared_ptr<const baked_card_textures> cards;
   size_t triangles() const { return index.size() / 3; }
@@ -129,7 +129,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed 
 // inside each clump of it, see less sky. The crown is the ellipsoid spanned by the leaves' box (d:
 // normalised depth, 0 at the centre, 1 on the surface and outside); the local sky s is the
 // Beer-Lambert transmittance through the leaf area density within about a sixth of the crown's
-// size, along nine upward directions (render/crown_occlusion.cpp). Visibility 0.35 + 0.65 sqrt(d) s:
+// size, along nine upward directions (render/mesh/crown_occlusion.cpp). Visibility 0.35 + 0.65 sqrt(d) s:
 // 1 under open sky. Fills m.occlusion and each leaf's occlusion; O(vertices + leaves + grid cells,
 // about 40 along the crown's longest side). mesh_tree calls it.
 void bake_crown_occlusion(tree_mesh& m);

@@ -5,7 +5,7 @@
 
 #include "generators/vec_util.h"
 #include "generators/wood.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 namespace sylva {
 

@@ -1,5 +1,5 @@
 // Growth-debug overlays on the CPU: kinds and step windows (overlay_geometry.h).
-#include "render/overlay_geometry.h"
+#include "render/mesh/overlay_geometry.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,5 +1,5 @@
 // Picking a branch under the mouse: ray against capsules, nearest hit.
-#include "render/pick.h"
+#include "render/mesh/pick.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 
 #include "generators/archetypes.h"
 #include "generators/params.h"
-#include "render/lod_params.h"
-#include "render/wind.h"
+#include "render/mesh/lod_params.h"
+#include "render/mesh/wind.h"
 
 namespace sylva {
 
@@ -22,7 +22,7 @@ inline constexpr const char* shadow_filter_names[] = {"3x3", "5x5", "poisson", n
 enum class light_shafts : int { off = 0, radial = 1, volumetric = 2 };
 inline constexpr const char* light_shafts_names[] = {"off", "radial", "volumetric", nullptr};
 
-// The season of the leaves (render/season.h turns it into colours, sizes and bare twigs).
+// The season of the leaves (render/mesh/season.h turns it into colours, sizes and bare twigs).
 // It never regrows: only the leaves' look and which of them are drawn or exported change.
 enum class leaf_season : int { spring = 0, summer = 1, autumn = 2, winter = 3 };
 inline constexpr const char* leaf_season_names[] = {"spring", "summer", "autumn", "winter", nullptr};
@@ -54,10 +54,10 @@ struct render_params {
   glm::vec3 ground_color{0.16f, 0.20f, 0.09f};
   // Leaves (seed 001 names opaque leaves its main flaw: light passes through these).
   float leaf_translucency = 0.6f;
-  float leaf_normal_blend = 0.6f;   // leaf normals bent toward the crown (render/leaf_shading.h)
+  float leaf_normal_blend = 0.6f;   // leaf normals bent toward the crown (render/mesh/leaf_shading.h)
   float alpha_cutoff = 0.5f;
   float leaf_color_variation = 0.15f;
-  // Season (render/season.h): the autumn colour runs from autumn_color to autumn_color_2 per leaf.
+  // Season (render/mesh/season.h): the autumn colour runs from autumn_color to autumn_color_2 per leaf.
   leaf_season season = leaf_season::summer;
   leaf_habit habit = leaf_habit::by_archetype;
   glm::vec3 autumn_color{0.62f, 0.36f, 0.04f};
@@ -87,8 +87,8 @@ struct render_params {
   std::string bark_texture;
   std::string leaf_texture;
   std::string leaf_opacity;
-  lod_params lod;                 // level of detail (render/lod.h): budgets, viewport choice, impostor
-  wind_params wind;   // sway in the viewport, baked by `sylva export --wind` (render/wind.h)
+  lod_params lod;                 // level of detail (render/mesh/lod.h): budgets, viewport choice, impostor
+  wind_params wind;   // sway in the viewport, baked by `sylva export --wind` (render/mesh/wind.h)
   bool operator==(const render_params&) const = default;
 };
 

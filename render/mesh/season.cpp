@@ -1,7 +1,7 @@
-// Season looks (render/season.h): colours, sizes and fallen leaves for spring, summer, autumn, winter.
-#include "render/season.h"
+// Season looks (render/mesh/season.h): colours, sizes and fallen leaves for spring, summer, autumn, winter.
+#include "render/mesh/season.h"
 
-#include "render/lod_cards.h"
+#include "render/mesh/lod_cards.h"
 
 #include <algorithm>
 

@@ -6,8 +6,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "render/mesh.h"
-#include "render/render_params.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/render_params.h"
 
 namespace sylva {
 
@@ -35,7 +35,7 @@ season_look season_leaf_look(const render_params& rp);
 // index in tree_mesh::leaves): `salt` 0 decides whether the leaf is on the tree, 1 its colour mix.
 float season_leaf_random(uint32_t leaf_index, uint32_t salt);
 
-// The look with the baked cluster cards of a LOD level (render/lod_cards.h) added to the deciduous
+// The look with the baked cluster cards of a LOD level (render/mesh/lod_cards.h) added to the deciduous
 // mask where the leaves a card was baked from are deciduous (`cards` may be null: no change). The
 // viewport's leaf shader and apply_season use the same rule, so a winter LOD drops its broadleaf
 // cards as LOD0 drops its leaves.

@@ -6,7 +6,7 @@
 // base, and a fast leaf flutter on top. Thinner branches are more flexible and sway faster: for a
 // cantilever beam of round section the first natural frequency grows with r / L^2 (Euler-Bernoulli),
 // so with similar lengths the frequency falls as the radius grows toward the trunk's.
-#include "render/wind.h"
+#include "render/mesh/wind.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // A/B comparison, the display-free part: duplicate, select, edit isolation, per-slot
-// undo history and saving either slot (app/editor_ab.h).
+// undo history and saving either slot (app/editor/editor_ab.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,8 +9,8 @@
 
 #include <unistd.h>
 
-#include "app/editor_ab.h"
-#include "render/preset.h"
+#include "app/editor/editor_ab.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 namespace {

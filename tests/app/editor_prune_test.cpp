@@ -2,10 +2,10 @@
 // point is drawn passes through that point, and a click there picks the branch drawn there.
 #include <gtest/gtest.h>
 
-#include "app/editor_prune.h"
+#include "app/editor/editor_prune.h"
 #include "generators/keyframes.h"
 #include "generators/space_colonization.h"
-#include "render/pick.h"
+#include "render/mesh/pick.h"
 
 using namespace sylva;
 

@@ -14,10 +14,11 @@
 
 #include <unistd.h>
 
-#include "app/editor_files.h"
+#include "app/editor/editor_files.h"
 #include "generators/tree_spec.h"
-#include "render/mesh_bound.h"
-#include "render/preset.h"
+#include "render/io/mesh_bound.h"
+#include "render/io/preset.h"
+#include "tests/fixtures.h"
 
 namespace {
 
@@ -37,10 +38,9 @@ std::filesystem::path test_dir(const std::string& name) {
 }
 
 // The bush without its leaves (llvmpipe draws its frames fast), saved in the tests' folder as
-// `file`; "" when it cannot be loaded or saved.
+// `file`; "" when it cannot be saved.
 std::string leafless_bush(const std::string& file) {
-  sylva::preset bush;
-  if (!sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok) return "";
+  sylva::preset bush = sylva_test::shipped_preset("self_organizing_seed001_bush");
   bush.mesh.leaves_enabled = false;
   const std::string path = test_dir(file).string();
   return sylva::save_preset_file(bush, path).empty() ? path : "";

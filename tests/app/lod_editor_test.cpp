@@ -1,4 +1,4 @@
-// The editor's level choice with the impostor (app/editor_lod.h): far away the renderer
+// The editor's level choice with the impostor (app/editor/editor_lod.h): far away the renderer
 // holds one camera-facing card showing the nearest atlas view, "Show LOD" 4 asks for it anywhere,
 // and near the tree LOD0 comes back.
 #include <gtest/gtest.h>
@@ -7,10 +7,10 @@
 #include <memory>
 #include <string>
 
-#include "app/editor_lod.h"
+#include "app/editor/editor_lod.h"
 #include "generators/tree_spec.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 

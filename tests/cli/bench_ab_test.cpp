@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "run_sylva.h"
+#include "tests/run_sylva.h"
 
 namespace {
 

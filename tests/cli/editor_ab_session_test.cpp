@@ -12,7 +12,7 @@
 #include <stb/stb_image.h>
 #include <unistd.h>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 namespace {
 

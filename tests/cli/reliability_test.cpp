@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;

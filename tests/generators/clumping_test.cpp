@@ -1,6 +1,6 @@
 // Foliage clumping (generators/leaf_clumps.h): clumping 0 is the even placement exactly;
 // with clumping the leaves gather in limb masses (a variance-of-counts statistic) and the crown
-// occlusion darkens each mass's inside (render/crown_occlusion.cpp).
+// occlusion darkens each mass's inside (render/mesh/crown_occlusion.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,8 +13,8 @@
 
 #include "generators/leaf_clumps.h"
 #include "generators/leaves.h"
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 

@@ -9,7 +9,7 @@
 
 #include "generators/estimate.h"
 #include "generators/pruning.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 

@@ -9,17 +9,18 @@
 #include "generators/lsystem_engine.h"
 #include "generators/self_organizing.h"
 #include "generators/tree_spec.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
+#include "tests/fixtures.h"
 
 using namespace sylva;
 
 namespace {
 
+// A seed preset, which must load without a warning.
 preset load(const std::string& name) {
-  preset p;
-  const load_result r = load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p);
-  EXPECT_TRUE(r.ok) << name << ": " << r.error;
-  EXPECT_TRUE(r.warnings.empty()) << name << ": " << (r.warnings.empty() ? "" : r.warnings.front());
+  std::vector<std::string> warnings;
+  preset p = sylva_test::shipped_preset(name, &warnings);
+  EXPECT_TRUE(warnings.empty()) << name << ": " << (warnings.empty() ? "" : warnings.front());
   return p;
 }
 

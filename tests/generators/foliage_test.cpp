@@ -8,7 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "generators/leaves.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 using namespace sylva;
 

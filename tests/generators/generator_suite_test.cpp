@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "generators/tree_spec.h"
-#include "tests/generator_specs.h"
+#include "tests/generators/generator_specs.h"
 
 namespace sylva {
 namespace {

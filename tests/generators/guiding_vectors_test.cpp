@@ -12,8 +12,8 @@
 
 #include "generators/guiding_vectors.h"
 #include "generators/tree_spec.h"
-#include "render/preset.h"
-#include "tests/generator_specs.h"
+#include "render/io/preset.h"
+#include "tests/generators/generator_specs.h"
 
 using namespace sylva;
 

@@ -11,8 +11,8 @@
 
 #include "generators/job_pool.h"
 #include "generators/self_organizing_grid.h"
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 

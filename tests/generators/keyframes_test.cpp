@@ -6,7 +6,7 @@
 #include <set>
 #include <string>
 
-#include "tests/generator_cases.h"
+#include "tests/generators/generator_cases.h"
 #include "generators/keyframes.h"
 #include "generators/tree_spec.h"
 #include "tests/tree_compare.h"

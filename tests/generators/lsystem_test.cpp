@@ -7,8 +7,8 @@
 
 #include "generators/lsystem_engine.h"
 #include "generators/tree_spec.h"
-#include "render/preset.h"
-#include "tests/generator_specs.h"
+#include "render/io/preset.h"
+#include "tests/generators/generator_specs.h"
 
 using namespace sylva;
 

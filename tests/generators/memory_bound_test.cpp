@@ -13,8 +13,8 @@
 #include "generators/guiding_vectors.h"
 #include "generators/memory_bound.h"
 #include "generators/self_organizing.h"
-#include "render/preset.h"
-#include "run_sylva.h"
+#include "render/io/preset.h"
+#include "tests/run_sylva.h"
 
 using namespace sylva;
 

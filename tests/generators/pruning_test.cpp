@@ -10,8 +10,8 @@
 
 #include <cstdio>
 
-#include "render/preset.h"
-#include "tests/generator_cases.h"
+#include "render/io/preset.h"
+#include "tests/generators/generator_cases.h"
 #include "generators/pruning.h"
 #include "generators/tree_spec.h"
 #include "tests/tree_compare.h"

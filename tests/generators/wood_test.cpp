@@ -9,8 +9,8 @@
 
 #include "generators/tree_spec.h"
 #include "generators/wood.h"
-#include "render/preset.h"
-#include "render/mesh.h"
+#include "render/io/preset.h"
+#include "render/mesh/mesh.h"
 
 using namespace sylva;
 

@@ -15,7 +15,7 @@
 
 #include "render/gl/renderer.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/sky.h"
+#include "render/gl/sky.h"
 
 using namespace sylva;
 using sylva_test::gl_context;

@@ -14,10 +14,10 @@
 
 #include "generators/lsystem.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/export.h"
-#include "render/export_wind.h"
-#include "render/preset.h"
-#include "render/wind.h"
+#include "render/io/export.h"
+#include "render/io/export_wind.h"
+#include "render/io/preset.h"
+#include "render/mesh/wind.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

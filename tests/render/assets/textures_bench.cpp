@@ -2,7 +2,7 @@
 // the two-core development machine, wall clock, two threads).
 #include <benchmark/benchmark.h>
 
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 using namespace sylva;
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "render/textures.h"
+#include "render/assets/textures.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;

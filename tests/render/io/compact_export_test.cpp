@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/scratch_dir.h"
-#include "render/export.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// The export format table (render/export.h): one row per format, read by export_tree's callers,
+// The export format table (render/io/export.h): one row per format, read by export_tree's callers,
 // the CLI's checks and messages and the editor's export dialog.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "generators/lsystem.h"
-#include "render/export.h"
+#include "render/io/export.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;

@@ -7,9 +7,9 @@
 
 #include <tiny_gltf.h>
 
-#include "render/export.h"
-#include "render/export_internal.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/export_internal.h"
+#include "render/io/preset.h"
 #include "tests/scratch_dir.h"
 
 using namespace sylva;

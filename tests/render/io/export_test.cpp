@@ -15,9 +15,9 @@
 
 #include "tests/scratch_dir.h"
 #include "generators/lsystem.h"
-#include "render/export.h"
-#include "render/textures.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/assets/textures.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -49,7 +49,7 @@ struct honda_tree {
 };
 
 // Vertices the bark's indices use: what an export keeps (a cap's apex ring has one spare vertex,
-// the seam copy of its apex, render/mesh.h).
+// the seam copy of its apex, render/mesh/mesh.h).
 size_t used_vertices(const tree_mesh& m) {
   std::vector<bool> used(m.position.size(), false);
   for (uint32_t i : m.index) used[i] = true;
@@ -180,7 +180,7 @@ TEST(Export, GlbReimportsWithMeshCounts) {
     names.insert(lm.name);
     EXPECT_EQ(lm.alphaMode, "MASK");
     EXPECT_FLOAT_EQ(float(lm.alphaCutoff), 0.3f);
-    EXPECT_FALSE(lm.doubleSided);   // each side is a face of its own (render/leaf_shading.h)
+    EXPECT_FALSE(lm.doubleSided);   // each side is a face of its own (render/mesh/leaf_shading.h)
     EXPECT_GE(lm.normalTexture.index, 0);
     // Each card shows the whole texture: UVs are the corners of the unit square.
     const tinygltf::Accessor& uv = model.accessors[lp.attributes.at("TEXCOORD_0")];

@@ -14,9 +14,9 @@
 #include <assimp/scene.h>
 
 #include "tests/scratch_dir.h"
-#include "render/export.h"
-#include "render/lod.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/mesh/lod.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

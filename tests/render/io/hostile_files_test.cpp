@@ -16,10 +16,10 @@
 #include <fstream>
 #include <map>
 
-#include "render/export.h"
-#include "render/file_io.h"
-#include "render/preset.h"
-#include "render/textures.h"
+#include "render/io/export.h"
+#include "render/files.h"
+#include "render/io/preset.h"
+#include "render/assets/textures.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;

@@ -10,7 +10,7 @@
 
 #include "tests/run_sylva.h"
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 using nlohmann::json;

@@ -11,12 +11,12 @@
 
 #include "tests/scratch_dir.h"
 #include "generators/tree_spec.h"
-#include "render/export.h"
-#include "render/preset.h"
-#include "render/lod.h"
-#include "render/season.h"
-#include "render/textures.h"
-#include "run_sylva.h"
+#include "render/io/export.h"
+#include "render/io/preset.h"
+#include "render/mesh/lod.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
+#include "tests/run_sylva.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -30,7 +30,7 @@ struct lod_scratch : sylva_test::scratch_dir {
 };
 
 // Triangles a level's files carry: the chain counts a leaf card as the viewport draws it (one
-// quad, culling off), an export writes a face per side (render/leaf_shading.h).
+// quad, culling off), an export writes a face per side (render/mesh/leaf_shading.h).
 size_t exported_triangles(const tree_mesh& m, size_t chain_triangles) {
   size_t cards = 0;
   for (const leaf_instance& l : m.leaves) cards += int(l.born) <= m.steps && m.steps < int(l.died);
@@ -120,7 +120,7 @@ TEST(LodExport, KhronosValidatorReportsNoErrorsOrWarnings) {
   lod_tree h;
   ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "lods.glb", h.o).error, "");
   ASSERT_EQ(export_tree(h.t, h.m, {"lsystem", 1}, dir / "lods.gltf", h.o).error, "");
-  // A tree whose levels merge leaves into baked cluster cards (render/lod_cards.h): their materials too.
+  // A tree whose levels merge leaves into baked cluster cards (render/mesh/lod_cards.h): their materials too.
   lod_tree palm("species_palm");
   ASSERT_NE(palm.c.level[2].cards, nullptr);
   ASSERT_EQ(export_tree(palm.t, palm.m, {"palm", 1}, dir / "palm.glb", palm.o).error, "");

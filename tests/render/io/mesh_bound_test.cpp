@@ -1,4 +1,4 @@
-// The mesh bound (render/mesh_bound.h): an upper bound of every mesh, not absurdly loose, and a
+// The mesh bound (render/io/mesh_bound.h): an upper bound of every mesh, not absurdly loose, and a
 // request over the mesh budget stops before meshing with a clear message, its peak memory under the
 // stated bound (growth bound + mesh budget); the skeleton JSON never meshes.
 #include <gtest/gtest.h>
@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "generators/memory_bound.h"
-#include "render/export.h"
-#include "render/mesh_bound.h"
-#include "render/preset.h"
-#include "scratch_dir.h"
+#include "render/io/export.h"
+#include "render/io/mesh_bound.h"
+#include "render/io/preset.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

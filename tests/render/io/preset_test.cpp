@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

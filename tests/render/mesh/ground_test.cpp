@@ -14,9 +14,9 @@
 #include "generators/guiding_vectors.h"
 #include "generators/leaves.h"
 #include "generators/tree_spec.h"
-#include "render/export.h"
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// Leaves shaded as a volume (render/leaf_shading.h): the crown's outward direction, the
+// Leaves shaded as a volume (render/mesh/leaf_shading.h): the crown's outward direction, the
 // bent normals, and the two-sided cards every export writes.
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <tiny_gltf.h>
 
 #include "generators/lsystem.h"
-#include "render/export.h"
-#include "render/leaf_shading.h"
+#include "render/io/export.h"
+#include "render/mesh/leaf_shading.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -63,7 +63,7 @@ TEST(LeafShading, BlendRunsFromTheCardToTheCrown) {
 }
 
 // Every baked card is two single-sided faces, each wound toward the side its normal lights; a face
-// that looks out of the crown is lit from outside (render/leaf_shading.h).
+// that looks out of the crown is lit from outside (render/mesh/leaf_shading.h).
 TEST(LeafShading, ExportedCardsHaveAFacePerSideLitFromTheirSide) {
   lsystem_params lp;
   lp.derivations = 6;

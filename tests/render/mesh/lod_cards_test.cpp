@@ -1,4 +1,4 @@
-// Cluster cards baked from the tree's own leaves (render/lod_cards.h): the raster keeps a
+// Cluster cards baked from the tree's own leaves (render/mesh/lod_cards.h): the raster keeps a
 // leaf's cut-out, the LOD levels share one set of baked textures, and the exports carry them.
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 
 #include "tests/scratch_dir.h"
 #include "generators/tree_spec.h"
-#include "render/export.h"
-#include "render/lod.h"
-#include "render/lod_cards.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/mesh/lod.h"
+#include "render/mesh/lod_cards.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

@@ -4,10 +4,10 @@
 #include <string>
 
 #include "generators/tree_spec.h"
-#include "render/preset.h"
-#include "render/lod.h"
-#include "render/lod_cards.h"
-#include "render/textures.h"
+#include "render/io/preset.h"
+#include "render/mesh/lod.h"
+#include "render/mesh/lod_cards.h"
+#include "render/assets/textures.h"
 
 using namespace sylva;
 
@@ -75,7 +75,7 @@ TEST(Lod, MergedCardsKeepTheOpaqueLeafArea) {
     for (size_t i = 0; i < size_t(im.width) * size_t(im.height); ++i) n += im.pixels[i * 4 + 3] >= 128;
     cover[a] = double(n) / double(size_t(im.width) * size_t(im.height));
   }
-  // A baked cluster card (render/lod_cards.h) counts its own texture's opaque share.
+  // A baked cluster card (render/mesh/lod_cards.h) counts its own texture's opaque share.
   const auto& baked = c.level[0].cards;
   ASSERT_NE(baked, nullptr);
   auto opaque = [&](const leaf_instance& l) {

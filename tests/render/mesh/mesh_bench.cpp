@@ -2,7 +2,7 @@
 #include <benchmark/benchmark.h>
 
 #include "generators/lsystem.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 using namespace sylva;
 
@@ -38,7 +38,7 @@ BENCHMARK(BM_MeshHondaF)->Unit(benchmark::kMillisecond);
 
 #include <filesystem>
 
-#include "render/export.h"
+#include "render/io/export.h"
 
 // Issue 8's goal: GLB export of a ~1,000,000-triangle tree under 1 s (tree a, 15 derivations,
 // 16 radial segments: 32767 internodes * 32 triangles + leaves), written to a temporary folder.

@@ -10,7 +10,7 @@
 
 #include "generators/lsystem.h"
 #include "generators/tree_spec.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 
 using namespace sylva;
 
@@ -276,7 +276,7 @@ TEST(Mesh, CrownOcclusionDarkensTheInsideOfTheCrownOnly) {
   ASSERT_FALSE(m.leaves.empty());
   ASSERT_EQ(m.occlusion.size(), m.position.size());
   // The trunk's base ring lies below the crown: nearly open sky (the lowest leaves are within the
-  // local sky's reach of it, render/crown_occlusion.cpp).
+  // local sky's reach of it, render/mesh/crown_occlusion.cpp).
   EXPECT_GT(m.occlusion[0], 0.95f);
   float lo = 1, hi = 0;
   for (float o : m.occlusion) {

@@ -2,7 +2,7 @@
 #include <benchmark/benchmark.h>
 
 #include "generators/lsystem.h"
-#include "render/pick.h"
+#include "render/mesh/pick.h"
 
 using namespace sylva;
 

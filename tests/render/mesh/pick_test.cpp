@@ -1,7 +1,7 @@
 // Picking a branch: the first bark tube a ray meets, among the nodes alive at a step.
 #include <gtest/gtest.h>
 
-#include "render/pick.h"
+#include "render/mesh/pick.h"
 
 using namespace sylva;
 

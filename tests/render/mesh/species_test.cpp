@@ -10,9 +10,9 @@
 #include <glm/geometric.hpp>
 
 #include "generators/tree_spec.h"
-#include "render/mesh.h"
-#include "render/preset.h"
-#include "render/season.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
+#include "render/mesh/season.h"
 
 using namespace sylva;
 

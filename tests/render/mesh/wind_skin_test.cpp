@@ -13,19 +13,15 @@
 #include <glm/mat4x4.hpp>
 
 #include "generators/tree_spec.h"
-#include "render/preset.h"
-#include "render/wind.h"
+#include "render/io/preset.h"
+#include "render/mesh/wind.h"
+#include "tests/fixtures.h"
 
 using namespace sylva;
 
 namespace {
 
-tree_skeleton grown(const char* name) {
-  preset p;
-  const load_result r = load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p);
-  EXPECT_TRUE(r.ok) << r.error;
-  return grow(p.spec, grow_options{});
-}
+tree_skeleton grown(const char* name) { return grow(sylva_test::shipped_preset(name).spec, grow_options{}); }
 
 // Every node's skinned position at time t.
 std::vector<glm::vec3> skinned(const tree_skeleton& t, const wind_skin& s, const wind_motion& m, float time) {

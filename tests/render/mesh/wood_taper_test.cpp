@@ -14,9 +14,10 @@
 #include "generators/skeleton.h"
 #include "generators/space_colonization.h"
 #include "generators/tree_spec.h"
-#include "render/export.h"
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
+#include "tests/fixtures.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -30,12 +31,7 @@ const char* const species[] = {"oak",    "maple",  "beech", "birch",   "ash",  "
 // an axis with no lateral keeps one radius (their owners may turn pipe_taper on).
 const char* const tapered[] = {"oak", "pine", "spruce", "fir", "cedar", "cypress", "willow", "palm"};
 
-preset load(const std::string& name) {
-  preset p;
-  const load_result r = load_preset_file(std::string(SYLVA_SOURCE_DIR "/presets/species_") + name + ".json", p);
-  EXPECT_TRUE(r.ok) << name << ": " << r.error;
-  return p;
-}
+preset load(const std::string& name) { return sylva_test::shipped_preset("species_" + name); }
 
 // The child continuing each node's axis: the same order first, then the widest (the mesher's rule
 // picks the same order first, then the most aligned; for the radii the widest is the stricter).
