@@ -66,6 +66,14 @@ run_result run_script(const std::string& name, const std::string& script, const 
   return r;
 }
 
+// Runs the script and expects it to pass (exit 0, no FAIL line); returns the run for more checks.
+run_result run_passing(const std::string& name, const std::string& script, const std::string& preset) {
+  run_result r = run_script(name, script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  return r;
+}
+
 }  // namespace
 
 TEST(EditorSession, EditUndoQuitPromptBudgetPromptAndCancel) {
@@ -184,9 +192,7 @@ expect_param points=10000
 expect_modified 0
 )";
   script.replace(script.find("LONG"), 4, long_growth);
-  run_result r = run_script("cancel", script, start);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("cancel", script, start);
   EXPECT_NE(r.output.find("ok expect_state cancelled"), std::string::npos) << r.output;
 }
 
@@ -214,9 +220,7 @@ TEST(EditorSession, MeshOverItsBudgetAsksAndKeepsTheTree) {
                              "expect_same_tree\nexpect_state cancelled\nset radial_segments=32\nexpect_prompt Large mesh\n"
                              "answer Use " + n + " radial segments\nframes 2\nwait_tree\nexpect_no_prompt\n"
                              "expect_param radial_segments=" + n + "\nexpect_state done\n";
-  run_result r = run_script("mesh_budget", script, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("mesh_budget", script, preset);
   EXPECT_NE(r.output.find("ok expect_param radial_segments=" + n), std::string::npos) << r.output;
 }
 
@@ -368,9 +372,7 @@ expect_window library 1
   std::string with_paths = script;
   const std::string exported = (test_dir("newcomer") / "home" / "exported.json").string();
   for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
-  run_result r = run_script("newcomer", with_paths, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("newcomer", with_paths, preset);
   EXPECT_NE(r.output.find("ok expect_export_path /proc/x.glb"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok expect_window library 1"), std::string::npos) << r.output;
 }
@@ -399,9 +401,7 @@ answer Drop B
 frames 2
 expect_has_b 0
 )";
-  run_result r = run_script("dropb", script, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("dropb", script, preset);
   EXPECT_NE(r.output.find("ok answer Keep B"), std::string::npos) << r.output;
 }
 
@@ -429,9 +429,7 @@ frames 4
 expect_texture_loads 1
 expect_param leaf_texture=/no/such/leaf.png
 )";
-  run_result r = run_script("texture_path", script, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_passing("texture_path", script, preset);
 }
 
 // Slot B draws with slot A's programs (one GL context, one set): duplicating compiles none.
@@ -446,7 +444,5 @@ frames 4
 expect_has_b 1
 expect_new_programs 0
 )";
-  run_result r = run_script("programs", script, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_passing("programs", script, preset);
 }
