@@ -13,7 +13,7 @@
 
 #include "generators/timing.h"
 #include "render/gl/renderer.h"
-#include "render/mesh_bound.h"
+#include "render/io/mesh_bound.h"
 
 namespace sylva {
 

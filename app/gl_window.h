@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 struct GLFWwindow;
 

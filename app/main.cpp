@@ -5,8 +5,8 @@
 #include <new>
 #include <string>
 
-#include "app/cli.h"
-#include "app/editor.h"
+#include "app/cli/cli.h"
+#include "app/editor/editor.h"
 
 int main(int argc, char** argv) {
   // Regrowing on every slider move allocates and frees the same large arrays again and again; keep

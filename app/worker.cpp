@@ -10,7 +10,7 @@
 #include "generators/memory_bound.h"
 #include "generators/resume.h"
 #include "generators/timing.h"
-#include "render/mesh_bound.h"
+#include "render/io/mesh_bound.h"
 
 namespace sylva {
 
@@ -170,7 +170,7 @@ void run_worker(worker_state& w) {
             w.busy = false;
             continue;
           }
-          // The tree and its mesh as the trial foresees them (render/mesh_bound.h). An estimate is
+          // The tree and its mesh as the trial foresees them (render/io/mesh_bound.h). An estimate is
           // no bound (a growth may stop sooner at another cap), so a mesh estimated over the mesh
           // budget asks as a tree over the node budget does; grown anyway, the skeleton's own
           // mesh bound decides before meshing.
@@ -282,6 +282,71 @@ std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_ge
   std::lock_guard<std::mutex> lock(w.mutex);
   if (w.published && w.published->generation != seen_generation) return w.published;
   return nullptr;
+}
+
+// ---------------------------------------------------------------- LOD chains
+
+namespace {
+
+void run_lod_worker(lod_worker& w) {
+  for (;;) {
+    lod_request req;
+    {
+      std::unique_lock<std::mutex> lock(w.mutex);
+      w.wake.wait(lock, [&] { return w.quit || w.pending.has_value(); });
+      if (w.quit) return;
+      req = std::move(*w.pending);
+      w.pending.reset();
+    }
+    auto r = std::make_shared<lod_result>();
+    r->id = req.id;
+    const auto t0 = std::chrono::steady_clock::now();
+    r->chain = std::make_shared<const lod_chain>(build_lods(*req.skeleton, *req.mesh, req.mesh_settings, req.params));
+    r->build_ms = ms_since(t0);
+    {
+      std::lock_guard<std::mutex> lock(w.mutex);
+      w.published = std::move(r);
+    }
+    w.built.notify_all();
+  }
+}
+
+}  // namespace
+
+lod_worker::~lod_worker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    quit = true;
+  }
+  wake.notify_all();
+  if (thread.joinable()) thread.join();
+}
+
+uint32_t post_lod_request(lod_worker& w, std::shared_ptr<const tree_skeleton> t, std::shared_ptr<const tree_mesh> m,
+                          const mesh_params& mp, const lod_params& p) {
+  uint32_t id;
+  {
+    std::lock_guard<std::mutex> lock(w.mutex);
+    id = ++w.posted;
+    w.pending = lod_request{id, std::move(t), std::move(m), mp, p};
+    if (!w.thread.joinable()) w.thread = std::thread(run_lod_worker, std::ref(w));
+  }
+  w.wake.notify_one();
+  return id;
+}
+
+std::shared_ptr<const lod_result> take_lod_result(lod_worker& w) {
+  std::lock_guard<std::mutex> lock(w.mutex);
+  if (!w.published) return nullptr;
+  std::shared_ptr<const lod_result> r = std::move(w.published);
+  w.published.reset();
+  return r->id == w.posted ? r : nullptr;   // an older request's chain is dropped
+}
+
+bool wait_lod_result(lod_worker& w, uint32_t id, double timeout_ms) {
+  std::unique_lock<std::mutex> lock(w.mutex);
+  return w.built.wait_for(lock, std::chrono::duration<double, std::milli>(timeout_ms),
+                          [&] { return w.published && w.published->id == id; });
 }
 
 }  // namespace sylva

@@ -11,8 +11,9 @@
 
 #include "generators/estimate.h"
 #include "generators/tree_spec.h"
-#include "render/mesh.h"
-#include "render/overlay_geometry.h"
+#include "render/mesh/lod.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/overlay_geometry.h"
 
 namespace sylva {
 
@@ -36,7 +37,7 @@ struct grow_result {
   double estimated_nodes = 0, estimated_seconds = 0, estimated_bytes = 0;
   std::string estimate_note;   // how later keyframes and cuts were counted (growth_estimate::note)
   std::string mesh_over_budget; // "": the estimated mesh fits its budget; else why it would not be meshed
-  // Over the mesh budget (render/mesh_bound.h): not meshed. A failure (report.error, the refusal as
+  // Over the mesh budget (render/io/mesh_bound.h): not meshed. A failure (report.error, the refusal as
   // its message) that keeps the previous tree; the editor offers the settings that fit.
   bool over_mesh_budget = false;
   double mesh_bound_bytes = 0;   // the mesh's bound (estimated from the trial when refused before growth)
@@ -86,5 +87,46 @@ uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params&
 uint32_t cancel_growth(worker_state& w);
 // The newest published result if it is newer than `seen_generation`, else nullptr. Never blocks on work.
 std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation);
+
+// ---- The LOD chain of a shown tree (render/mesh/lod.h build_lods: about half a second for a forest),
+// built off the UI thread so that no frame waits for it. The newest request wins: a build in
+// progress finishes, but only the newest request's chain is handed out.
+struct lod_request {
+  uint32_t id = 0;
+  std::shared_ptr<const tree_skeleton> skeleton;
+  std::shared_ptr<const tree_mesh> mesh;   // LOD0, which the chain reduces
+  mesh_params mesh_settings;
+  lod_params params;
+};
+
+struct lod_result {
+  uint32_t id = 0;
+  std::shared_ptr<const lod_chain> chain;
+  double build_ms = 0;
+};
+
+// One thread, started by the first request and stopped (after the build in progress) with the
+// worker.
+struct lod_worker {
+  std::thread thread;
+  std::mutex mutex;
+  std::condition_variable wake, built;
+  std::optional<lod_request> pending;
+  std::shared_ptr<const lod_result> published;
+  uint32_t posted = 0;   // the newest request's id
+  bool quit = false;
+  lod_worker() = default;
+  lod_worker(const lod_worker&) = delete;
+  lod_worker& operator=(const lod_worker&) = delete;
+  ~lod_worker();
+};
+
+// Asks for the chain of mesh `m` (of skeleton `t`); returns the request's id. Never blocks on a build.
+uint32_t post_lod_request(lod_worker& w, std::shared_ptr<const tree_skeleton> t, std::shared_ptr<const tree_mesh> m,
+                          const mesh_params& mp, const lod_params& p);
+// The newest request's chain once it is built (handed out once), else nullptr. Never blocks on a build.
+std::shared_ptr<const lod_result> take_lod_result(lod_worker& w);
+// Waits up to `timeout_ms` until request `id`'s chain is built, without taking it (tests).
+bool wait_lod_result(lod_worker& w, uint32_t id, double timeout_ms);
 
 }  // namespace sylva

@@ -4,7 +4,7 @@
 //
 // One list each (the X-macros below) makes the enum, the count and the option names, so they
 // cannot disagree; every other per-archetype table (the drawing functions and looks in
-// render/archetype_textures.cpp, the contact sheet's tints and labels in app/cli_textures.cpp) is
+// render/assets/archetype_textures.cpp, the contact sheet's tints and labels in app/cli/cli_textures.cpp) is
 // an unsized array with a static_assert on its length, so a forgotten entry fails to compile.
 // Append new archetypes at the end: presets store names, but old files and tests store indices.
 #pragma once

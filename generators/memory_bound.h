@@ -8,7 +8,7 @@
 // per_node and per_point are the generators' worst cases from their data structures, vector slack
 // included (a vector that doubles holds up to 3× its data while it moves), and checked against
 // `sylva bench`'s peak RSS on the big workloads in bench/ and on extreme parameters
-// (tests/memory_bound_test.cpp, docs/DESIGN-NOTES.md "Memory bound").
+// (tests/generators/memory_bound_test.cpp, docs/DESIGN-NOTES.md "Memory bound").
 #pragma once
 
 #include <string>

@@ -44,7 +44,7 @@ struct param_info {
 };
 
 // The declared class of a parameter (param_regrow when it declares none, which the parameter walk
-// in tests/param_class_test.cpp refuses).
+// in tests/app/param_class_test.cpp refuses).
 inline param_class class_of(const param_info& info) {
   if (info.flags & param_render) return param_class::render;
   if (info.flags & param_remesh) return param_class::remesh;

@@ -107,7 +107,7 @@ std::string check_cuts(const tree_spec& spec) {
 
 std::string add_cut(tree_spec& spec, const prune_cut& cut) {
   if (std::string e = check_cut(spec, cut); !e.empty()) return e;
-  // A branch cut has a reach and a brush a size; the other field is not saved (render/preset.cpp),
+  // A branch cut has a reach and a brush a size; the other field is not saved (render/io/preset.cpp),
   // so the document keeps it at its default and saves and reopens exactly as it is.
   prune_cut c = cut;
   if (c.shape == prune_shape::branch) c.size = prune_cut{}.size;

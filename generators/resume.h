@@ -1,6 +1,6 @@
 // Resuming a regrow: when only keyframes from step k on changed, a generator that keeps
 // its state at the top of every step can start at step k from the state it recorded there, instead
-// of growing steps 1..k-1 again. The result is the full regrow's, bit for bit (tests/resume_test.cpp).
+// of growing steps 1..k-1 again. The result is the full regrow's, bit for bit (tests/app/resume_test.cpp).
 //
 // Honda's L-system keeps such state (its apices, the tree so far, its working params), and so does
 // the self-organizing generator (the tree, its RNG, working params, shadow grid or markers, and its

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs `sylva export` against hostile outputs and inputs under /usr/bin/time -v and prints, per
 # case, the exit code, the peak resident memory and the first line of the message, and whether the
-# files already in the scratch folder are byte for byte as they were (tests/hostile_files_test.cpp
+# files already in the scratch folder are byte for byte as they were (tests/render/io/hostile_files_test.cpp
 # checks the same cases; this prints the figures).
 # Usage: scripts/hostile-files.sh [BUILD_DIR]
 set -uo pipefail

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "app/editor_keyframes.h"
+#include "app/editor/editor_keyframes.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 namespace sylva_test {
 

@@ -56,7 +56,14 @@ void delete_gl(gl_framebuffer& f) { if (f.id) glDeleteFramebuffers(1, &f.id); f.
 void delete_gl(gl_renderbuffer& b) { if (b.id) glDeleteRenderbuffers(1, &b.id); b.id = 0; }
 void delete_gl(gl_program& p) { if (p.id) glDeleteProgram(p.id); p.id = 0; }
 
+namespace {
+std::atomic<int> g_programs{0};
+}  // namespace
+
+int gl_programs_compiled() { return g_programs.load(); }
+
 gl_program compile_program(const char* name, const char* vertex_src, const char* fragment_src) {
+  ++g_programs;
   gl_program p;
   std::string log;
   GLuint vs = compile_stage(name, GL_VERTEX_SHADER, vertex_src, log);

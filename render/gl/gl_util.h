@@ -9,7 +9,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 namespace sylva {
 
@@ -34,6 +34,8 @@ void delete_gl(gl_program& p);
 // Compiles and links; on failure logs "<name>: <driver log>" to stderr and to gl_last_message(),
 // and returns a program marked failed (id 0).
 gl_program compile_program(const char* name, const char* vertex_src, const char* fragment_src);
+// Programs compile_program has been asked for so far in this process (the startup count).
+int gl_programs_compiled();
 
 // Counts GL errors: a KHR_debug callback where the driver has one, plus glGetError polls.
 void install_gl_debug_output();
@@ -55,7 +57,7 @@ void set_uniform(const gl_program& p, const char* name, const glm::mat4& v);
 std::string create_color_target(int width, int height, gl_texture& color, gl_framebuffer& fbo);
 
 // Reads a rectangle of the bound read framebuffer as RGBA8 with rows top to bottom, as images and
-// PNG files (render/textures.h, the one PNG path) have them; GL's rows run bottom to top.
+// PNG files (render/assets/textures.h, the one PNG path) have them; GL's rows run bottom to top.
 image read_back_rgba(int x, int y, int width, int height);
 
 }  // namespace sylva

@@ -12,7 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "generators/timing.h"
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 namespace sylva {
 
@@ -32,7 +32,7 @@ in vec3 v_normal; in vec2 v_uv;
 uniform sampler2D u_bark; uniform vec3 u_tint;
 layout(location = 0) out vec4 o_color; layout(location = 1) out vec4 o_normal;
 void main() {
-  // The viewport's tint (render/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
+  // The viewport's tint (render/assets/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
   vec3 albedo = min(vec3(1.0), u_tint * texture(u_bark, v_uv).rgb);
   o_color = vec4(pow(albedo, vec3(1.0 / 2.2)), 1.0);
   o_normal = vec4(normalize(v_normal) * 0.5 + 0.5, 1.0);
@@ -75,7 +75,8 @@ void main() {
 namespace {
 
 void free_build(impostor_build& b) {
-  delete_gl(b.bark), delete_gl(b.leaf), delete_gl(b.color), delete_gl(b.normal), delete_gl(b.depth), delete_gl(b.fbo);
+  b.bark = b.leaf = {};   // the context's programs (gl_shared), not the build's
+  delete_gl(b.color), delete_gl(b.normal), delete_gl(b.depth), delete_gl(b.fbo);
   for (gl_vertex_array* v : {&b.bark_vao, &b.leaf_vao}) delete_gl(*v);
   for (gl_buffer* u : {&b.position, &b.normal_buf, &b.uv, &b.index, &b.corner, &b.instances}) delete_gl(*u);
 }
@@ -137,8 +138,12 @@ std::string impostor_begin(impostor_build& b, renderer_gpu& r, const render_para
   if (!r.ok) return fail("renderer not initialised");
   const bool has_tree = m ? !m->index.empty() || !m->leaves.empty() : r.has_tree;
   if (!has_tree) return fail("no tree to render");
-  b.bark = compile_program("impostor bark", bark_vs, bark_fs);
-  b.leaf = compile_program("impostor leaf", leaf_vs, leaf_fs);
+  // The atlas's programs: compiled by the context's first atlas, kept with its other programs.
+  gl_shared& s = *r.shared;
+  if (!s.impostor_bark.id) s.impostor_bark = compile_program("impostor bark", bark_vs, bark_fs);
+  if (!s.impostor_leaf.id) s.impostor_leaf = compile_program("impostor leaf", leaf_vs, leaf_fs);
+  b.bark = s.impostor_bark;
+  b.leaf = s.impostor_leaf;
   if (b.bark.failed || b.leaf.failed) return fail("impostor shaders: " + gl_last_message());
   for (gl_texture* t : {&b.color, &b.normal}) {
     glGenTextures(1, &t->id);

@@ -9,7 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/gl/renderer.h"
-#include "render/lod_cards.h"
+#include "render/mesh/lod_cards.h"
 
 namespace sylva {
 
@@ -42,7 +42,8 @@ struct impostor_build {
   impostor_atlas atlas;            // size and framing from begin; pixels (or the error) once complete
   render_params rp;                // tints and cut-off the views are drawn with
   double ms = 0, worst_step_ms = 0;   // all steps so far, and the longest one (begin counts as one)
-  // GL objects, freed when the atlas is read back or the build is cancelled.
+  // GL objects, freed when the atlas is read back or the build is cancelled (the programs are the
+  // context's: render/gl/gl_shared.h).
   gl_program bark, leaf;
   gl_texture color, normal;
   gl_renderbuffer depth;

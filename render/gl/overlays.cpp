@@ -34,8 +34,10 @@ void main() { o_color = vec4(v_color, 1.0); }
 
 }  // namespace
 
-bool init_overlays(overlay_gpu& g) {
-  g.program = compile_program("overlays", overlay_vs, overlay_fs);
+gl_program compile_overlay_program() { return compile_program("overlays", overlay_vs, overlay_fs); }
+
+bool init_overlays(overlay_gpu& g, const gl_program& program) {
+  g.program = program;
   glGenVertexArrays(1, &g.vao.id);
   glGenBuffers(1, &g.vertices.id);
   glBindVertexArray(g.vao.id);
@@ -54,7 +56,7 @@ bool init_overlays(overlay_gpu& g) {
 }
 
 void destroy_overlays(overlay_gpu& g) {
-  delete_gl(g.program);
+  g.program = {};
   delete_gl(g.vao);
   delete_gl(g.vertices);
   g.line_vertices = g.point_vertices = 0;

@@ -1,4 +1,4 @@
-// Growth-debug overlays on the GPU: the geometry built on the worker (render/overlay_geometry.h),
+// Growth-debug overlays on the GPU: the geometry built on the worker (render/mesh/overlay_geometry.h),
 // uploaded when first shown, each kind with a View toggle, filtered by the timeline step on the GPU.
 #pragma once
 
@@ -8,13 +8,13 @@
 #include <glm/mat4x4.hpp>
 
 #include "render/gl/gl_util.h"
-#include "render/overlay_geometry.h"
+#include "render/mesh/overlay_geometry.h"
 
 namespace sylva {
 
 // GL side: one program, one buffer, two draws. Main thread only.
 struct overlay_gpu : overlay_ranges {   // the ranges of the geometry set last
-  gl_program program;
+  gl_program program;   // the context's (render/gl/gl_shared.h), not this tree's to free
   gl_vertex_array vao;
   gl_buffer vertices;
   int line_vertices = 0, point_vertices = 0;
@@ -22,8 +22,11 @@ struct overlay_gpu : overlay_ranges {   // the ranges of the geometry set last
   bool stale = false;
 };
 
-bool init_overlays(overlay_gpu& g);
-void destroy_overlays(overlay_gpu& g);
+// The overlays' program, compiled once per GL context (render/gl/gl_shared.h).
+gl_program compile_overlay_program();
+// A tree's overlay buffers, drawn with `program` (compile_overlay_program's).
+bool init_overlays(overlay_gpu& g, const gl_program& program);
+void destroy_overlays(overlay_gpu& g);   // the buffers; the program stays with its context
 // Takes a tree's overlays without touching GL (null: none); the upload waits for sync_overlays,
 // so that hidden overlays cost nothing per tree.
 void set_overlays(overlay_gpu& g, std::shared_ptr<const overlay_geometry> geo);

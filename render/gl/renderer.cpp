@@ -5,9 +5,9 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
-#include "render/lod_cards.h"
-#include "render/season.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,7 +47,7 @@ glm::mat4 light_viewproj(const renderer_gpu& r, const glm::vec3& sun, float* tex
 void set_lighting(const renderer_gpu& r, const gl_program& p, const render_params& rp, const glm::vec3& sun,
                   const glm::mat4& light, float texel_world) {
   set_uniform(p, "u_sun_dir", sun);
-  // The sun's colour and the sky light come from the sky model (render/sky.h); the sun dims as it sets.
+  // The sun's colour and the sky light come from the sky model (render/gl/sky.h); the sun dims as it sets.
   set_uniform(p, "u_sun_light", r.daylight.sun_light);
   static const char* const sh_names[4] = {"u_sh[0]", "u_sh[1]", "u_sh[2]", "u_sh[3]"};
   for (int k = 0; k < 4; ++k) set_uniform(p, sh_names[k], r.daylight.sh[k]);
@@ -126,7 +126,7 @@ uint32_t leaf_count(const renderer_gpu& r) {
 }
 
 // All leaf textures live in one array texture, so every leaf is drawn in a single instanced call.
-// The season's leaf colours, fallen share and size (render/season.h), for the leaf vertex shader.
+// The season's leaf colours, fallen share and size (render/mesh/season.h), for the leaf vertex shader.
 void set_season_uniforms(const gl_program& p, const season_look& s) {
   set_uniform(p, "u_leaf_color", s.evergreen_color);
   set_uniform(p, "u_autumn_a", s.deciduous_color_a);
@@ -170,6 +170,7 @@ struct frame_setup {
   season_look season;
   float sky_distance = 0, fog_density = 0, haze = 0, fog_height = 1;
   int width = 0, height = 0, hw = 1, hh = 1;   // the frame, and the shafts' half resolution
+  wind_frame wind;                              // the sway of this frame, for every program that sways
   mutable pass_clock clock;
 };
 
@@ -184,13 +185,12 @@ frame_setup setup_frame(renderer_gpu& r, const render_params& rp, const orbit_ca
   f.ground_extent = std::max(30.0f, f.scene * 10.0f);
   const float near_plane = std::max(cam.distance * 0.01f, 0.005f);
   f.far_plane = cam.distance + f.ground_extent * 3.0f;
-  const glm::mat4 proj = glm::perspective(glm::radians(cam.fov), float(width) / float(height), near_plane, f.far_plane);
-  const glm::mat4 view = glm::lookAt(f.eye, cam.target, glm::vec3(0, 1, 0));
-  f.viewproj = proj * view;
+  f.viewproj = camera_projection(cam, float(width) / float(height), near_plane, f.far_plane) * camera_view(cam);
   f.inv_viewproj = glm::inverse(f.viewproj);
-  r.wind_reach = wind_reach(r, rp);
+  f.wind = wind_frame_of(r, rp);
+  r.wind_reach = wind_reach(r, f.wind);
   f.light = light_viewproj(r, f.sun, &f.texel_world);
-  f.lit_ok = !r.bark.failed && !r.leaf.failed;
+  f.lit_ok = !r.shared->bark.failed && !r.shared->leaf.failed;
   f.season = with_card_seasons(season_leaf_look(rp), r.cards.get());   // baked cards fall with their leaves
   // Rays that meet no surface cross fog only to a little past the tree: the sky model already holds
   // the atmosphere beyond.
@@ -211,13 +211,13 @@ struct shaft_choice {
 shaft_choice choose_shafts(const renderer_gpu& r, const render_params& rp, const orbit_camera& cam, const frame_setup& f) {
   shaft_choice sh;
   sh.sun_clip = f.viewproj * glm::vec4(f.eye + f.sun * f.far_plane * 0.5f, 1.0f);
-  const glm::vec3 fwd = glm::normalize(cam.target - f.eye);
+  const glm::vec3 fwd = camera_basis_of(cam).forward;
   // Rays fade out as the sun leaves the view or goes behind the camera.
   sh.ray_fade = std::clamp((glm::dot(fwd, f.sun) - 0.1f) / 0.4f, 0.0f, 1.0f);
   sh.ray_fade *= std::clamp((f.sun.y + 0.05f) / 0.1f, 0.0f, 1.0f);
-  sh.rays = rp.shafts == light_shafts::radial && sh.ray_fade > 0 && sh.sun_clip.w > 0 && !r.occlusion.failed &&
-            !r.radial.failed;
-  sh.volumetric = rp.shafts == light_shafts::volumetric && !r.march.failed;
+  sh.rays = rp.shafts == light_shafts::radial && sh.ray_fade > 0 && sh.sun_clip.w > 0 && !r.shared->occlusion.failed &&
+            !r.shared->radial.failed;
+  sh.volumetric = rp.shafts == light_shafts::volumetric && !r.shared->march.failed;
   return sh;
 }
 
@@ -237,22 +237,22 @@ void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setu
     glPolygonOffset(rp.shadow_slope_bias, 1.0f);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);
-    glUseProgram(r.bark_depth.id);
-    set_uniform(r.bark_depth, "u_viewproj", light);
-    set_uniform(r.bark_depth, "u_radius", 2);
-    set_wind_uniforms(r, r.bark_depth, rp);
+    glUseProgram(r.shared->bark_depth.id);
+    set_uniform(r.shared->bark_depth, "u_viewproj", light);
+    set_uniform(r.shared->bark_depth, "u_radius", 2);
+    set_wind_uniforms(r, r.shared->bark_depth, f.wind);
     draw_bark(r);
     glDisable(GL_CULL_FACE);
-    glUseProgram(r.leaf_depth.id);   // leaves cast alpha-tested shadows
-    set_uniform(r.leaf_depth, "u_viewproj", light);
-    set_uniform(r.leaf_depth, "u_step", r.step);
-    set_uniform(r.leaf_depth, "u_radius", 2);
-    set_uniform(r.leaf_depth, "u_leaf", 3);
-    set_uniform(r.leaf_depth, "u_layers", r.leaf_layers);
-    set_uniform(r.leaf_depth, "u_cutoff", rp.alpha_cutoff);
-    set_uniform(r.leaf_depth, "u_shadow_pass", 1);   // the impostor's sun card casts (render/gl/impostor.h)
-    set_wind_uniforms(r, r.leaf_depth, rp);
-    set_season_uniforms(r.leaf_depth, season);
+    glUseProgram(r.shared->leaf_depth.id);   // leaves cast alpha-tested shadows
+    set_uniform(r.shared->leaf_depth, "u_viewproj", light);
+    set_uniform(r.shared->leaf_depth, "u_step", r.step);
+    set_uniform(r.shared->leaf_depth, "u_radius", 2);
+    set_uniform(r.shared->leaf_depth, "u_leaf", 3);
+    set_uniform(r.shared->leaf_depth, "u_layers", r.leaf_layers);
+    set_uniform(r.shared->leaf_depth, "u_cutoff", rp.alpha_cutoff);
+    set_uniform(r.shared->leaf_depth, "u_shadow_pass", 1);   // the impostor's sun card casts (render/gl/impostor.h)
+    set_wind_uniforms(r, r.shared->leaf_depth, f.wind);
+    set_season_uniforms(r.shared->leaf_depth, season);
     draw_leaves(r);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -277,34 +277,34 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
   glViewport(0, 0, width, height);
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (!r.sky.failed) {   // sky first, without depth, so the depth buffer stays 1 where sky shows
+  if (!r.shared->sky.failed) {   // sky first, without depth, so the depth buffer stays 1 where sky shows
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    glUseProgram(r.sky.id);
-    set_uniform(r.sky, "u_inv_viewproj", inv_viewproj);
-    set_uniform(r.sky, "u_eye", eye);
-    set_uniform(r.sky, "u_sun_dir", sun);
-    set_sky_uniforms(r, r.sky);
-    set_uniform(r.sky, "u_sun_light", r.daylight.sun_light);
+    glUseProgram(r.shared->sky.id);
+    set_uniform(r.shared->sky, "u_inv_viewproj", inv_viewproj);
+    set_uniform(r.shared->sky, "u_eye", eye);
+    set_uniform(r.shared->sky, "u_sun_dir", sun);
+    set_sky_uniforms(r, r.shared->sky);
+    set_uniform(r.shared->sky, "u_sun_light", r.daylight.sun_light);
     glBindVertexArray(r.empty_vao.id);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++r.counts.draw_calls;
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
   }
-  if (rp.ground && !r.ground.failed) {
-    glUseProgram(r.ground.id);
-    set_lighting(r, r.ground, rp, sun, light, texel_world);
-    set_uniform(r.ground, "u_viewproj", viewproj);
+  if (rp.ground && !r.shared->ground.failed) {
+    glUseProgram(r.shared->ground.id);
+    set_lighting(r, r.shared->ground, rp, sun, light, texel_world);
+    set_uniform(r.shared->ground, "u_viewproj", viewproj);
     glm::vec3 center = 0.5f * (r.bounds_min + r.bounds_max);
-    set_uniform(r.ground, "u_center", center);
-    set_uniform(r.ground, "u_extent", ground_extent);
-    set_uniform(r.ground, "u_sky_horizon", r.daylight.horizon);
-    set_uniform(r.ground, "u_ground_color", rp.ground_color);
-    set_uniform(r.ground, "u_root", r.root);
-    set_uniform(r.ground, "u_root_radius", r.has_tree ? r.root_radius : 0.0f);
+    set_uniform(r.shared->ground, "u_center", center);
+    set_uniform(r.shared->ground, "u_extent", ground_extent);
+    set_uniform(r.shared->ground, "u_sky_horizon", r.daylight.horizon);
+    set_uniform(r.shared->ground, "u_ground_color", rp.ground_color);
+    set_uniform(r.shared->ground, "u_root", r.root);
+    set_uniform(r.shared->ground, "u_root_radius", r.has_tree ? r.root_radius : 0.0f);
     const glm::vec3 half = 0.5f * (r.bounds_max - r.bounds_min);
-    set_uniform(r.ground, "u_crown_radius", r.has_tree ? glm::vec2(half.x, half.z) : glm::vec2(0.0f));
+    set_uniform(r.shared->ground, "u_crown_radius", r.has_tree ? glm::vec2(half.x, half.z) : glm::vec2(0.0f));
     glBindVertexArray(r.empty_vao.id);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -316,42 +316,42 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
     if (lit_ok) {
       glEnable(GL_CULL_FACE);
       glCullFace(GL_BACK);
-      glUseProgram(r.bark.id);
-      set_lighting(r, r.bark, rp, sun, light, texel_world);
-      set_uniform(r.bark, "u_viewproj", viewproj);
-      set_uniform(r.bark, "u_radius", 2);
-      set_uniform(r.bark, "u_bark", 0);
-      set_uniform(r.bark, "u_bark_normal", 4);
-      set_uniform(r.bark, "u_bark_rough", 7);
-      set_uniform(r.bark, "u_eye", eye);
-      set_uniform(r.bark, "u_bark_color", rp.bark_color);
-      set_wind_uniforms(r, r.bark, rp);
+      glUseProgram(r.shared->bark.id);
+      set_lighting(r, r.shared->bark, rp, sun, light, texel_world);
+      set_uniform(r.shared->bark, "u_viewproj", viewproj);
+      set_uniform(r.shared->bark, "u_radius", 2);
+      set_uniform(r.shared->bark, "u_bark", 0);
+      set_uniform(r.shared->bark, "u_bark_normal", 4);
+      set_uniform(r.shared->bark, "u_bark_rough", 7);
+      set_uniform(r.shared->bark, "u_eye", eye);
+      set_uniform(r.shared->bark, "u_bark_color", rp.bark_color);
+      set_wind_uniforms(r, r.shared->bark, f.wind);
       draw_bark(r);
       glDisable(GL_CULL_FACE);
-      glUseProgram(r.leaf.id);
-      set_lighting(r, r.leaf, rp, sun, light, texel_world);
-      set_uniform(r.leaf, "u_viewproj", viewproj);
-      set_uniform(r.leaf, "u_step", r.step);
-      set_uniform(r.leaf, "u_radius", 2);
-      set_uniform(r.leaf, "u_variation", rp.leaf_color_variation);
-      set_uniform(r.leaf, "u_leaf", 3);
-      set_uniform(r.leaf, "u_layers", r.leaf_layers);
-      set_uniform(r.leaf, "u_leaf_normal", 5);
-      set_uniform(r.leaf, "u_leaf_thickness", 6);
-      set_season_uniforms(r.leaf, season);
-      set_uniform(r.leaf, "u_cutoff", rp.alpha_cutoff);
-      set_uniform(r.leaf, "u_translucency", rp.leaf_translucency);
-      set_uniform(r.leaf, "u_crown_centre", r.crown_centre);
-      set_uniform(r.leaf, "u_crown_radii", r.crown_radii);
-      set_uniform(r.leaf, "u_normal_blend", rp.leaf_normal_blend);
-      set_wind_uniforms(r, r.leaf, rp);
+      glUseProgram(r.shared->leaf.id);
+      set_lighting(r, r.shared->leaf, rp, sun, light, texel_world);
+      set_uniform(r.shared->leaf, "u_viewproj", viewproj);
+      set_uniform(r.shared->leaf, "u_step", r.step);
+      set_uniform(r.shared->leaf, "u_radius", 2);
+      set_uniform(r.shared->leaf, "u_variation", rp.leaf_color_variation);
+      set_uniform(r.shared->leaf, "u_leaf", 3);
+      set_uniform(r.shared->leaf, "u_layers", r.leaf_layers);
+      set_uniform(r.shared->leaf, "u_leaf_normal", 5);
+      set_uniform(r.shared->leaf, "u_leaf_thickness", 6);
+      set_season_uniforms(r.shared->leaf, season);
+      set_uniform(r.shared->leaf, "u_cutoff", rp.alpha_cutoff);
+      set_uniform(r.shared->leaf, "u_translucency", rp.leaf_translucency);
+      set_uniform(r.shared->leaf, "u_crown_centre", r.crown_centre);
+      set_uniform(r.shared->leaf, "u_crown_radii", r.crown_radii);
+      set_uniform(r.shared->leaf, "u_normal_blend", rp.leaf_normal_blend);
+      set_wind_uniforms(r, r.shared->leaf, f.wind);
       draw_leaves(r);
-    } else if (!r.fallback.failed) {   // a lit shader failed: flat bark, still a tree
-      glUseProgram(r.fallback.id);
-      set_uniform(r.fallback, "u_viewproj", viewproj);
-      set_uniform(r.fallback, "u_radius", 2);
-      set_uniform(r.fallback, "u_color", rp.bark_color);
-      set_wind_uniforms(r, r.fallback, rp);
+    } else if (!r.shared->fallback.failed) {   // a lit shader failed: flat bark, still a tree
+      glUseProgram(r.shared->fallback.id);
+      set_uniform(r.shared->fallback, "u_viewproj", viewproj);
+      set_uniform(r.shared->fallback, "u_radius", 2);
+      set_uniform(r.shared->fallback, "u_color", rp.bark_color);
+      set_wind_uniforms(r, r.shared->fallback, f.wind);
       draw_bark(r);
     }
   }
@@ -379,29 +379,29 @@ void draw_radial_shafts(renderer_gpu& r, const render_params& rp, const frame_se
   const glm::vec2 light_uv = glm::vec2(sh.sun_clip.x, sh.sun_clip.y) / sh.sun_clip.w * 0.5f + 0.5f;
   glBindFramebuffer(GL_FRAMEBUFFER, r.occlusion_fbo.id);
   glViewport(0, 0, hw, hh);
-  glUseProgram(r.occlusion.id);
+  glUseProgram(r.shared->occlusion.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
-  set_uniform(r.occlusion, "u_depth", 0);
-  set_uniform(r.occlusion, "u_inv_viewproj", inv_viewproj);
-  set_uniform(r.occlusion, "u_eye", eye);
-  set_uniform(r.occlusion, "u_sun_dir", sun);
+  set_uniform(r.shared->occlusion, "u_depth", 0);
+  set_uniform(r.shared->occlusion, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.shared->occlusion, "u_eye", eye);
+  set_uniform(r.shared->occlusion, "u_sun_dir", sun);
   const float sun_max = std::max({r.daylight.sun_light.x, r.daylight.sun_light.y, r.daylight.sun_light.z, 1e-6f});
-  set_uniform(r.occlusion, "u_sun_color", r.daylight.sun_light / sun_max);
+  set_uniform(r.shared->occlusion, "u_sun_color", r.daylight.sun_light / sun_max);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++r.counts.draw_calls;
   f.clock.mark(r.timings.occlusion);
 
   glBindFramebuffer(GL_FRAMEBUFFER, r.rays_fbo.id);
-  glUseProgram(r.radial.id);
+  glUseProgram(r.shared->radial.id);
   glBindTexture(GL_TEXTURE_2D, r.occlusion_tex.id);
-  set_uniform(r.radial, "u_occlusion", 0);
-  set_uniform(r.radial, "u_light_uv", light_uv);
-  set_uniform(r.radial, "u_samples", std::clamp(rp.ray_samples, 1, 256));
-  set_uniform(r.radial, "u_density", rp.ray_density);
-  set_uniform(r.radial, "u_weight", rp.ray_weight);
-  set_uniform(r.radial, "u_decay", rp.ray_decay);
-  set_uniform(r.radial, "u_exposure", rp.ray_exposure);
+  set_uniform(r.shared->radial, "u_occlusion", 0);
+  set_uniform(r.shared->radial, "u_light_uv", light_uv);
+  set_uniform(r.shared->radial, "u_samples", std::clamp(rp.ray_samples, 1, 256));
+  set_uniform(r.shared->radial, "u_density", rp.ray_density);
+  set_uniform(r.shared->radial, "u_weight", rp.ray_weight);
+  set_uniform(r.shared->radial, "u_decay", rp.ray_decay);
+  set_uniform(r.shared->radial, "u_exposure", rp.ray_exposure);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++r.counts.draw_calls;
   f.clock.mark(r.timings.blur);
@@ -421,24 +421,24 @@ void draw_volumetric_shafts(renderer_gpu& r, const render_params& rp, const fram
   const int hh = f.hh;
   glBindFramebuffer(GL_FRAMEBUFFER, r.march_fbo.id);
   glViewport(0, 0, hw, hh);
-  glUseProgram(r.march.id);
+  glUseProgram(r.shared->march.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, r.shadow_tex.id);
-  set_uniform(r.march, "u_depth", 0);
-  set_uniform(r.march, "u_shadow", 1);
-  set_uniform(r.march, "u_inv_viewproj", inv_viewproj);
-  set_uniform(r.march, "u_eye", eye);
-  set_uniform(r.march, "u_sun_dir", sun);
-  set_uniform(r.march, "u_light_viewproj", light);
+  set_uniform(r.shared->march, "u_depth", 0);
+  set_uniform(r.shared->march, "u_shadow", 1);
+  set_uniform(r.shared->march, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.shared->march, "u_eye", eye);
+  set_uniform(r.shared->march, "u_sun_dir", sun);
+  set_uniform(r.shared->march, "u_light_viewproj", light);
   // Without shadows nothing is shadowed: zero samples leave the fog uniformly lit.
-  set_uniform(r.march, "u_samples", rp.shadows && r.has_tree ? std::clamp(rp.shaft_samples, 1, 256) : 0);
-  set_uniform(r.march, "u_fog_density", fog_density);
-  set_uniform(r.march, "u_fog_height", fog_height);
-  set_uniform(r.march, "u_haze", haze);
-  set_uniform(r.march, "u_sky_distance", sky_distance);
-  set_uniform(r.march, "u_bias", rp.shadow_bias);
+  set_uniform(r.shared->march, "u_samples", rp.shadows && r.has_tree ? std::clamp(rp.shaft_samples, 1, 256) : 0);
+  set_uniform(r.shared->march, "u_fog_density", fog_density);
+  set_uniform(r.shared->march, "u_fog_height", fog_height);
+  set_uniform(r.shared->march, "u_haze", haze);
+  set_uniform(r.shared->march, "u_sky_distance", sky_distance);
+  set_uniform(r.shared->march, "u_bias", rp.shadow_bias);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++r.counts.draw_calls;
   f.clock.mark(r.timings.march);
@@ -448,10 +448,10 @@ void draw_volumetric_shafts(renderer_gpu& r, const render_params& rp, const fram
 void draw_exposure_pass(renderer_gpu& r, const frame_setup& f) {
   glBindFramebuffer(GL_FRAMEBUFFER, r.average_fbo.id);
   glViewport(0, 0, 1, 1);
-  glUseProgram(r.exposure.id);
+  glUseProgram(r.shared->exposure.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
-  set_uniform(r.exposure, "u_hdr", 0);
+  set_uniform(r.shared->exposure, "u_hdr", 0);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++r.counts.draw_calls;
   f.clock.mark(r.timings.exposure);
@@ -471,7 +471,7 @@ void draw_composite_pass(renderer_gpu& r, const render_params& rp, const frame_s
   const int height = f.height;
   glBindFramebuffer(GL_FRAMEBUFFER, target.id);
   glViewport(origin.x, origin.y, width, height);
-  glUseProgram(r.composite.id);
+  glUseProgram(r.shared->composite.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, r.hdr_color.id);
   glActiveTexture(GL_TEXTURE1);
@@ -482,25 +482,25 @@ void draw_composite_pass(renderer_gpu& r, const render_params& rp, const frame_s
   glBindTexture(GL_TEXTURE_2D, r.hdr_depth.id);
   glActiveTexture(GL_TEXTURE4);
   glBindTexture(GL_TEXTURE_2D, r.average_tex.id);
-  set_uniform(r.composite, "u_hdr", 0);
-  set_uniform(r.composite, "u_rays", 1);
-  set_uniform(r.composite, "u_march", 2);
-  set_uniform(r.composite, "u_depth", 3);
-  set_uniform(r.composite, "u_average", 4);
-  set_uniform(r.composite, "u_ray_strength", sh.rays ? sh.ray_fade : 0.0f);
-  set_uniform(r.composite, "u_exposure", rp.exposure);
-  set_uniform(r.composite, "u_auto_exposure", rp.auto_exposure && !r.exposure.failed ? 1 : 0);
-  set_uniform(r.composite, "u_volumetric", sh.volumetric ? 1 : 0);
-  set_uniform(r.composite, "u_inv_viewproj", inv_viewproj);
-  set_uniform(r.composite, "u_eye", eye);
-  set_uniform(r.composite, "u_sun_dir", sun);
-  set_uniform(r.composite, "u_fog_density", fog_density);
-  set_uniform(r.composite, "u_fog_height", fog_height);
-  set_uniform(r.composite, "u_haze", haze);
-  set_uniform(r.composite, "u_sky_distance", sky_distance);
-  set_uniform(r.composite, "u_g", std::clamp(rp.scattering_g, -0.95f, 0.95f));
-  set_uniform(r.composite, "u_sun_light", r.daylight.sun_light);
-  set_uniform(r.composite, "u_fog_ambient", r.daylight.fog_ambient);
+  set_uniform(r.shared->composite, "u_hdr", 0);
+  set_uniform(r.shared->composite, "u_rays", 1);
+  set_uniform(r.shared->composite, "u_march", 2);
+  set_uniform(r.shared->composite, "u_depth", 3);
+  set_uniform(r.shared->composite, "u_average", 4);
+  set_uniform(r.shared->composite, "u_ray_strength", sh.rays ? sh.ray_fade : 0.0f);
+  set_uniform(r.shared->composite, "u_exposure", rp.exposure);
+  set_uniform(r.shared->composite, "u_auto_exposure", rp.auto_exposure && !r.shared->exposure.failed ? 1 : 0);
+  set_uniform(r.shared->composite, "u_volumetric", sh.volumetric ? 1 : 0);
+  set_uniform(r.shared->composite, "u_inv_viewproj", inv_viewproj);
+  set_uniform(r.shared->composite, "u_eye", eye);
+  set_uniform(r.shared->composite, "u_sun_dir", sun);
+  set_uniform(r.shared->composite, "u_fog_density", fog_density);
+  set_uniform(r.shared->composite, "u_fog_height", fog_height);
+  set_uniform(r.shared->composite, "u_haze", haze);
+  set_uniform(r.shared->composite, "u_sky_distance", sky_distance);
+  set_uniform(r.shared->composite, "u_g", std::clamp(rp.scattering_g, -0.95f, 0.95f));
+  set_uniform(r.shared->composite, "u_sun_light", r.daylight.sun_light);
+  set_uniform(r.shared->composite, "u_fog_ambient", r.daylight.fog_ambient);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++r.counts.draw_calls;
   glActiveTexture(GL_TEXTURE0);
@@ -515,7 +515,7 @@ void draw_composite_pass(renderer_gpu& r, const render_params& rp, const frame_s
 
 void draw_frame(renderer_gpu& r, const render_params& rp, const orbit_camera& cam, int width, int height,
                 gl_framebuffer target, const overlay_view* overlays, glm::ivec2 origin) {
-  if (width <= 0 || height <= 0) return;
+  if (width <= 0 || height <= 0 || !r.shared) return;
   r.counts = {};
   const uint64_t uploads_before = r.uploads_total;
   resize_targets(r, width, height, rp.msaa);
@@ -535,7 +535,7 @@ void draw_frame(renderer_gpu& r, const render_params& rp, const orbit_camera& ca
   r.timings.occlusion = r.timings.blur = r.timings.march = r.timings.exposure = 0;
   if (sh.rays) draw_radial_shafts(r, rp, f, sh);
   if (sh.volumetric) draw_volumetric_shafts(r, rp, f);
-  if (rp.auto_exposure && !r.exposure.failed) draw_exposure_pass(r, f);
+  if (rp.auto_exposure && !r.shared->exposure.failed) draw_exposure_pass(r, f);
   draw_composite_pass(r, rp, f, sh, target, origin);
   r.counts.uploads = int(r.uploads_total - uploads_before);
   check_gl("draw frame");

@@ -5,9 +5,9 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
-#include "render/lod_cards.h"
-#include "render/season.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -36,7 +36,9 @@ void upload_2d(gl_texture& t, const image& img, GLenum internal_format) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
+// The user's bark: the tree's own maps, in place of the shared procedural ones.
 void upload_bark_textures(renderer_gpu& r, const image& color, const image& normal, const image& rough) {
+  if (!r.own_bark) r.bark_tex = r.bark_normal_tex = r.bark_rough_tex = {}, r.own_bark = true;
   upload_2d(r.bark_tex, color, GL_SRGB8_ALPHA8);
   upload_2d(r.bark_normal_tex, normal, GL_RGB8);
   upload_2d(r.bark_rough_tex, rough, GL_RGB8);
@@ -125,15 +127,37 @@ int upload_array(gl_texture& t, const std::vector<const image*>& layers, GLenum 
 
 // All leaf layers share one array texture per map, so every leaf is drawn in one instanced call;
 // layer k is leaf archetype k (leaf_instance::texture). Colour mips keep their alpha coverage.
-void upload_leaf_textures(renderer_gpu& r, const std::vector<const image*>& color, const std::vector<const image*>& normal,
-                          const std::vector<const image*>& thickness) {
+// Returns the layers uploaded (0 when their sizes differ).
+int upload_leaf_arrays(gl_texture& color_tex, gl_texture& normal_tex, gl_texture& thickness_tex,
+                       const std::vector<const image*>& color, const std::vector<const image*>& normal,
+                       const std::vector<const image*>& thickness) {
   std::vector<std::vector<image>> mips;
   for (const image* c : color) mips.push_back(coverage_mips(*c, 0.5f));
-  const int layers = upload_array(r.leaf_tex, color, GL_SRGB8_ALPHA8, GL_RGBA, &mips);
-  upload_array(r.leaf_normal_tex, normal, GL_RGB8, GL_RGB);
-  upload_array(r.leaf_thickness_tex, thickness, GL_R8, GL_RGB);
+  const int layers = upload_array(color_tex, color, GL_SRGB8_ALPHA8, GL_RGBA, &mips);
+  upload_array(normal_tex, normal, GL_RGB8, GL_RGB);
+  upload_array(thickness_tex, thickness, GL_R8, GL_RGB);
+  return layers;
+}
+
+// The tree's own leaf arrays (the user's texture, or the archetypes with a LOD's baked cards).
+void upload_leaf_textures(renderer_gpu& r, const std::vector<const image*>& color, const std::vector<const image*>& normal,
+                          const std::vector<const image*>& thickness) {
+  if (!r.own_leaves) r.leaf_tex = r.leaf_normal_tex = r.leaf_thickness_tex = {}, r.own_leaves = true;
+  const int layers = upload_leaf_arrays(r.leaf_tex, r.leaf_normal_tex, r.leaf_thickness_tex, color, normal, thickness);
   r.uploads_total += 3;
   if (layers) r.leaf_layers = layers;
+}
+
+void release_own_bark(renderer_gpu& r) {
+  if (r.own_bark) delete_gl(r.bark_tex), delete_gl(r.bark_normal_tex), delete_gl(r.bark_rough_tex);
+  r.bark_tex = r.bark_normal_tex = r.bark_rough_tex = {};
+  r.own_bark = false;
+}
+
+void release_own_leaves(renderer_gpu& r) {
+  if (r.own_leaves) delete_gl(r.leaf_tex), delete_gl(r.leaf_normal_tex), delete_gl(r.leaf_thickness_tex);
+  r.leaf_tex = r.leaf_normal_tex = r.leaf_thickness_tex = {};
+  r.own_leaves = false;
 }
 
 // Nearest-texel scaling of a baked card to the array's layer size.
@@ -148,7 +172,7 @@ image scaled_to(const image& im, int size) {
   return out;
 }
 
-// The archetypes' layers, then the LOD levels' baked cluster cards (render/lod_cards.h), if any.
+// The archetypes' layers, then the LOD levels' baked cluster cards (render/mesh/lod_cards.h), if any.
 }  // namespace
 
 void upload_procedural_leaves(renderer_gpu& r) {
@@ -156,6 +180,18 @@ void upload_procedural_leaves(renderer_gpu& r) {
   for (int i = 0; i < leaf_archetype_count; ++i) {
     const leaf_texture_set& t = leaf_archetype_textures(leaf_archetype(i), 512);
     color.push_back(&t.color), normal.push_back(&t.normal), thickness.push_back(&t.thickness);
+  }
+  if (!r.cards) {   // the archetypes alone: the context's shared arrays, uploaded by their first user
+    gl_shared& s = *r.shared;
+    if (!s.leaf_layers) {
+      s.leaf_layers = upload_leaf_arrays(s.leaf_color, s.leaf_normal, s.leaf_thickness, color, normal, thickness);
+      r.uploads_total += 3;
+    }
+    release_own_leaves(r);
+    r.leaf_tex = s.leaf_color, r.leaf_normal_tex = s.leaf_normal, r.leaf_thickness_tex = s.leaf_thickness;
+    r.leaf_layers = std::max(s.leaf_layers, 1);
+    r.cards_shown = nullptr;
+    return;
   }
   std::vector<image> scaled;
   if (r.cards) {
@@ -174,13 +210,27 @@ void upload_procedural_leaves(renderer_gpu& r) {
 }
 
 void upload_procedural_bark(renderer_gpu& r, bark_archetype a) {
-  const bark_texture_set& t = bark_archetype_textures(a, 512);
-  upload_bark_textures(r, t.color, t.normal, t.roughness);
+  gl_shared::bark_maps& maps = r.shared->bark_sets[size_t(std::clamp(int(a), 0, bark_archetype_count - 1))];
+  if (!maps.color.id) {   // the archetype's first use in this context
+    const bark_texture_set& t = bark_archetype_textures(a, 512);
+    upload_2d(maps.color, t.color, GL_SRGB8_ALPHA8);
+    upload_2d(maps.normal, t.normal, GL_RGB8);
+    upload_2d(maps.roughness, t.roughness, GL_RGB8);
+    r.uploads_total += 3;
+  }
+  release_own_bark(r);
+  r.bark_tex = maps.color, r.bark_normal_tex = maps.normal, r.bark_rough_tex = maps.roughness;
   r.bark_shown = int(a);
 }
 
+void release_tree_textures(renderer_gpu& r) {
+  release_own_bark(r);
+  release_own_leaves(r);
+}
+
 // A user's texture through load_user_texture's checks, and within this GL's size limit.
-static std::string load_checked(const std::string& path, image& out) {
+static std::string load_checked(renderer_gpu& r, const std::string& path, image& out) {
+  ++r.user_texture_loads;
   if (std::string err = load_user_texture(path, out); !err.empty()) return err;
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
@@ -207,7 +257,7 @@ void update_user_textures(renderer_gpu& r, const render_params& rp) {
     r.user_bark = r.user_leaf = false;
     image bark;
     if (!rp.bark_texture.empty()) {
-      if (std::string err = load_checked(rp.bark_texture, bark); !err.empty()) say("bark texture", err);
+      if (std::string err = load_checked(r, rp.bark_texture, bark); !err.empty()) say("bark texture", err);
       else r.user_bark = true;
     }
     if (r.user_bark) {
@@ -220,13 +270,13 @@ void update_user_textures(renderer_gpu& r, const render_params& rp) {
     }
     image leaf;
     if (!rp.leaf_texture.empty()) {
-      if (std::string err = load_checked(rp.leaf_texture, leaf); !err.empty()) {
+      if (std::string err = load_checked(r, rp.leaf_texture, leaf); !err.empty()) {
         say("leaf texture", err);
       } else {
         r.user_leaf = true;
         image opacity;
         if (!rp.leaf_opacity.empty()) {
-          if (std::string err2 = load_checked(rp.leaf_opacity, opacity); !err2.empty())
+          if (std::string err2 = load_checked(r, rp.leaf_opacity, opacity); !err2.empty())
             r.texture_message += (r.texture_message.empty() ? "" : "; ") + ("leaf opacity: " + err2 + "; using the texture's alpha");
           else if (opacity.width != leaf.width || opacity.height != leaf.height)
             r.texture_message += (r.texture_message.empty() ? "" : "; ") +

@@ -3,14 +3,17 @@
 #pragma once
 
 #include "render/gl/renderer.h"
-#include "render/render_params.h"
+#include "render/mesh/render_params.h"
 
 namespace sylva {
 
-// The leaf archetypes' (or a LOD level's baked cards') colour, normal and thickness arrays.
+// The leaf archetypes' colour, normal and thickness arrays (the context's shared ones), or with a LOD
+// level's baked cards after them (the tree's own).
 void upload_procedural_leaves(renderer_gpu& r);
-// The procedural bark archetype's colour, normal and roughness maps.
+// The procedural bark archetype's colour, normal and roughness maps (the context's shared ones).
 void upload_procedural_bark(renderer_gpu& r, bark_archetype a);
+// Frees the tree's own textures (not its context's shared ones) and forgets the ones it drew with.
+void release_tree_textures(renderer_gpu& r);
 // Loads the user's bark and leaf PNGs when their paths change (a file that cannot be used is
 // reported and the procedural texture stays); re-uploads the archetypes as needed.
 void update_user_textures(renderer_gpu& r, const render_params& rp);

@@ -1,15 +1,15 @@
 // The renderer's lifetime (programs, buffers, textures) and the tree upload (render/gl/renderer.h).
 #include "render/gl/renderer_resources.h"
-#include "render/leaf_shading.h"
+#include "render/mesh/leaf_shading.h"
 #include "render/gl/renderer.h"
 #include "render/gl/shaders.h"
 #include "render/gl/renderer_resources.h"
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
-#include "render/lod_cards.h"
-#include "render/season.h"
-#include "render/textures.h"
+#include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
+#include "render/assets/textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -48,30 +48,13 @@ void leaf_instance_attributes() {
   for (int i = 1; i <= 7; ++i) glVertexAttribDivisor(i, 1);
 }
 
-bool init_renderer(renderer_gpu& r) {
-  const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
-                    ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
-                    occ_fs = sky_source(occlusion_fs_body);
-  const std::string bark_vs_wind = with_wind_glsl(bark_vs), leaf_vs_wind = with_wind_glsl(leaf_vs);
-  r.bark = compile_program("bark", bark_vs_wind.c_str(), bark_fs.c_str());
-  r.bark_depth = compile_program("bark depth", bark_vs_wind.c_str(), depth_fs);
-  r.leaf = compile_program("leaf", leaf_vs_wind.c_str(), leaf_fs.c_str());
-  r.leaf_depth = compile_program("leaf depth", leaf_vs_wind.c_str(), leaf_depth_fs);
-  r.sky = compile_program("sky", fullscreen_vs, sky_fs.c_str());
-  r.ground = compile_program("ground", ground_vs, ground_fs.c_str());
-  r.occlusion = compile_program("occlusion", fullscreen_vs, occ_fs.c_str());
-  r.radial = compile_program("radial blur", fullscreen_vs, radial_fs);
-  r.march = compile_program("light shafts", fullscreen_vs, march_source().c_str());
-  r.exposure = compile_program("auto exposure", fullscreen_vs, exposure_fs);
-  r.composite = compile_program("composite", fullscreen_vs, sky_source(composite_fs_body).c_str());
-  init_overlays(r.overlay);
-  r.fallback = compile_program("fallback", bark_vs_wind.c_str(), fallback_fs);
-  if (r.composite.failed || r.fallback.failed) {
-    r.error = "renderer: " + gl_last_message();
-    r.ok = false;
-  } else {
-    r.ok = true;
-  }
+bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
+  // The context's programs: compiled by its first renderer, given to the others.
+  r.shared = shared ? std::move(shared) : make_gl_shared();
+  ++r.shared->users;
+  r.ok = r.shared->ok;
+  r.error = r.shared->error;
+  init_overlays(r.overlay, r.shared->overlay);
 
   glGenVertexArrays(1, &r.empty_vao.id);
   glGenVertexArrays(1, &r.bark_vao.id);
@@ -117,8 +100,8 @@ bool init_renderer(renderer_gpu& r) {
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.node_radius.id);
 
-  // Procedural textures (render/textures.h): the app needs no asset files. All archetype sets are
-  // made once per process, on two threads.
+  // Procedural textures (render/assets/textures.h): the app needs no asset files. All archetype sets are
+  // made once per process, on two threads, and uploaded once per context (gl_shared).
   prepare_archetype_textures(512, 1, 2);
   upload_procedural_bark(r, bark_archetype::furrowed);
   upload_procedural_leaves(r);
@@ -132,23 +115,23 @@ bool init_renderer(renderer_gpu& r) {
 
 void destroy_renderer(renderer_gpu& r) {
   destroy_overlays(r.overlay);
-  for (gl_program* p : {&r.bark, &r.bark_depth, &r.leaf, &r.leaf_depth, &r.sky, &r.ground, &r.occlusion, &r.radial,
-                        &r.march, &r.exposure, &r.composite, &r.fallback})
-    delete_gl(*p);
   for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
                        &r.leaf_corner, &r.leaf_instances, &r.node_radius, &r.wind_nodes})
     delete_gl(*b);
   delete_gl(r.wind_tex);
   r.wind_node_count = 0;
-  for (gl_texture* t : {&r.node_radius_tex, &r.bark_tex, &r.bark_normal_tex, &r.bark_rough_tex, &r.leaf_tex, &r.leaf_normal_tex,
-                        &r.leaf_thickness_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex, &r.march_tex,
-                        &r.average_tex})
+  // The tree's own textures; the shared procedural ones go with the context's set.
+  release_tree_textures(r);
+  for (gl_texture* t : {&r.node_radius_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex,
+                        &r.march_tex, &r.average_tex})
     delete_gl(*t);
   for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.march_fbo, &r.average_fbo, &r.msaa_fbo})
     delete_gl(*f);
   delete_gl(r.msaa_color);
   delete_gl(r.msaa_depth);
+  if (r.shared && --r.shared->users == 0) free_gl_shared(*r.shared);
+  r.shared.reset();
   r.width = r.height = r.shadow_size = r.samples = 0;
   r.bark_shown = -1;
   r.leaf_layers = 1;

@@ -1,7 +1,7 @@
 // The GLSL of the frame renderer's programs (shaders.h).
 #include "render/gl/shaders.h"
 
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 namespace sylva::glsl {
 
@@ -36,7 +36,7 @@ float shadow_at(vec3 world, vec3 n) {
   }
   return sum / count;
 }
-// Sky light: irradiance / pi from the sky's first two SH bands (render/sky.h; Ramamoorthi & Hanrahan 2001).
+// Sky light: irradiance / pi from the sky's first two SH bands (render/gl/sky.h; Ramamoorthi & Hanrahan 2001).
 vec3 ambient_light(vec3 n) {
   return max(u_sh[0] + u_sh[1] * n.x + u_sh[2] * n.y + u_sh[3] * n.z, vec3(0.0));
 }
@@ -53,7 +53,7 @@ void main() {
   vec4 r = texelFetch(u_radius, int(a_node));
   v_alive = r.w > -1e29 ? 1.0 : 0.0;
   v_world = a_position + r.xyz + a_normal * (v_alive > 0.5 ? r.w : 0.0);
-  // Wind (render/wind.h; a no-op while it is off): the normal turns with the sway.
+  // Wind (render/mesh/wind.h; a no-op while it is off): the normal turns with the sway.
   vec3 n = a_normal, t_unused = vec3(0.0), b_unused = vec3(0.0);
   v_world = wind_sway_frame(v_world, int(a_node), n, t_unused, b_unused);
   v_normal = n; v_uv = a_uv; v_ao = a_ao;
@@ -83,7 +83,7 @@ void main() {
   m.y = -m.y;   // the map's +Y points up the image, against increasing v
   vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
   if (dot(n, n0) < 0.2) n = n0;
-  // tinted_texture's formula (render/textures.h): albedo = min(1, gain * tint * texel), texel linear.
+  // tinted_texture's formula (render/assets/textures.h): albedo = min(1, gain * tint * texel), texel linear.
   vec3 albedo = min(vec3(1.0), TINT_GAIN * u_bark_color * texture(u_bark, v_uv).rgb);
   float sh = shadow_at(v_world, n);
   float ndl = max(dot(n, u_sun_dir), 0.0);
@@ -112,15 +112,15 @@ layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_textur
 layout(location = 7) in uint i_node;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
 uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (render/gl/impostor.h) instead of its camera card
-// The season (render/season.h season_look): deciduous archetypes' colour range, share kept, size.
+// The season (render/mesh/season.h season_look): deciduous archetypes' colour range, share kept, size.
 uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uint u_deciduous;
 uniform float u_keep; uniform float u_season_scale;
-uniform vec3 u_crown_centre; uniform vec3 u_crown_radii;   // the leaves' ellipsoid (render/leaf_shading.h)
+uniform vec3 u_crown_centre; uniform vec3 u_crown_radii;   // the leaves' ellipsoid (render/mesh/leaf_shading.h)
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
 flat out vec3 v_tint; flat out float v_ao; flat out vec3 v_color; flat out float v_plain; flat out vec3 v_outward;
 vec3 rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 float hash(vec3 p) { return fract(sin(dot(p, vec3(12.9898, 78.233, 37.719))) * 43758.5453); }
-float leaf_random(uint i, uint salt) {   // season_leaf_random (render/season.cpp), line for line
+float leaf_random(uint i, uint salt) {   // season_leaf_random (render/mesh/season.cpp), line for line
   uint x = i ^ (salt * 0x9e3779b9u);
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
   return float(x >> 8) * (1.0 / 16777216.0);
@@ -142,7 +142,7 @@ void main() {
   // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
   v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
   v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
-  // Wind (render/wind.h): the card and its frame follow its branch, and its tip flaps along the normal.
+  // Wind (render/mesh/wind.h): the card and its frame follow its branch, and its tip flaps along the normal.
   // An impostor card (texture >= 128, render/gl/impostor.h) carries final colours and does not flutter.
   v_world = wind_sway_frame(v_world, int(i_node), v_normal, v_tangent, v_bitangent);
   bool plain = i_texture >= 128u;
@@ -154,12 +154,12 @@ void main() {
   v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(plain ? i_texture & 63u : i_texture) % u_layers);
   v_ao = i_ao;
-  // crown_outward (render/leaf_shading.cpp): the gradient of the ellipsoid through the leaf.
+  // crown_outward (render/mesh/leaf_shading.cpp): the gradient of the ellipsoid through the leaf.
   vec3 g = (i_position - u_crown_centre) / (u_crown_radii * u_crown_radii);
   v_outward = length(g) > 1e-6 ? normalize(g) : vec3(0.0, 1.0, 0.0);
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
-  if (plain) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/textures.h)
+  if (plain) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/assets/textures.h)
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
 }
 )";
@@ -179,7 +179,7 @@ void main() {
   vec3 n0 = normalize(v_normal);
   vec3 n = normalize(mat3(normalize(v_tangent), normalize(v_bitangent), n0) * m);
   if (!gl_FrontFacing) { n = -n; n0 = -n0; }   // two-sided: light the side we see
-  // Lit as a volume (blend_leaf_normal, render/leaf_shading.cpp): the side we see, bent toward
+  // Lit as a volume (blend_leaf_normal, render/mesh/leaf_shading.cpp): the side we see, bent toward
   // the crown's outward direction. The impostor's card keeps its atlas normals.
   if (v_plain < 0.5) {
     vec3 bent = mix(n, v_outward, clamp(u_normal_blend, 0.0, 1.0));
@@ -191,7 +191,7 @@ void main() {
     }
   }
   float ndl = dot(n, u_sun_dir), ndl0 = dot(n0, u_sun_dir);
-  // tinted_texture's formula (render/textures.h), then the per-leaf variation.
+  // tinted_texture's formula (render/assets/textures.h), then the per-leaf variation.
   vec3 albedo = min(vec3(1.0), TINT_GAIN * v_color * t.rgb) * v_tint;
   // The impostor's camera card crosses its sun card, which would shade half of it: its atlas
   // normals shade it instead.
@@ -231,7 +231,7 @@ vec3 view_dir(vec2 uv) {
 float sun_disc(vec3 d) {   // ~0.8° disc with a soft rim
   return smoothstep(0.99985, 0.99992, dot(d, u_sun_dir));
 }
-// The daylight sky (render/sky.cpp): Preetham et al. 1999 with the Perez et al. 1993 distribution
+// The daylight sky (render/gl/sky.cpp): Preetham et al. 1999 with the Perez et al. 1993 distribution
 // F(θ, γ) = (1 + A e^(B / cos θ)) (1 + C e^(D γ) + E cos² γ), or the hand-set gradient.
 uniform int u_physical; uniform vec3 u_perez[5]; uniform vec3 u_zenith; uniform vec3 u_perez_zenith;
 uniform float u_sky_scale; uniform vec3 u_sky_zenith; uniform vec3 u_sky_horizon;
@@ -492,7 +492,7 @@ void main() { o_color = vec4(u_color, 1.0); }
 )";
 
 std::string lit_source(const char* body) {
-  // TINT_GAIN: tinted_texture's gain (render/textures.h), so shaders and exports share the formula.
+  // TINT_GAIN: tinted_texture's gain (render/assets/textures.h), so shaders and exports share the formula.
   return std::string("#version 330 core\nconst float TINT_GAIN = ") + std::to_string(texture_tint_gain) + ";\n" +
          lighting_glsl + body;
 }

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "render/gl/renderer.h"
-#include "render/wind.h"
+#include "render/mesh/wind.h"
 
 namespace sylva {
 
@@ -35,8 +35,22 @@ std::string with_wind_glsl(const char* vertex_src) {
   return eol == std::string::npos ? s : s.substr(0, eol + 1) + wind_glsl() + s.substr(eol + 1);
 }
 
-float wind_reach(const renderer_gpu& r, const render_params& rp) {
-  const wind_motion m = make_wind_motion(rp.wind);
+wind_frame wind_frame_of(renderer_gpu& r, const render_params& rp) {
+  wind_frame w;
+  w.motion = make_wind_motion(rp.wind);
+  ++r.counts.wind_motions;
+  const wind_motion& m = w.motion;
+  w.on = m.strength > 0 && r.wind_node_count >= r.node_count && r.wind_node_count > 0 && r.wind_tex.id;
+  w.time = r.wind_time;
+  if (w.on) {
+    w.gust = wind_gust(m, w.time);
+    w.trunk = wind_trunk_angle(m, w.time);
+  }
+  return w;
+}
+
+float wind_reach(const renderer_gpu& r, const wind_frame& w) {
+  const wind_motion& m = w.motion;
   if (m.strength <= 0 || r.wind_node_count == 0) return 0.0f;
   // Trunk: tip offset theta H / 2 at the strongest gust; branches: a share of the height that
   // grows with the strength (their angles are capped at 0.8 rad, their lengths well under H).
@@ -44,19 +58,18 @@ float wind_reach(const renderer_gpu& r, const render_params& rp) {
   return r.wind_height * std::min(0.5f, 0.05f * m.strength * gust * 0.5f + 0.08f * m.strength * gust);
 }
 
-void set_wind_uniforms(const renderer_gpu& r, const gl_program& p, const render_params& rp) {
-  const wind_motion m = make_wind_motion(rp.wind);
-  const bool on = m.strength > 0 && r.wind_node_count >= r.node_count && r.wind_node_count > 0 && r.wind_tex.id;
-  set_uniform(p, "u_wind_on", on ? 1 : 0);
+void set_wind_uniforms(const renderer_gpu& r, const gl_program& p, const wind_frame& w) {
+  const wind_motion& m = w.motion;
+  set_uniform(p, "u_wind_on", w.on ? 1 : 0);
   set_uniform(p, "u_wind", wind_texture_unit);   // always: a buffer sampler may not share unit 0 with a 2D one
-  if (!on) return;
+  if (!w.on) return;
   glActiveTexture(GL_TEXTURE0 + wind_texture_unit);
   glBindTexture(GL_TEXTURE_BUFFER, r.wind_tex.id);
   glActiveTexture(GL_TEXTURE0);
-  set_uniform(p, "u_wind_time", r.wind_time);
+  set_uniform(p, "u_wind_time", w.time);
   set_uniform(p, "u_wind_strength", m.strength);
-  set_uniform(p, "u_wind_gust", wind_gust(m, r.wind_time));
-  set_uniform(p, "u_wind_trunk", wind_trunk_angle(m, r.wind_time));
+  set_uniform(p, "u_wind_gust", w.gust);
+  set_uniform(p, "u_wind_trunk", w.trunk);
   set_uniform(p, "u_wind_toward", m.toward);
   set_uniform(p, "u_wind_axis", m.bend_axis);
   set_uniform(p, "u_wind_branch_hz", m.branch_hz);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "tests/scratch_dir.h"
-#include "app/cli_batch.h"
+#include "app/cli/cli_batch.h"
 #include "tests/run_sylva.h"
 
 namespace fs = std::filesystem;

@@ -5,19 +5,14 @@
 
 #include <random>
 
-#include "app/editor_keyframes.h"
+#include "app/editor/editor_keyframes.h"
 #include "tests/edit_sequence.h"
+#include "tests/fixtures.h"
 
 using namespace sylva;
 
 namespace {
 
-preset default_preset_of(const char* name) {
-  preset p;
-  const load_result r = load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p);
-  EXPECT_TRUE(r.ok) << name << ": " << r.error;
-  return p;
-}
 
 }  // namespace
 
@@ -25,7 +20,7 @@ preset default_preset_of(const char* name) {
 // 5: the document keeps the keyframe, inactive; its save (and so its autosave) loads back equal;
 // raising the steps again applies it.
 TEST(EditSequences, AKeyframeStrandedByLoweringTheStepsSavesAndReopens) {
-  preset p = default_preset_of("self_organizing_default");
+  preset p = sylva_test::shipped_preset("self_organizing_default");
   const generator_params before = params_at_step(p.spec, 20);
   generator_params after = before;
   std::get<self_organizing_params>(after).lambda = 0.62f;
@@ -51,7 +46,7 @@ TEST(EditSequences, EveryEditSequenceSavesAndLoadsBackEqual) {
   std::mt19937 rng(2026);
   int sequences = 0, edits = 0;
   for (const char* name : presets) {
-    const preset start = default_preset_of(name);
+    const preset start = sylva_test::shipped_preset(name);
     for (int n = 0; n < 300; ++n) {
       std::vector<uint8_t> bytes(8 + rng() % 120);
       for (uint8_t& b : bytes) b = uint8_t(rng());

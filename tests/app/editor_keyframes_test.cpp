@@ -1,7 +1,7 @@
 // The editor's growth-phase logic without a display: slider edits become keyframes, markers move.
 #include <gtest/gtest.h>
 
-#include "app/editor_keyframes.h"
+#include "app/editor/editor_keyframes.h"
 
 using namespace sylva;
 

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "app/editor_generators.h"
+#include "app/editor/editor_generators.h"
 #include "generators/tree_spec.h"
-#include "render/overlay_geometry.h"
+#include "render/mesh/overlay_geometry.h"
 
 namespace sylva {
 namespace {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "app/editor_state.h"
+#include "app/editor/editor_state.h"
 #include "editor_script_run.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 namespace {
 

@@ -5,11 +5,11 @@
 #include <set>
 #include <string>
 
-#include "app/editor_panel_tabs.h"
+#include "app/editor/editor_panel_tabs.h"
 #include "generators/self_organizing.h"
 #include "generators/wood.h"
-#include "render/mesh.h"
-#include "render/render_params.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/render_params.h"
 
 using namespace sylva;
 

@@ -2,12 +2,10 @@
 // point is drawn passes through that point, and a click there picks the branch drawn there.
 #include <gtest/gtest.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "app/editor_prune.h"
+#include "app/editor/editor_prune.h"
 #include "generators/keyframes.h"
 #include "generators/space_colonization.h"
-#include "render/pick.h"
+#include "render/mesh/pick.h"
 
 using namespace sylva;
 
@@ -15,9 +13,8 @@ TEST(EditorPrune, RayThroughAProjectedPointPassesThroughIt) {
   orbit_camera cam;
   cam.target = {0.3f, 2, -0.2f}, cam.distance = 7, cam.yaw = 50, cam.pitch = 12;
   const view_rect v{420, 22, 780, 600};
-  // The renderer's projection (render/gl/renderer.cpp draw_frame): perspective over the view's aspect, lookAt.
-  const glm::mat4 vp = glm::perspective(glm::radians(cam.fov), v.w / v.h, 0.07f, 100.0f) *
-                       glm::lookAt(camera_eye(cam), cam.target, glm::vec3(0, 1, 0));
+  // The renderer's projection (render/gl/renderer.cpp draw_frame): render/camera.h's, over the view's aspect.
+  const glm::mat4 vp = camera_projection(cam, v.w / v.h, 0.07f, 100.0f) * camera_view(cam);
   for (const glm::vec3 p : {glm::vec3(0), glm::vec3(1, 3, 0.5f), glm::vec3(-2, 1, 1), glm::vec3(0.5f, 4, -1)}) {
     glm::vec4 c = vp * glm::vec4(p, 1);
     c /= c.w;

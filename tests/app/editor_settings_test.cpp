@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/editor_settings.h"
+#include "app/editor/editor_settings.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "app/editor_sliders.h"
+#include "app/editor/editor_sliders.h"
 #include "generators/space_colonization.h"
 
 using namespace sylva;

@@ -14,11 +14,12 @@
 
 #include <unistd.h>
 
-#include "app/editor_files.h"
+#include "app/editor/editor_files.h"
 #include "editor_script_run.h"
 #include "generators/tree_spec.h"
-#include "render/mesh_bound.h"
-#include "render/preset.h"
+#include "render/io/mesh_bound.h"
+#include "render/io/preset.h"
+#include "tests/fixtures.h"
 
 namespace {
 
@@ -26,6 +27,23 @@ using sylva_test::have_display;
 using sylva_test::run_result;
 using sylva_test::run_script;
 using sylva_test::test_dir;
+
+// The bush without its leaves (llvmpipe draws its frames fast), saved in the tests' folder as
+// `file`; "" when it cannot be saved.
+std::string leafless_bush(const std::string& file) {
+  sylva::preset bush = sylva_test::shipped_preset("self_organizing_seed001_bush");
+  bush.mesh.leaves_enabled = false;
+  const std::string path = test_dir(file).string();
+  return sylva::save_preset_file(bush, path).empty() ? path : "";
+}
+
+// Runs the script and expects it to pass (exit 0, no FAIL line); returns the run for more checks.
+run_result run_passing(const std::string& name, const std::string& script, const std::string& preset) {
+  run_result r = run_script(name, script, preset);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  return r;
+}
 
 }  // namespace
 
@@ -145,9 +163,7 @@ expect_param points=10000
 expect_modified 0
 )";
   script.replace(script.find("LONG"), 4, long_growth);
-  run_result r = run_script("cancel", script, start);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("cancel", script, start);
   EXPECT_NE(r.output.find("ok expect_state cancelled"), std::string::npos) << r.output;
 }
 
@@ -175,9 +191,7 @@ TEST(EditorSession, MeshOverItsBudgetAsksAndKeepsTheTree) {
                              "expect_same_tree\nexpect_state cancelled\nset radial_segments=32\nexpect_prompt Large mesh\n"
                              "answer Use " + n + " radial segments\nframes 2\nwait_tree\nexpect_no_prompt\n"
                              "expect_param radial_segments=" + n + "\nexpect_state done\n";
-  run_result r = run_script("mesh_budget", script, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("mesh_budget", script, preset);
   EXPECT_NE(r.output.find("ok expect_param radial_segments=" + n), std::string::npos) << r.output;
 }
 
@@ -298,11 +312,8 @@ TEST(EditorBench, EditLatencyIsReportedPerPreset) {
 // one step, not the history; F1 and Ctrl+L open their windows on the first press.
 TEST(EditorSession, SlowFramesLoseNoTypingAndHeldUndoTakesOneStep) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  sylva::preset bush;
-  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
-  bush.mesh.leaves_enabled = false;
-  const std::string preset = test_dir("newcomer_bush.json").string();
-  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string preset = leafless_bush("newcomer_bush.json");
+  ASSERT_FALSE(preset.empty());
   const std::string script = R"(wait_tree
 show_export 1
 export_path 
@@ -332,9 +343,7 @@ expect_window library 1
   std::string with_paths = script;
   const std::string exported = (test_dir("newcomer") / "home" / "exported.json").string();
   for (size_t at; (at = with_paths.find("EXPORTED")) != std::string::npos;) with_paths.replace(at, 8, exported);
-  run_result r = run_script("newcomer", with_paths, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("newcomer", with_paths, preset);
   EXPECT_NE(r.output.find("ok expect_export_path /proc/x.glb"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok expect_window library 1"), std::string::npos) << r.output;
 }
@@ -342,11 +351,8 @@ expect_window library 1
 // Drop B throws B away at once while B holds nothing of its own, and asks once B has edits.
 TEST(EditorSession, DropBAsksOnlyWhenBHasEdits) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  sylva::preset bush;
-  ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
-  bush.mesh.leaves_enabled = false;
-  const std::string preset = test_dir("dropb_bush.json").string();
-  ASSERT_EQ(sylva::save_preset_file(bush, preset), "");
+  const std::string preset = leafless_bush("dropb_bush.json");
+  ASSERT_FALSE(preset.empty());
   const std::string script = R"(wait_tree
 ab_duplicate
 ab_drop
@@ -366,8 +372,48 @@ answer Drop B
 frames 2
 expect_has_b 0
 )";
-  run_result r = run_script("dropb", script, preset);
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.find("FAIL"), std::string::npos) << r.output;
+  run_result r = run_passing("dropb", script, preset);
   EXPECT_NE(r.output.find("ok answer Keep B"), std::string::npos) << r.output;
+}
+
+// A path parameter loads its file on Enter, not on every keystroke: typing a texture path in
+// several bursts (frames apart) reads no file until Enter, then one.
+TEST(EditorSession, ATexturePathLoadsOnEnterNotWhileTyped) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string preset = leafless_bush("path_bush.json");
+  ASSERT_FALSE(preset.empty());
+  const std::string script = R"(wait_tree
+expect_texture_loads 0
+search leaf texture
+frames 3
+click_path leaf_texture
+type /no
+frames 3
+type /such
+frames 3
+type /leaf.png
+frames 3
+expect_texture_loads 0
+expect_param leaf_texture=
+key enter
+frames 4
+expect_texture_loads 1
+expect_param leaf_texture=/no/such/leaf.png
+)";
+  run_passing("texture_path", script, preset);
+}
+
+// Slot B draws with slot A's programs (one GL context, one set): duplicating compiles none.
+TEST(EditorSession, SlotBCompilesNoProgramsOfItsOwn) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string preset = leafless_bush("programs_bush.json");
+  ASSERT_FALSE(preset.empty());
+  const std::string script = R"(wait_tree
+remember_programs
+ab_duplicate
+frames 4
+expect_has_b 1
+expect_new_programs 0
+)";
+  run_passing("programs", script, preset);
 }

@@ -1,7 +1,7 @@
 // Undo entries say what they undo, in the panel's words.
 #include <gtest/gtest.h>
 
-#include "app/editor_undo_names.h"
+#include "app/editor/editor_undo_names.h"
 
 using namespace sylva;
 

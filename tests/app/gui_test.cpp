@@ -73,8 +73,7 @@ glm::vec2 sun_pixel(const preset& p, int w, int h) {
   orbit_camera cam;
   frame_camera(cam, m.bounds_min, m.bounds_max);
   glm::vec3 eye = camera_eye(cam);
-  glm::mat4 vp = glm::perspective(glm::radians(cam.fov), float(w) / float(h), 0.1f, 1000.0f) *
-                 glm::lookAt(eye, cam.target, glm::vec3(0, 1, 0));
+  glm::mat4 vp = camera_projection(cam, float(w) / float(h), 0.1f, 1000.0f) * camera_view(cam);
   glm::vec4 c = vp * glm::vec4(eye + sun_direction(p.render) * 500.0f, 1.0f);
   glm::vec2 ndc = glm::vec2(c) / c.w;
   return {(ndc.x * 0.5f + 0.5f) * w, (0.5f - ndc.y * 0.5f) * h};
@@ -185,8 +184,8 @@ TEST(HeadlessRender, BrokenShaderIsReportedAndFallsBack) {
   // A renderer whose lit bark program failed still draws a frame (flat fallback), without GL errors.
   renderer_gpu r;
   ASSERT_TRUE(init_renderer(r));
-  delete_gl(r.bark);
-  r.bark = bad;
+  delete_gl(r.shared->bark);
+  r.shared->bark = bad;
   preset p = honda_a();
   tree_skeleton t = grow(p.spec, {});
   upload_tree(r, mesh_tree(t, p.mesh));

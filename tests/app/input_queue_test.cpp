@@ -6,7 +6,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "app/input_queue.h"
+#include "app/editor/input_queue.h"
 
 using namespace sylva;
 

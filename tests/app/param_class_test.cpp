@@ -10,7 +10,8 @@
 #include <thread>
 
 #include "app/worker.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
+#include "tests/fixtures.h"
 
 using namespace sylva;
 
@@ -88,13 +89,6 @@ uint64_t skeleton_digest(const tree_skeleton& t) {
   return mesh_digest(probe) ^ (uint64_t(t.leaves.size()) << 32);
 }
 
-preset load(const char* name) {
-  preset p;
-  const load_result r = load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p);
-  EXPECT_TRUE(r.ok) << name << ": " << r.error;
-  return p;
-}
-
 // Small presets of all four generators, with the foliage model, clusters and clumping between them.
 constexpr const char* small_presets[] = {"species_sapling", "species_palm", "species_bush", "species_poplar",
                                          "species_cypress"};
@@ -119,7 +113,7 @@ TEST(ParamClass, EachClassRedoesWhatItDeclares) {
   std::map<std::string, bool> mesh_changed;   // re-mesh key -> changed some preset's mesh
   std::set<std::string> mesh_keys;
   std::vector<std::pair<std::string, preset>> cases;
-  for (const char* name : small_presets) cases.emplace_back(name, load(name));
+  for (const char* name : small_presets) cases.emplace_back(name, sylva_test::shipped_preset(name));
   // Settings that bring the mode-dependent sliders in: tips mode; whorls, clumps and finer rings
   // (the flare's lobes are at most half the radial segments).
   cases.emplace_back("sapling, tips", cases[0].second);
@@ -205,7 +199,7 @@ std::shared_ptr<const grow_result> wait_for(worker_state& w, uint32_t g) {
 // The worker honours the classes: a re-mesh edit keeps the skeleton (the same object) and meshes
 // it again to the bytes a fresh mesh of it gives; an unchanged request keeps the mesh too.
 TEST(ParamClass, WorkerRedoesOnlyWhatTheEditNeeds) {
-  const preset p = load("species_sapling");
+  const preset p = sylva_test::shipped_preset("species_sapling");
   worker_state w;
   start_worker(w);
   w.node_budget = int64_t(1) << 40;

@@ -6,8 +6,8 @@
 #include <set>
 #include <string>
 
-#include "app/preset_library.h"
-#include "render/preset.h"
+#include "app/editor/preset_library.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "app/view_gizmo.h"
+#include "app/editor/view_gizmo.h"
 
 using namespace sylva;
 

@@ -124,3 +124,35 @@ TEST(GrowthWorker, StressManyRequestsPollingReaderAndStops) {
     EXPECT_FALSE(w.thread.joinable());
   }
 }
+
+// The LOD chain off the UI thread (lod_worker): the newest request's chain arrives, once, and is
+// the chain build_lods makes on the calling thread; an older request's is never handed out.
+TEST(LodWorker, TheChainArrivesAndEqualsTheOneBuiltOnTheCallingThread) {
+  lsystem_params l;
+  l.derivations = 8;
+  const tree_spec spec{l, 3};
+  mesh_params mp;
+  auto t = std::make_shared<const tree_skeleton>(grow(spec, grow_options{}));
+  auto m = std::make_shared<const tree_mesh>(mesh_tree(*t, mp, spec.seed));
+  lod_params p;
+  const lod_chain here = build_lods(*t, *m, mp, p);
+  lod_worker w;
+  EXPECT_EQ(take_lod_result(w), nullptr);   // nothing asked for: no thread, nothing to take
+  lod_params older = p;
+  older.lod1_budget = p.lod1_budget / 2;
+  post_lod_request(w, t, m, mp, older);    // superseded by the next request
+  const uint32_t id = post_lod_request(w, t, m, mp, p);
+  ASSERT_TRUE(wait_lod_result(w, id, 120000));
+  const std::shared_ptr<const lod_result> r = take_lod_result(w);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->id, id);
+  ASSERT_NE(r->chain, nullptr);
+  EXPECT_EQ(r->chain->triangles, here.triangles);
+  EXPECT_EQ(r->chain->target, here.target);
+  for (size_t k = 0; k < here.level.size(); ++k) {
+    EXPECT_EQ(r->chain->level[k].position, here.level[k].position) << "LOD" << k + 1;
+    EXPECT_EQ(r->chain->level[k].index, here.level[k].index) << "LOD" << k + 1;
+    EXPECT_EQ(r->chain->level[k].leaves.size(), here.level[k].leaves.size()) << "LOD" << k + 1;
+  }
+  EXPECT_EQ(take_lod_result(w), nullptr);   // handed out once
+}

@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
 
 namespace sylva {
 

@@ -11,8 +11,8 @@
 
 #include <fuzzer/FuzzedDataProvider.h>
 
-#include "render/export.h"
-#include "render/lod.h"
+#include "render/io/export.h"
+#include "render/mesh/lod.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace sylva;

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "app/editor_settings.h"
+#include "app/editor/editor_settings.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace sylva;

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "render/textures.h"
+#include "render/assets/textures.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace sylva;

@@ -15,8 +15,9 @@
 
 #include "app/gl_window.h"
 #include "generators/tree_spec.h"
-#include "render/mesh.h"
-#include "render/preset.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
+#include "tests/fixtures.h"
 #include "render/gl/renderer.h"
 
 namespace sylva_test {
@@ -62,7 +63,7 @@ class renderer_test : public ::testing::Test {
   };
   shown_tree show_preset(const std::string& name) {
     shown_tree s;
-    EXPECT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", s.p).ok) << name;
+    s.p = shipped_preset(name);
     s.t = sylva::grow(s.p.spec, sylva::grow_options{});
     s.m = sylva::mesh_tree(s.t, s.p.mesh, s.p.spec.seed);
     sylva::upload_tree(r, s.m);

@@ -11,7 +11,7 @@
 #include "generators/tree_spec.h"
 #include "tests/gl/gl_test_context.h"
 #include "render/gl/impostor.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 
 using namespace sylva;
 

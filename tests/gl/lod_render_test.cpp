@@ -10,9 +10,9 @@
 
 #include "generators/tree_spec.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/preset.h"
+#include "render/io/preset.h"
 #include "render/gl/impostor.h"
-#include "render/lod.h"
+#include "render/mesh/lod.h"
 
 using namespace sylva;
 

@@ -20,7 +20,7 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
-#include "render/preset.h"
+#include "render/io/preset.h"
 #include "tests/run_sylva.h"
 #include "render/gl/renderer.h"
 #include "tests/gl/gl_test_context.h"

@@ -15,7 +15,7 @@
 
 #include "render/gl/renderer.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/sky.h"
+#include "render/gl/sky.h"
 
 using namespace sylva;
 using sylva_test::gl_context;
@@ -140,9 +140,7 @@ TEST_F(LightShafts, BeamBehindAHoleIsBrighterThanBesideIt) {
   const int errors = gl_error_count();
 
   auto pixel = [&](glm::vec3 world) {
-    const glm::vec3 eye = camera_eye(cam);
-    const glm::mat4 vp = glm::perspective(glm::radians(cam.fov), float(w) / float(h), 0.1f, 1000.0f) *
-                         glm::lookAt(eye, cam.target, glm::vec3(0, 1, 0));
+    const glm::mat4 vp = camera_projection(cam, float(w) / float(h), 0.1f, 1000.0f) * camera_view(cam);
     const glm::vec4 c = vp * glm::vec4(world, 1.0f);
     return glm::ivec2((c.x / c.w * 0.5f + 0.5f) * w, (c.y / c.w * 0.5f + 0.5f) * h);   // GL rows: bottom up
   };

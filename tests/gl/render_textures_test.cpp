@@ -14,7 +14,7 @@
 
 #include "render/gl/renderer.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/textures.h"
+#include "render/assets/textures.h"
 
 using namespace sylva;
 using sylva_test::gl_context;

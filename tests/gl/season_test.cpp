@@ -15,10 +15,10 @@
 
 #include <epoxy/gl.h>
 
-#include "render/export.h"
-#include "render/preset.h"
+#include "render/io/export.h"
+#include "render/io/preset.h"
 #include "render/gl/renderer.h"
-#include "render/season.h"
+#include "render/mesh/season.h"
 #include "tests/gl/gl_test_context.h"
 
 using namespace sylva;

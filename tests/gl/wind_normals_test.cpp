@@ -16,7 +16,7 @@
 
 #include "generators/lsystem.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/wind.h"
+#include "render/mesh/wind.h"
 #include "render/gl/wind_gl.h"
 
 using namespace sylva;

@@ -14,10 +14,10 @@
 
 #include "generators/lsystem.h"
 #include "tests/gl/gl_test_context.h"
-#include "render/export.h"
-#include "render/export_wind.h"
-#include "render/preset.h"
-#include "render/wind.h"
+#include "render/io/export.h"
+#include "render/io/export_wind.h"
+#include "render/io/preset.h"
+#include "render/mesh/wind.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -385,6 +385,8 @@ TEST_F(WindRender, TwoMomentsDifferWithWindAndMatchWithout) {
   const auto b = frame(1.7f);
   EXPECT_EQ(int(r.uploads_total), uploads_before) << "no upload per frame: time is a uniform";
   EXPECT_EQ(r.counts.leaf_draw_calls, 2) << "one leaf call per pass, as without wind";
+  // Five programs sway (bark and leaves, lit and shadow); the motion is computed once for the frame.
+  EXPECT_EQ(r.counts.wind_motions, 1);
   EXPECT_GT(differing(a, b), size_t(w * hgt / 400)) << "the tree moved";
   EXPECT_EQ(frame(1.7f), b) << "the same moment draws the same image";
   delete_gl(target);

@@ -10,7 +10,7 @@
 
 #include "generators/tree_spec.h"
 #include "render/gl/renderer.h"
-#include "render/mesh.h"
+#include "render/mesh/mesh.h"
 #include "tests/gl/gl_test_context.h"
 
 using namespace sylva;
@@ -41,7 +41,7 @@ TEST_F(WoodRender, ScrubbingShowsTheBendOfTheStepLikeItsExport) {
   mesh_params mp;
   mp.leaves_enabled = false;   // bark only: leaves' cards face differently in the two paths
   // The bend alone: gnarl grows with age and the collar/flare swell is sized for the final tree
-  // (render/mesh.h), so a younger tree's re-mesh differs from the scrubbed final mesh by those too.
+  // (render/mesh/mesh.h), so a younger tree's re-mesh differs from the scrubbed final mesh by those too.
   mp.gnarl = 0;
   mp.collar = 0;
   mp.flare_strength = 0;

@@ -1,0 +1,477 @@
+// The editor: the window and frame loop (DESIGN §5): each frame builds the UI from editor_state
+// (app/editor/editor_state.h; its parts live in app/editor/editor_*.cpp), then draws the tree under it.
+#include "app/editor/editor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include "app/editor/editor_script.h"
+#include "app/editor/editor_settings.h"
+#include "app/editor/editor_state.h"
+#include "app/gl_window.h"
+#include "app/editor/view_gizmo.h"
+
+namespace sylva {
+
+namespace {
+
+using namespace ed;
+
+void handle_keys(editor_state& e) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
+  const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+  // The windows' keys work while a text field has the keyboard too (the panel's or the library's
+  // search box): they type nothing there, and a newcomer who clicked into one still gets them.
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
+  if (io.WantTextInput) return;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
+  // Undo and redo take one step per press: a held Ctrl+Z does not run through the history.
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z) && !e.input.is_repeat(GLFW_KEY_Z)) {
+    if (shift) apply_undo(e, e.cur().redo, e.cur().undo);
+    else apply_undo(e, e.cur().undo, e.cur().redo);
+  }
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.cur().redo, e.cur().undo);
+  // Front, right side and top views (Blender's numpad keys; Ctrl: the opposite side).
+  const struct { int kp, row; view_axis axis, opposite; } views[] = {{GLFW_KEY_KP_1, GLFW_KEY_1, view_axis::front, view_axis::back},
+                                                                     {GLFW_KEY_KP_3, GLFW_KEY_3, view_axis::right, view_axis::left},
+                                                                     {GLFW_KEY_KP_7, GLFW_KEY_7, view_axis::top, view_axis::bottom}};
+  for (const auto& v : views)
+    if (ImGui::IsKeyPressed(v.kp) || ImGui::IsKeyPressed(v.row)) snap_view(e.camera, ctrl ? v.opposite : v.axis);
+  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
+  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
+  const int steps = e.cur().shown && e.cur().shown->skeleton ? e.cur().shown->skeleton->steps : 0;
+  if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
+  if (ImGui::IsKeyPressed(GLFW_KEY_END)) e.step = steps;
+  if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) e.step = std::max(0, e.step - 1);
+  if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) e.step = std::min(steps, e.step + 1);
+}
+
+void handle_mouse(editor_state& e, const view_rect& view) {
+  const int viewport_height = int(view.h);
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse) return;
+  // A click that did not drag picks the branch under the mouse (Pruning).
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 9 && e.cur().shown && e.cur().shown->skeleton)
+    pick_in_view(e.prune, *e.cur().shown->skeleton, e.step, e.camera, view, io.MousePos.x, io.MousePos.y);
+  const ImVec2 d = io.MouseDelta;
+  // A drag starts past three pixels from the press (the pick's slack), so a click never orbits.
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 3)) orbit_camera_rotate(e.camera, d.x, d.y);
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 3) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 3))
+    orbit_camera_pan(e.camera, d.x, d.y, viewport_height);
+  if (io.MouseWheel != 0) orbit_camera_zoom(e.camera, io.MouseWheel);
+}
+
+void load_fonts() {
+  ImGuiIO& io = ImGui::GetIO();
+  // Latin, Latin Extended-A (Měch), Greek (λ σ τ κ φ α), phonetic subscripts (dᵢ), punctuation,
+  // super/subscripts (s₀ r₁),
+  // arrows and maths (≥ −): the symbols the parameter labels use.
+  static const ImWchar ranges[] = {0x0020, 0x017F, 0x0370, 0x03FF, 0x1D00, 0x1DBF, 0x2000, 0x206F,
+                                   0x2070, 0x209F, 0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+  const char* candidates[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+                              "/usr/share/fonts/TTF/DejaVuSans.ttf", nullptr};
+  for (int i = 0; candidates[i]; ++i)
+    if (fs::exists(candidates[i]) && io.Fonts->AddFontFromFileTTF(candidates[i], 16.0f * ui_scale, nullptr, ranges)) return;
+  std::fprintf(stderr, "sylva: DejaVu Sans not found (install fonts-dejavu-core); Greek symbols will not show\n");
+  io.Fonts->AddFontDefault();
+}
+
+// The style and the font at a content scale (fonts and sizes follow the monitor).
+void apply_ui_scale(float scale) {
+  ui_scale = std::clamp(scale, 1.0f, 4.0f);
+  ImGuiStyle& style = ImGui::GetStyle();
+  style = ImGuiStyle();
+  ImGui::StyleColorsDark(&style);
+  style.WindowRounding = 0;
+  // Dialogs and popups are opaque: the tree behind them is distracting, not informative.
+  style.Colors[ImGuiCol_PopupBg].w = 1;
+  style.Colors[ImGuiCol_WindowBg].w = 1;
+  style.Colors[ImGuiCol_ModalWindowDimBg] = ImVec4(0, 0, 0, 0.45f);
+  style.ScaleAllSizes(ui_scale);
+  ImGui::GetIO().Fonts->Clear();
+  load_fonts();
+}
+
+std::string save_region_png(int x, int y, int width, int height, const std::string& path) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  image shot = read_back_rgba(x, y, width, height);
+  for (size_t i = 3; i < shot.pixels.size(); i += 4) shot.pixels[i] = 255;
+  return save_png(shot, path);
+}
+
+std::string save_window_png(int width, int height, const std::string& path) { return save_region_png(0, 0, width, height, path); }
+
+}  // namespace
+
+int run_editor(const std::string& preset_path) {
+  editor_options o;
+  o.preset_path = preset_path;
+  if (const char* s = std::getenv("SYLVA_SCREENSHOT")) o.screenshot_path = s;
+  if (const char* s = std::getenv("SYLVA_FRAMES")) o.frames = std::max(1, std::atoi(s));
+  if (const char* s = std::getenv("SYLVA_OVERLAYS")) o.overlays = std::atoi(s) != 0;
+  if (const char* s = std::getenv("SYLVA_WINDOW")) {
+    int w = 0, h = 0;
+    if (std::sscanf(s, "%dx%d", &w, &h) == 2 && w >= 320 && h >= 240) {
+      o.width = w;
+      o.height = h;
+      o.fit_screen = false;
+    }
+  }
+  return run_editor(o);
+}
+
+int run_editor(const editor_options& o) {
+  auto e = std::make_unique<editor_state>();
+  editor_slot& a = e->ab.slots[0];   // the editor starts on slot A
+  a.worker = std::make_unique<worker_state>();
+  a.doc = default_preset();
+  if (!o.preset_path.empty()) {
+    preset loaded;
+    load_result r = load_preset_file(o.preset_path, loaded);
+    if (!r.ok) {
+      std::fprintf(stderr, "sylva: cannot open %s: %s\n", o.preset_path.c_str(), r.error.c_str());
+      set_status(*e, "Cannot open " + o.preset_path + ": " + r.error + " (showing the default tree)", true);
+    } else {
+      a.doc = loaded;
+      a.path = o.preset_path;
+      if (!r.warnings.empty()) set_status(*e, r.warnings.front());
+    }
+  }
+  // With no preset named, a newcomer meets a species tree (the oak), not an abstract L-system.
+  if (o.preset_path.empty() && o.screenshot_path.empty() && !std::getenv("SYLVA_SCRIPT")) {
+    for (const fs::path& d : preset_dirs()) {
+      preset oak;
+      if (const fs::path p = d / "species_oak.json"; fs::exists(p) && load_preset_file(p.string(), oak).ok) {
+        a.doc = oak;
+        a.path = p.string();
+        break;
+      }
+    }
+  }
+  a.undo_base = a.doc;
+  note_saved(*e, a.path);
+  e->home = user_folder();
+  script_state script;
+  if (const char* s = std::getenv("SYLVA_SCRIPT")) {
+    if (std::string err; !load_script(s, script, err)) {
+      std::fprintf(stderr, "sylva: %s\n", err.c_str());
+      return 2;
+    }
+  }
+  const bool scripted = !script.lines.empty();
+  const bool automated = !o.screenshot_path.empty();
+  if (const char* s = std::getenv("SYLVA_NODE_BUDGET")) a.worker->node_budget = std::max<int64_t>(1000, std::atoll(s));
+  // Work left unsaved by a crash or a killed session: offered back (not in automatic screenshots).
+  if (!automated) find_recovery(*e);
+  e->show_overlays = o.overlays;
+  if (const char* s = std::getenv("SYLVA_SHOW_BROWSER")) e->browser.open = std::atoi(s) != 0;
+  if (const char* s = std::getenv("SYLVA_SHOW_EXPORT")) e->exporter.open = std::atoi(s) != 0;
+
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!display || !*display) && (!wayland || !*wayland)) {
+    std::fprintf(stderr, "sylva: the editor needs a display (DISPLAY is not set); try `sylva export` instead\n");
+    return 1;
+  }
+  if (const std::string why = init_glfw(); !why.empty()) {
+    std::fprintf(stderr, "sylva: %s\n", why.c_str());
+    return 1;
+  }
+  // The window fits the monitor's work area on the first start and keeps its place afterwards.
+  // Each line that cannot be used is said and left out; the editor starts with the defaults for it.
+  std::vector<std::string> setting_notes;
+  editor_settings settings = load_settings(e->home, &setting_notes);
+  if (!setting_notes.empty()) set_status(*e, setting_notes[0] + (setting_notes.size() > 1 ? " (more on stderr)" : ""), true);
+  for (size_t i = 1; i < setting_notes.size(); ++i) std::fprintf(stderr, "sylva: %s\n", setting_notes[i].c_str());
+  if (!std::getenv("SYLVA_NODE_BUDGET") && settings.node_budget > 0) a.worker->node_budget = settings.node_budget;
+  if (!scripted) e->recent = settings.recent;
+  const bool remember_window = o.fit_screen && o.screenshot_path.empty() && !scripted;
+  int width = o.width, height = o.height, pos_x = -1, pos_y = -1;
+  if (o.fit_screen) {
+    int ax = 0, ay = 0, aw = 0, ah = 0;
+    if (GLFWmonitor* m = glfwGetPrimaryMonitor()) glfwGetMonitorWorkarea(m, &ax, &ay, &aw, &ah);
+    if (aw > 0 && ah > 0) {
+      const int frame = 40;   // room for the window manager's title bar
+      if (remember_window && settings.width > 0) {
+        width = std::min(settings.width, aw), height = std::min(settings.height, ah - frame);
+        pos_x = std::clamp(settings.x, ax, ax + aw - width), pos_y = std::clamp(settings.y, ay, ay + ah - height);
+      } else {
+        width = std::min(o.width, aw), height = std::min(o.height, ah - frame);
+        pos_x = ax + (aw - width) / 2, pos_y = ay + std::max(0, (ah - frame - height) / 2) + frame;
+      }
+    }
+  }
+  std::string why;   // shown once placed, so that it does not jump
+  GLFWwindow* window = create_gl33_window({width, height, "Sylva", false, false, remember_window && settings.maximized}, why);
+  if (window && pos_x >= 0) glfwSetWindowPos(window, pos_x, pos_y);
+  if (window) glfwShowWindow(window);
+  if (!window) {
+    std::fprintf(stderr, "sylva: %s\n", why.c_str());
+    glfwTerminate();
+    return 1;
+  }
+  e->window = window;
+  // Closing the window asks first when there are unsaved changes.
+  glfwSetWindowUserPointer(window, e.get());
+  glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+    auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w));
+    if (!ed || ed->quit_confirmed) return;
+    glfwSetWindowShouldClose(w, GLFW_FALSE);
+    ed->close_requested = true;
+  });
+  glfwSwapInterval(o.screenshot_path.empty() ? 1 : 0);
+  install_gl_debug_output();
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;   // the layout is fixed; no imgui.ini litter
+  {
+    float xs = 1, ys = 1;
+    glfwGetWindowContentScale(window, &xs, &ys);
+    if (const char* sc = std::getenv("SYLVA_UI_SCALE")) xs = float(std::atof(sc));
+    apply_ui_scale(xs);
+  }
+  // Moved to a monitor with another scale: the style and fonts follow before the next frame.
+  glfwSetWindowContentScaleCallback(window, [](GLFWwindow* w, float xs, float) {
+    if (auto* ed = static_cast<editor_state*>(glfwGetWindowUserPointer(w))) ed->rescale_to = xs;
+  });
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  install_input_queue(window, &e->input);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  if (!init_renderer(a.renderer)) set_status(*e, a.renderer.error, true);
+  start_worker(*a.worker);
+  {
+    std::vector<std::string> folders;
+    for (const fs::path& d : preset_dirs()) folders.push_back(d.string());
+    e->browser.share = a.renderer.shared;   // the library's thumbnails: the same context, the same programs
+    init_preset_browser(e->browser, folders);
+  }
+
+  int exit_code = 0, frames_with_tree = 0;
+  auto started = std::chrono::steady_clock::now();
+  auto last = started;
+  while (!glfwWindowShouldClose(window)) {
+    glfwPollEvents();
+    auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
+
+    if (e->rescale_to > 0 && !std::getenv("SYLVA_UI_SCALE")) {
+      apply_ui_scale(e->rescale_to);
+      ImGui_ImplOpenGL3_DestroyFontsTexture();
+      ImGui_ImplOpenGL3_CreateFontsTexture();
+    }
+    e->rescale_to = 0;
+    feed_imgui(e->input, ImGui::GetIO());
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    feed_mouse(e->input, ImGui::GetIO());   // after the backend's poll: buttons and position in order
+    ImGui::NewFrame();
+
+    int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
+    glfwGetFramebufferSize(window, &fb_w, &fb_h);
+    glfwGetWindowSize(window, &win_w, &win_h);
+
+    // Build the UI first; only then read the state for drawing (DESIGN §9).
+    e->hold_post = false;
+    timeline_markers = !e->cur().doc.spec.keyframes.empty() || !e->cur().doc.spec.cuts.empty();
+    e->prompts_shown.clear();
+    if (e->close_requested) {
+      e->close_requested = false;
+      request(*e, editor_state::then::quit);
+    }
+    draw_menu(*e);
+    const float top = ImGui::GetFrameHeight();
+    const float bottom = float(win_h) - status_height() - (e->show_timeline ? timeline_height() : 0);
+    if (e->show_panel) draw_panel(*e, top, float(win_h) - status_height());
+    const float left = e->show_panel ? panel_width() : 0;
+    if (e->show_timeline) draw_timeline(*e, left, bottom, float(win_w) - left);
+    draw_status(*e, float(win_h) - status_height(), float(win_w));
+    draw_toast(*e, left, top, float(win_w));
+    draw_overlay_legend(*e, left, bottom);
+    draw_message_log(*e);
+    draw_shortcuts(*e);
+    draw_dialogs(*e);
+    if (std::string p = draw_preset_browser(e->browser, e->cur().baseline_path, modified(*e)); !p.empty()) request(*e, editor_state::then::open, p);
+    {
+      // An export's outcome goes through set_status, so it is dated (not taken for stale at once),
+      // logged, and a failure gets its toast.
+      std::string exported;
+      bool export_failed = false;
+      draw_export_dialog(e->exporter, export_context{e->cur().shown, e->step, e->cur().doc, e->cur().renderer, e->camera, left, top}, exported, export_failed);
+      if (!exported.empty()) set_status(*e, exported, export_failed);
+    }
+    handle_keys(*e);
+    const view_rect view{left, top, float(win_w) - left, bottom - top};
+    // A slot whose growth failed or waits marks its (older) tree stale.
+    const editor_slot& slot_a = e->ab.slots[0];
+    const editor_slot& slot_b = e->ab.slots[1];
+    const bool ab_drag = draw_ab_overlay(e->ab, view.x, view.y, view.w, view.h, slot_label(slot_a.doc), slot_label(slot_b.doc),
+                                         !ab_slot_problem(slot_a.growth, slot_a.growth_text).empty(),
+                                         !ab_slot_problem(slot_b.growth, slot_b.growth_text).empty());
+    // Side by side: picking and the picked branch use the selected slot's half.
+    view_rect pick_view = view;
+    if (ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side) {
+      pick_view.w = float(std::max(1, int(view.w) / 2));
+      if (e->ab.selected == 1) pick_view.x += pick_view.w, pick_view.w = view.w - pick_view.w;
+    }
+    // The gizmo sits in the view's corner; with A and B on screen it would cover one slot's tree only.
+    const bool on_gizmo = !ab_showing(e->ab) && draw_view_gizmo(e->camera, view);
+    if (!ab_drag && !on_gizmo) handle_mouse(*e, pick_view);
+    draw_prune_overlay(e->prune, e->cur().shown && e->cur().shown->skeleton ? e->cur().shown->skeleton.get() : nullptr, e->step,
+                       e->camera, pick_view);
+    record_undo(*e);
+    autosave(*e, dt);
+
+    post_if_changed(*e);
+    take_new_tree(*e);
+    restore_slot_b(*e);
+    ab_poll_other(e->ab, e->step);
+    if (e->ab.other().worker) e->ab.other().worker->node_budget = e->cur().worker->node_budget.load();
+    if (scripted && !script.failed && !script.finished) {
+      if (script.frames_left > 0) --script.frames_left;
+      else {
+        script.frames_left = -1;
+        if (!run_script(*e, script)) {
+          if (script.failed) exit_code = 3;
+          e->quit_confirmed = true;
+          glfwSetWindowShouldClose(window, GLFW_TRUE);
+        }
+      }
+    }
+
+    advance_playback(*e, dt);
+    if (e->frame_now && e->cur().shown) {
+      // With A and B on screen, both trees fit (the same camera draws both).
+      glm::vec3 lo = e->cur().renderer.bounds_min, hi = e->cur().renderer.bounds_max;
+      if (ab_showing(e->ab) && e->ab.other().shown) {
+        lo = glm::min(lo, e->ab.other().renderer.bounds_min);
+        hi = glm::max(hi, e->ab.other().renderer.bounds_max);
+      }
+      frame_view(e->camera, lo, hi, e->view_aspect);
+    }
+    e->frame_now = false;
+
+    update_thumbnails(e->browser);   // GL is main-thread only: between building the UI and drawing
+    if (const std::string title = window_title_text(*e); title != e->window_title) glfwSetWindowTitle(window, (e->window_title = title).c_str());
+    ImGui::Render();
+    // The 3D view fills the area between the panels (framebuffer pixels, origin bottom-left).
+    const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1, sy = win_h > 0 ? float(fb_h) / float(win_h) : 1;
+    const int vx = int(left * sx), vy = int((float(win_h) - bottom) * sy);
+    const int vw = std::max(1, fb_w - vx), vh = std::max(1, int((bottom - top) * sy));
+    e->view_aspect = float(vw) / float(vh);   // framing fits the tree to the 3D view's own shape
+    const bool side_by_side = ab_showing(e->ab) && e->ab.mode == ab_mode::side_by_side;
+    if (side_by_side) e->view_aspect = float(std::max(1, vw / 2)) / float(vh);
+    // Each half is half as wide as the view: going into or out of side by side frames the trees
+    // again for the new shape (next frame), as F would; a camera moved meanwhile is kept otherwise.
+    if (side_by_side != e->framed_side_by_side) e->frame_now = true;
+    e->framed_side_by_side = side_by_side;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fb_w, fb_h);
+    glClearColor(0.1f, 0.1f, 0.11f, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    editor_slot& c = e->cur();
+    if (c.renderer.ok && c.shown && c.shown->skeleton)
+      editor_lod_update(c.lod, c.renderer, c.shown, c.doc.render, e->camera, e->step);
+    // Wind time runs only while the wind blows, so turning it on resumes where it stopped.
+    if (c.doc.render.wind.enabled) c.renderer.wind_time = float(std::fmod(double(c.renderer.wind_time) + dt, 3600.0));
+    if (c.renderer.ok && ab_showing(e->ab)) {   // A/B: both slots, same camera, sun and step
+      editor_slot& o = e->ab.other();
+      if (o.renderer.ok && o.shown && o.shown->skeleton)
+        editor_lod_update(o.lod, o.renderer, o.shown, o.doc.render, e->camera, std::min(e->step, o.shown->skeleton->steps));
+      ab_draw(e->ab, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
+    } else if (c.renderer.ok) {
+      draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
+    }
+    if (c.renderer.texture_message != e->texture_message) {
+      e->texture_message = c.renderer.texture_message;
+      if (!e->texture_message.empty()) set_status(*e, "Texture: " + e->texture_message, true);
+    }
+    // F12 and Screenshot as: the 3D view alone, read before the menus and panels are drawn over it.
+    if (e->screenshot_requested || !e->screenshot_to.empty()) {
+      std::string path = e->screenshot_to;
+      if (path.empty()) {
+        std::error_code ec;
+        fs::create_directories(fs::path(e->home) / "screenshots", ec);
+        path = (fs::path(e->home) / "screenshots" / screenshot_name()).string();
+      }
+      std::string err = save_region_png(vx, vy, vw, vh, path);
+      if (err.empty()) note_recent(e->recent, path);
+      set_status(*e, err.empty() ? "Screenshot saved to " + path : "Screenshot failed: " + err, !err.empty());
+      e->screenshot_requested = false;
+      e->screenshot_to.clear();
+    }
+    glViewport(0, 0, fb_w, fb_h);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    if (e->cur().shown) ++frames_with_tree;
+    const bool auto_shot = !o.screenshot_path.empty() && frames_with_tree >= o.frames;
+    const double waited = std::chrono::duration<double>(now - started).count();
+    if (auto_shot || (!o.screenshot_path.empty() && waited > 60)) {   // SYLVA_SCREENSHOT: the whole window
+      const std::string& path = o.screenshot_path;
+      std::string err = save_window_png(fb_w, fb_h, path);
+      set_status(*e, err.empty() ? "Screenshot saved to " + path : "Screenshot failed: " + err, !err.empty());
+      {
+        if (!err.empty() || !auto_shot) exit_code = 1;
+        if (!auto_shot) std::fprintf(stderr, "sylva: no tree after 60 s; screenshot taken anyway\n");
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+      }
+    }
+    if (!e->script_shot.empty() && script.frames_left == 1) {
+      if (std::string err = save_window_png(fb_w, fb_h, e->script_shot); !err.empty()) std::fprintf(stderr, "sylva: %s\n", err.c_str());
+      e->script_shot.clear();
+    }
+    glfwSwapBuffers(window);
+  }
+
+  if (scripted && !script.finished && !script.failed)
+    std::printf("sylva script: the editor closed before line %zu\n", script.next + 1);
+  if (remember_window) {
+    settings.maximized = glfwGetWindowAttrib(window, GLFW_MAXIMIZED) == GLFW_TRUE;
+    if (!settings.maximized) {
+      glfwGetWindowPos(window, &settings.x, &settings.y);
+      glfwGetWindowSize(window, &settings.width, &settings.height);
+    }
+  }
+  if (o.screenshot_path.empty() && !scripted) {
+    settings.node_budget = e->cur().worker->node_budget.load();
+    settings.recent = e->recent;
+    save_settings(e->home, settings);
+  }
+  shutdown_export_dialog(e->exporter);
+  ab_free_gl(e->ab);   // both slots: workers stopped, renderers freed
+  shutdown_preset_browser(e->browser);
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  if (!o.screenshot_path.empty() && gl_error_count() > 0) {
+    std::fprintf(stderr, "sylva: %d GL error(s): %s\n", gl_error_count(), gl_last_message().c_str());
+    exit_code = 1;
+  }
+  return exit_code;
+}
+
+}  // namespace sylva
+

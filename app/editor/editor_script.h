@@ -1,0 +1,60 @@
+// The editor driven from a script, for its end-to-end tests (not used by people).
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/editor/editor_state.h"
+
+namespace sylva::ed {
+
+// SYLVA_SCRIPT=FILE drives the real window from a script, one command per line, for the editor's
+// end-to-end test (tests/app/editor_test.cpp). Commands that wait give up after a timeout and fail.
+//   wait_tree                  until no growth is in progress and a tree is shown
+//   set KEY=VALUE              an edit, as the panel would make it (set_preset_param)
+//   key [ctrl+][shift+]NAME    a press and release queued between two frames (NAME: a-z, escape, f12, ...)
+//   taps N [ctrl+]NAME         N presses and releases queued at once
+//   expect_recovery 0|1        whether the autosaved recovery file exists and holds the current document (waits)
+//   answer LABEL               press a button of the open dialog
+//   expect_prompt TITLE / expect_no_prompt
+//   expect_modified 0|1 / expect_state growing|done|cancelled|failed / expect_param KEY=VALUE
+//   wait_progress              until the progress bar with Cancel shows
+//   remember / expect_same_tree / expect_new_tree
+//   budget N / shot PATH / frames N / open PATH (as the library does) / quit (as Ctrl+Q)
+//   ab_duplicate / ab_select a|b / ab_mode off|side|split / ab_divider F / ab_wait (the other slot's tree)
+//   expect_other_state STATE   until the unselected A/B slot's growth state is STATE (as expect_state)
+//   expect_recovery_b 0|1      the same for slot B's recovery file
+//   wait_growing S             until the growth in progress has run S seconds (fails if it ends first)
+//   frame_median N             prints the median (and the longest) time of the next N frames
+//   hold [ctrl+]NAME N         a press, N system repeats (a held key) and a release, queued at once
+//   type TEXT                  each character's press, character and release, all queued at once
+//   click export_path | X Y    a move, a press and a release queued at once (a quick click on a slow frame)
+//   show_export 0|1 / export_path P / expect_export_path P   the Export dialog
+//   export_as P / expect_file P   Export as... with P chosen, which writes it; waits for the file
+//   expect_window shortcuts|library 0|1 / expect_message TEXT (contained; empty: no message)
+//   step N / expect_step N     the timeline's step
+//   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
+//   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
+//   expect_texture_loads N     the user texture files the renderer has read so far
+//   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
+// At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
+struct script_state {
+  std::vector<std::string> lines;
+  size_t next = 0;
+  std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
+  int frames_left = -1;
+  int programs = 0;   // remember_programs
+  const tree_skeleton* remembered = nullptr;
+  std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
+  bool failed = false, finished = false;
+  std::vector<std::chrono::steady_clock::time_point> frame_times;   // frame_median: one per frame
+};
+
+// Reads the script at `path` into `sc`; false with `error` set when it cannot be read.
+bool load_script(const std::string& path, script_state& sc, std::string& error);
+// Runs the script's current command; returns false once the script is over.
+bool run_script(editor_state& e, script_state& sc);
+
+}  // namespace sylva::ed

@@ -1,0 +1,180 @@
+// Broadleaf cards and the palm frond: blades and strokes on the leaf canvas
+// (render/assets/archetype_canvas.h). Each card: petiole at the bottom edge's centre, blade up the image.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "render/assets/archetype_canvas.h"
+
+namespace sylva::archetype {
+
+void draw_ovate(leaf_canvas& c, rng&) {
+  stroke(c, {0.5f, 0.0f}, {0.5f, 0.15f}, 0.0065f, 0.0055f, petiole_style);
+  blade_style st;
+  st.serration = 0.07f, st.teeth = 26, st.vein_angle = 40, st.veins = 9;
+  blade(c, {0.5f, 0.13f}, 90, 0.84f, 0.35f, [](float t, int) { return ovate_profile(t); }, st);
+}
+
+void draw_lobed(leaf_canvas& c, rng&) {
+  stroke(c, {0.5f, 0.0f}, {0.5f, 0.09f}, 0.0075f, 0.0065f, petiole_style);
+  blade_style st;
+  const float lobes = 4.5f;
+  st.vein_angle = 52, st.veins = lobes;
+  blade(c, {0.5f, 0.075f}, 90, 0.9f, 0.37f, [&](float t, int side) {
+    // Obovate outline cut by rounded lobes and deep sinuses; the sides are slightly out of step,
+    // and two small auricles sit at the base (Quercus robur).
+    const float outline = std::pow(std::sin(pi * std::pow(t, 1.25f)), 0.7f);
+    const float phase = side ? 0.18f : 0.0f;
+    const float lobe = std::pow(0.5f + 0.5f * std::cos(2 * pi * (lobes * t + phase - 0.25f)), 0.35f);
+    const float auricle = 0.22f * std::max(0.0f, 1 - std::abs(t - 0.045f) / 0.04f);
+    return outline * (0.3f + 0.7f * lobe) + auricle;
+  }, st);
+}
+
+// Darkens the card's outline as a whole and rounds the blade up from it: for shapes drawn as
+// overlapping parts (a maple's lobes), whose own edges would show inside the union. Distance to the
+// nearest cut-away texel by a 3-4 chamfer transform (Borgefors 1986), two passes, in texels (x 3).
+void darken_silhouette(leaf_canvas& c, float amount, float width_px, float dome) {
+  const int n = c.n;
+  const float far = 3 * std::max(width_px + 2, 0.08f * float(n) + 2);
+  std::vector<float> d(size_t(n) * n);
+  for (size_t k = 0; k < d.size(); ++k) d[k] = c.alpha[k] < 0.5f ? 0.0f : far;
+  auto at = [&](int x, int y) { return x < 0 || y < 0 || x >= n || y >= n ? 0.0f : d[size_t(y) * n + x]; };
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      float& v = d[size_t(y) * n + x];
+      v = std::min({v, at(x - 1, y) + 3, at(x, y - 1) + 3, at(x - 1, y - 1) + 4, at(x + 1, y - 1) + 4});
+    }
+  for (int y = n - 1; y >= 0; --y)
+    for (int x = n - 1; x >= 0; --x) {
+      float& v = d[size_t(y) * n + x];
+      v = std::min({v, at(x + 1, y) + 3, at(x, y + 1) + 3, at(x + 1, y + 1) + 4, at(x - 1, y + 1) + 4});
+    }
+  const float dome_px = 0.08f * float(n);  // the dome rises over this distance from the outline
+  for (size_t k = 0; k < d.size(); ++k)
+    if (c.alpha[k] > 0) {
+      c.shade[k] *= 1 - amount + amount * clamp01((d[k] / 3 - 0.5f) / width_px);
+      const float t = std::min(d[k] / 3 / dome_px, 1.0f);
+      c.height[k] += dome * t * (2 - t);
+    }
+}
+
+void draw_palmate(leaf_canvas& c, rng&) {
+  const vec2 centre{0.5f, 0.31f};
+  stroke(c, {0.5f, 0.0f}, centre + vec2(0, 0.01f), 0.0065f, 0.006f, petiole_style);
+  blade_style st;
+  st.vein_angle = 50, st.veins = 6, st.serration = 0.0f, st.edge_dark = 0, st.midrib = 0, st.dome = 0;
+  // Acer platanoides: five pointed lobes with a few large teeth; palmate venation from the centre.
+  auto lobe = [](float t, int) {
+    const float body = std::pow(1 - t, 0.9f) * (0.5f + 0.5f * smooth(0.0f, 0.3f, t));
+    // Two or three big pointed teeth on each side of the lobe's upper half.
+    const float f = t * 3.2f - ffloor(t * 3.2f);
+    const float tooth = t > 0.32f && t < 0.9f ? 1 - 0.45f * (1 - f) * (1 - f) : 1.0f;
+    return body * tooth;
+  };
+  const float angles[5] = {-10, 40, 90, 140, 190};  // degrees: basal, side, centre, side, basal
+  const float lengths[5] = {0.33f, 0.56f, 0.66f, 0.56f, 0.33f};
+  const float widths[5] = {0.16f, 0.27f, 0.29f, 0.27f, 0.16f};
+  for (int k : {0, 4, 1, 3, 2}) {
+    st.bend = k == 0 ? -0.05f : k == 4 ? 0.05f : 0.0f;
+    blade(c, centre, angles[k], fit(centre, heading(angles[k]), lengths[k]), widths[k], lobe, st);
+  }
+  // The main veins all leave the petiole's tip, drawn over the joined lobes.
+  const stroke_style vein{1.08f, 0.9f, 0.35f, 0};
+  for (int k = 0; k < 5; ++k)
+    stroke(c, centre, centre + heading(angles[k]) * (0.85f * fit(centre, heading(angles[k]), lengths[k])), 0.0032f, 0.001f, vein);
+  darken_silhouette(c, 0.28f, 4, 0.012f);
+}
+
+void draw_pinnate(leaf_canvas& c, rng& g) {
+  auto rachis = [](float t) { return vec2(0.5f + 0.015f * std::sin(2.5f * t), 0.78f * t); };
+  curve_stroke(c, rachis, 6, 0.0075f, 0.0042f, petiole_style);
+  blade_style st;
+  st.serration = 0.06f, st.teeth = 16, st.vein_angle = 45, st.veins = 8, st.midrib = 0.9f;
+  auto leaflet = [](float t, int) { return lanceolate_profile(t); };
+  // Fraxinus excelsior: four opposite pairs and a terminal leaflet (nine in all).
+  const float at[4] = {0.28f, 0.46f, 0.63f, 0.80f};
+  for (int i = 0; i < 4; ++i) {
+    const vec2 p = rachis(at[i]);
+    for (int side : {-1, 1}) {
+      const float ang = 90 - side * g.range(58, 66);
+      const float len = (0.26f + 0.03f * float(i) / 3) * g.range(0.95f, 1.05f);
+      const vec2 d = heading(ang);
+      stroke(c, p, p + d * 0.015f, 0.003f, 0.0025f, petiole_style);
+      st.bend = -side * 0.03f;
+      blade(c, p + d * 0.012f, ang, fit(p, d, len), 0.058f, leaflet, st);
+    }
+  }
+  st.bend = 0;
+  blade(c, rachis(1.0f) - vec2(0, 0.005f), 90, fit(rachis(1.0f), {0, 1}, 0.21f), 0.058f, leaflet, st);
+}
+
+void draw_palm_frond(leaf_canvas& c, rng& g) {
+  // A fan of four long, narrow leaflets (pinnae) from one point, each with its own midrib and
+  // gaps of sky between them: one card per side of a rachis node, so a frond is the L-system's
+  // rachis (wood) with these cards along both sides, leaflets in pairs like Phoenix or Cocos.
+  blade_style st;
+  st.veins = 1, st.midrib = 1.4f, st.edge_dark = 0.3f, st.dome = 0.25f;
+  auto leaflet = [](float u, int) { return std::pow(std::sin(pi * std::pow(u, 0.45f)), 0.7f); };
+  const float spread[4] = {-9.0f, -3.0f, 3.0f, 9.0f};
+  for (int k = 0; k < 4; ++k) {
+    const vec2 base{0.5f + 0.03f * (float(k) - 1.5f), 0.0f};
+    const float ang = 90 + spread[k] + g.range(-1.5f, 1.5f);
+    st.bend = (k % 2 ? 1.0f : -1.0f) * 0.025f;
+    const float len = fit(base, heading(ang), (k == 1 || k == 2 ? 0.97f : 0.88f) * g.range(0.95f, 1.0f), 0.01f);
+    blade(c, base, ang, len, 0.04f, leaflet, st);
+  }
+  // The leaflets' joint with the rachis: a short, thick stalk.
+  stroke(c, {0.5f, 0.0f}, {0.5f, 0.05f}, 0.03f, 0.012f, {0.8f, 0.85f, 0.2f, 0});
+}
+
+// A hanging willow shoot (Salix babylonica: leaves lanceolate, about 8-12 by 1-2 cm, alternate,
+// finely toothed, drawn out into a long point): a thin shoot up the card's centre carrying nine
+// long narrow blades that leave it at a narrow angle and overlap, so the card keeps its opacity in
+// the texture's smaller mip levels where one blade a few texels wide would fade away; a seeded
+// sideways curve on each blade.
+void draw_lanceolate(leaf_canvas& c, rng& g) {
+  auto shoot = [](float t) { return vec2(0.5f + 0.025f * std::sin(2.0f * t), 0.78f * t); };
+  blade_style st;
+  st.serration = 0.06f, st.teeth = 40, st.vein_angle = 60, st.veins = 14, st.dome = 0.14f;
+  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.62f)), 1.1f); };
+  const int leaves = 13;
+  for (int i = 0; i < leaves; ++i) {
+    const float t = 0.08f + 0.84f * float(i) / float(leaves - 1);
+    const vec2 p = shoot(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    const float ang = 90 + side * g.range(7, 15);
+    const vec2 d = heading(ang);
+    st.bend = side * g.range(0.0f, 0.05f);
+    const float len = fit(p, d, g.range(0.5f, 0.6f) * (1.0f - 0.35f * t), 0.01f);
+    blade(c, p, ang, len, len * 0.09f, leaf, st);
+  }
+  curve_stroke(c, shoot, 6, 0.008f, 0.004f, twig_style);
+  const vec2 tip = shoot(1.0f);
+  blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.3f), 0.022f, leaf, st);
+}
+
+void draw_twig_cluster(leaf_canvas& c, rng& g) {
+  auto twig = [](float t) { return vec2(0.5f + 0.04f * std::sin(2.4f * t), 0.62f * t); };
+  blade_style st;
+  st.serration = 0.08f, st.teeth = 14, st.vein_angle = 42, st.veins = 6;
+  auto leaf = [](float t, int) { return ovate_profile(t); };
+  const int leaves = 7;
+  for (int i = 0; i < leaves; ++i) {
+    const float t = 0.22f + 0.74f * float(i) / float(leaves - 1);
+    const vec2 p = twig(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    const float ang = 90 + side * g.range(48, 64) * (1.1f - 0.3f * t);
+    const vec2 d = heading(ang);
+    const vec2 q = p + d * 0.035f;
+    stroke(c, p, q, 0.0035f, 0.003f, petiole_style);
+    const float len = fit(q, d, g.range(0.27f, 0.32f), 0.01f);
+    blade(c, q - d * 0.005f, ang, len, len * 0.42f, leaf, st);
+  }
+  curve_stroke(c, twig, 6, 0.011f, 0.0055f, twig_style);
+  const vec2 tip = twig(1.0f);
+  stroke(c, tip, tip + vec2(0, 0.03f), 0.0035f, 0.003f, petiole_style);
+  blade(c, tip + vec2(0, 0.025f), 90, fit(tip, {0, 1}, 0.32f) - 0.02f, 0.13f, leaf, st);
+}
+
+}  // namespace sylva::archetype

@@ -1,0 +1,133 @@
+// Exporters: glTF 2.0 (.glb/.gltf), OBJ+MTL, and the skeleton JSON (DESIGN §6).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "generators/archetypes.h"
+#include "generators/tree_spec.h"
+#include "render/mesh/mesh.h"
+#include "render/mesh/render_params.h"
+#include "render/mesh/season.h"
+
+namespace sylva {
+
+// Level of detail (render/mesh/lod.h): the lower levels written beside the main mesh (LOD0).
+struct export_lod_level {
+  const tree_mesh* mesh = nullptr;   // node ids of the exported skeleton, final tree
+  float coverage = 0;                // screen coverage down to which this level is shown
+  size_t budget = 0;                 // its triangle budget, recorded in extras
+};
+// The impostor: a billboard atlas of `views` views around the trunk, `columns` x `rows` cells, view
+// k at azimuth 360 k / views degrees from +Z toward +X; colour with alpha, and normals.
+struct export_impostor {
+  std::string color_png, normal_png;
+  int views = 8, columns = 4, rows = 2;
+  float width = 1, height = 1;       // metres one cell spans
+  glm::vec3 centre{0};               // world point at the centre of every cell
+  float coverage = 0;                // shown below this screen coverage
+};
+
+struct export_options {
+  int step = -1;                        // export the tree as it stood at this step (-1: final)
+  bool gltf_instancing = false;         // EXT_mesh_gpu_instancing for leaves instead of baked quads
+  // glTF: KHR_mesh_quantization (16-bit positions on a grid per mesh, 8-bit normals and tangents)
+  // and EXT_meshopt_compression of every buffer view; textures without alpha as JPEG.
+  bool compact = false;
+  bool growth_animation = false;        // glTF: steps 0..N as STEP-interpolated scale keyframes
+  float seconds_per_step = 0.5f;
+  int max_animation_steps = 64;         // caps on the growth animation's size
+  size_t max_animation_triangles = 4000000;
+  const std::atomic<uint32_t>* cancel = nullptr;  // non-zero: stop, write nothing
+  std::function<void(float)> progress;
+  mesh_params mesh;             // the params `m` was built with: re-meshes step views and animation steps
+  bool dry_run = false;         // compute export_result.bytes (the size) without writing anything
+  // Materials (fill them from the preset with apply_render_params). Bark: one material from the
+  // archetype's texture set; leaves: one material per leaf archetype present (leaf_instance::texture).
+  int texture_size = 512;               // edge in pixels of every texture (bark and each leaf card)
+  uint64_t texture_seed = 1;
+  bark_archetype bark = bark_archetype::furrowed;
+  glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
+  glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
+  float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
+  float leaf_normal_blend = 0.6f;       // leaf normals bent toward the crown (render/mesh/leaf_shading.h)
+  // The season (render/mesh/season.h): deciduous archetypes' materials take the middle of its colour
+  // range, and its fallen leaves are left out. The default changes nothing (leaf_color is used).
+  season_look season;
+  // The user's PNGs instead of the procedural textures ("" = procedural). A user leaf texture
+  // replaces every archetype's colour (one leaf material); leaf_opacity (same size, grey: white is
+  // leaf) becomes its alpha. A missing, corrupt or huge file is a warning and the export falls back
+  // to the procedural texture.
+  std::string bark_texture, bark_normal_texture, leaf_texture, leaf_opacity;
+  // --lods: LOD1.. written with the main mesh as LOD0 (glTF: MSFT_lod; OBJ: one file per level).
+  std::vector<export_lod_level> lods;
+  float lod0_coverage = 0;
+  const export_impostor* impostor = nullptr;   // glTF only: a textured quad node after the levels
+  // glTF and FBX: > 0 bakes the wind (render/io/export_wind.h) as a skin and a loop of this many seconds.
+  float wind_seconds = 0;
+  wind_params wind;                     // from the preset's render section (apply_render_params)
+};
+
+// The material settings of a preset's render params: bark archetype, tints, alpha cutoff and the
+// user's texture paths. The CLI and the export dialog both fill export_options through this.
+void apply_render_params(export_options& o, const render_params& rp);
+
+struct export_info {
+  std::string generator;   // generator name, written into the files
+  uint64_t seed = 1;
+};
+
+struct export_result {
+  std::string error;        // "" on success
+  std::string warning;      // "" or lines (\n-separated) the user should see; the export was written
+  size_t bytes = 0;         // size of the main file written
+  std::vector<std::string> files;  // every file written
+  size_t triangles = 0;     // in the main mesh (all steps for a growth animation)
+  int animation_steps = 0;  // steps in the growth animation after the caps
+};
+
+// Every format `sylva export` and the editor's export dialog write, in the dialog's order, with
+// what each can carry. The CLI's checks, its messages and the dialog all read this one table: a new
+// format is a row here and a writer in export_tree (or, for a render, app/gl_window.h).
+struct export_format {
+  const char* ext;      // lower case, with the dot
+  const char* label;    // for people: "glTF binary"
+  bool lods;            // --lods: the LOD chain and the impostor
+  bool wind;            // --wind: the wind as a skin and a loop (a render shows the wind's pose)
+  bool render;          // a picture of the tree, drawn by the GL renderer (main thread only)
+  bool manifest;        // a batch of these gets a manifest (seed, file, counts, hash)
+  bool gltf;            // the glTF family: --animation, --instancing and --compact apply
+  bool mesh;            // written from the mesh (the skeleton JSON needs none: nothing is meshed for it)
+  // What the writer (or the renderer) holds on top of the mesh, per bark triangle and per leaf, for
+  // the mesh budget (render/io/mesh_bound.h): measured peaks (`/usr/bin/time -v sylva export`) on bark-
+  // and leaf-heavy trees, with room for vector slack (docs/DESIGN-NOTES.md "Mesh bound").
+  float writer_triangle_bytes, writer_leaf_bytes;
+};
+inline constexpr export_format export_format_table[] = {
+    // ext     label            lods   wind   render manifest gltf   mesh   writer B/triangle, B/leaf
+    {".glb",  "glTF binary",   true,  true,  false, true,  true,  true, 340,  1700},
+    {".gltf", "glTF + .bin",   true,  true,  false, true,  true,  true, 340,  1700},
+    {".obj",  "OBJ + MTL",     true,  false, false, true,  false, true, 420,  1700},
+    {".json", "skeleton JSON", false, false, false, true,  false, false, 0,    0},
+    {".png",  "render (PNG)",  false, true,  true,  false, false, true, 250,  120},
+    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false, true, 1800, 2900},
+};
+inline constexpr int export_format_count = int(sizeof export_format_table / sizeof export_format_table[0]);
+
+// The row for an extension (any case, with the dot), or nullptr.
+const export_format* find_export_format(const std::string& ext);
+// The extensions of the rows that `has` accepts, joined by `sep` (every row when `has` is null).
+std::string export_format_list(bool export_format::*has = nullptr, const char* sep = ", ");
+
+// Picks the format from the extension of `path`: .glb .gltf .obj .fbx .json. Writes atomically.
+export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info,
+                          const std::string& path, const export_options& o = {});
+
+// The skeleton JSON document (DESIGN §6) as text.
+std::string skeleton_json(const tree_skeleton& t, const export_info& info, int step = -1);
+
+}  // namespace sylva

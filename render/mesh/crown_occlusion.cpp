@@ -1,0 +1,160 @@
+// Crown ambient occlusion: the crown's ellipsoid for its depth, times the sky
+// a point sees through the leaves around it, so each clump is darker inside as well as the crown.
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "generators/job_pool.h"
+#include "render/mesh/mesh.h"
+
+namespace sylva {
+namespace {
+
+// A box of cubic cells holding the leaf area density (m² of leaf per m³) and, once baked, the
+// share of the sky each cell sees through the foliage within `window` metres.
+struct leaf_grid {
+  glm::vec3 origin{0};
+  float cell = 1;
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<float> value;
+  size_t at(int x, int y, int z) const { return (size_t(y) * size_t(nz) + size_t(z)) * size_t(nx) + size_t(x); }
+  bool inside(int x, int y, int z) const { return x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz; }
+  // Trilinear between cell centres, clamped to the box.
+  float sample(const glm::vec3& p) const {
+    const glm::vec3 g = glm::clamp((p - origin) / cell - 0.5f, glm::vec3(0), glm::vec3(float(nx - 1), float(ny - 1), float(nz - 1)));
+    if (!std::isfinite(g.x) || !std::isfinite(g.y) || !std::isfinite(g.z)) return 1;
+    const int x0 = int(g.x), y0 = int(g.y), z0 = int(g.z);
+    const int x1 = std::min(x0 + 1, nx - 1), y1 = std::min(y0 + 1, ny - 1), z1 = std::min(z0 + 1, nz - 1);
+    const float fx = g.x - float(x0), fy = g.y - float(y0), fz = g.z - float(z0);
+    auto lerp = [](float a, float b, float f) { return a + (b - a) * f; };
+    const float a = lerp(lerp(value[at(x0, y0, z0)], value[at(x1, y0, z0)], fx), lerp(value[at(x0, y1, z0)], value[at(x1, y1, z0)], fx), fy);
+    const float b = lerp(lerp(value[at(x0, y0, z1)], value[at(x1, y0, z1)], fx), lerp(value[at(x0, y1, z1)], value[at(x1, y1, z1)], fx), fy);
+    return lerp(a, b, fz);
+  }
+};
+
+// Sky visibility per cell from Beer-Lambert extinction through the leaf area density, exp(-G·LAD·s)
+// with the spherical leaf projection G = 1/2 (Monsi & Saeki 1953; Ross 1981), along the zenith and
+// eight directions 45° and 35° above the horizon, each weighted by its cosine to the zenith. Only
+// the foliage within `window` metres counts, so a clump shades its own inside and its neighbours'
+// sides, not the trunk far below the crown. Each direction is a prefix sum along its sheared rows
+// (O(cells)), and the window is a difference of two prefix sums.
+void bake_sky(leaf_grid& g, float window) {
+  const std::vector<float> lad = g.value;
+  std::vector<float> prefix(lad.size());
+  std::vector<float> sky(lad.size(), 0.0f);
+  float weights = 0;
+  const int steps = std::max(1, int(std::lround(window / g.cell)));
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dz = -1; dz <= 1; ++dz) {
+      const float len = std::sqrt(float(dx * dx + 1 + dz * dz));
+      const float w = 1.0f / len;   // cos of the angle to the zenith
+      const float ds = g.cell * len;
+      for (int y = g.ny; y-- > 0;)
+        for (int z = 0; z < g.nz; ++z)
+          for (int x = 0; x < g.nx; ++x) {
+            const size_t c = g.at(x, y, z);
+            const int ax = x + dx, ay = y + 1, az = z + dz;
+            prefix[c] = lad[c] + (g.inside(ax, ay, az) ? prefix[g.at(ax, ay, az)] : 0.0f);
+          }
+      // Layers in parallel: each cell gets its directions' terms in the same order as on one thread.
+      parallel_chunks(size_t(g.ny), 4, [&](size_t y0, size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+          for (int z = 0; z < g.nz; ++z)
+            for (int x = 0; x < g.nx; ++x) {
+              const size_t c = g.at(x, y, z);
+              const int bx = x + steps * dx, by = y + steps, bz = z + steps * dz;
+              const float beyond = g.inside(bx, by, bz) ? prefix[g.at(bx, by, bz)] : 0.0f;
+              const float depth = std::max(prefix[c] - beyond - lad[c], 0.0f) * ds;   // the cell's own leaves do not shade it
+              sky[c] += w * std::exp(-0.5f * depth);
+            }
+      });
+      weights += w;
+    }
+  for (float& s : sky) s /= weights;
+  g.value = std::move(sky);
+}
+
+}  // namespace
+
+void bake_crown_occlusion(tree_mesh& m) {
+  m.occlusion.assign(m.position.size(), 1.0f);
+  if (m.leaves.empty()) return;   // no crown: nothing shades the sky
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const leaf_instance& l : m.leaves) { lo = glm::min(lo, l.position); hi = glm::max(hi, l.position); }
+  if (!std::isfinite(lo.x + lo.y + lo.z + hi.x + hi.y + hi.z)) return;
+  const glm::vec3 c = 0.5f * (lo + hi), inv = 1.0f / glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
+
+  // The leaf area density on a grid over the leaves' box, about 40 cells along its longest side,
+  // reaching one window below it (the rays only go up), so shade fades out down the trunk.
+  const float longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 0.1f});
+  const float window = std::clamp(longest / 6.0f, 0.1f, 3.0f);   // about a limb mass
+  leaf_grid g;
+  // Cells no smaller than a leaf's card, so one leaf never fills a cell on its own.
+  double mean_size = 0;
+  for (const leaf_instance& l : m.leaves) mean_size += std::isfinite(l.size) ? double(l.size) : 0.0;
+  mean_size /= double(m.leaves.size());
+  g.cell = std::max({longest / 40.0f, 1.5f * float(mean_size), 0.05f});
+  g.origin = lo - glm::vec3(0.5f * g.cell, 0.5f * g.cell + window, 0.5f * g.cell);
+  const glm::vec3 extent = hi + glm::vec3(0.5f * g.cell) - g.origin;
+  g.nx = int(extent.x / g.cell) + 1, g.ny = int(extent.y / g.cell) + 1, g.nz = int(extent.z / g.cell) + 1;
+  g.value.assign(size_t(g.nx) * size_t(g.ny) * size_t(g.nz), 0.0f);
+  const float volume = g.cell * g.cell * g.cell;
+  for (const leaf_instance& l : m.leaves) {
+    const glm::vec3 q = (l.position - g.origin) / g.cell;
+    const int x = std::clamp(int(q.x), 0, g.nx - 1), y = std::clamp(int(q.y), 0, g.ny - 1), z = std::clamp(int(q.z), 0, g.nz - 1);
+    const float s = std::isfinite(l.size) ? l.size : 0.0f;
+    g.value[g.at(x, y, z)] += 0.5f * s * s / volume;   // a blade fills about half its card
+  }
+  bake_sky(g, std::max(window, 2 * g.cell));
+
+  // Depth in the crown's ellipsoid (0 at the centre, 1 on its surface and outside) darkens the
+  // crown's core; the local sky darkens each clump's inside. Open sky: 1.
+  auto visibility = [&](const glm::vec3& p) {
+    const float d = glm::length((p - c) * inv);
+    if (!std::isfinite(d)) return 1.0f;
+    const bool near = glm::all(glm::greaterThanEqual(p, g.origin)) &&
+                      glm::all(glm::lessThanEqual(p, g.origin + g.cell * glm::vec3(float(g.nx), float(g.ny), float(g.nz))));
+    const float sky = near ? g.sample(p) : 1.0f;
+    return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
+  };
+  // Bark comes in rings of radial_segments + 1 vertices of one node. The field changes over a
+  // cell, so a ring whose box is under a quarter of a cell (a twig's, most of a tree's rings)
+  // takes the value at its box's centre for all its vertices: one sample instead of one per
+  // vertex. Wider rings (the trunk, the limbs) sample each vertex; a vertex equal to the one
+  // before (a ring's seam, a cap's apex) takes its value. Chunks of whole rings on the shared
+  // pool, each writing only its own vertices, so the bytes do not depend on the chunking.
+  const size_t stride = size_t(std::max(m.radial_segments, 0)) + 1, nv = m.position.size();
+  const bool rings = stride > 1 && nv % stride == 0 && m.node.size() == nv;
+  const size_t block = rings ? stride : 8192;
+  const float small = 0.25f * g.cell;
+  parallel_chunks((nv + block - 1) / block, rings ? 1024 : 1, [&](size_t b0, size_t b1) {
+    for (size_t b = b0; b < b1; ++b) {
+      const size_t begin = b * block, end = std::min(begin + block, nv);
+      if (rings) {
+        glm::vec3 lo(m.position[begin]), hi(lo);
+        bool one_node = true;
+        for (size_t i = begin + 1; i < end; ++i) {
+          lo = glm::min(lo, m.position[i]);
+          hi = glm::max(hi, m.position[i]);
+          one_node = one_node && m.node[i] == m.node[begin];
+        }
+        const glm::vec3 size = hi - lo;
+        if (one_node && std::max({size.x, size.y, size.z}) < small) {   // false for NaN: sampled per vertex
+          std::fill(m.occlusion.begin() + std::ptrdiff_t(begin), m.occlusion.begin() + std::ptrdiff_t(end),
+                    visibility(0.5f * (lo + hi)));
+          continue;
+        }
+      }
+      for (size_t i = begin; i < end; ++i)
+        m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
+    }
+  });
+  parallel_chunks(m.leaves.size(), 8192, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) m.leaves[k].occlusion = uint8_t(std::lround(255.0f * visibility(m.leaves[k].position)));
+  });
+}
+
+}  // namespace sylva

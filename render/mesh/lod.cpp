@@ -1,0 +1,575 @@
+// LOD1-LOD3 from the final tree: a tolerance-driven bark simplifier and a leaf-card merger,
+// each searched for the largest mesh within its share of the triangle budget.
+#include "render/mesh/lod.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+
+#include <glm/geometric.hpp>
+
+#include "render/mesh/lod_cards.h"
+#include "render/assets/textures.h"
+#include "generators/vec_util.h"
+
+namespace sylva {
+namespace {
+
+constexpr float pi = 3.14159265f;
+// Below this many triangles LOD0 is already cheap: the levels keep it (bad input).
+constexpr size_t min_reducible_triangles = 200;
+
+
+// Parallel transport of frame normal n from tangent t0 to t1 (Bishop 1975), as the mesher does.
+glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1) {
+  const glm::vec3 axis = glm::cross(t0, t1);
+  const float s = glm::length(axis), c = glm::dot(t0, t1);
+  glm::vec3 r = n;
+  if (s > 1e-7f) {
+    const glm::vec3 k = axis / s;
+    r = n * c + glm::cross(k, n) * s + k * glm::dot(k, n) * (1 - c);
+  }
+  r -= t1 * glm::dot(r, t1);
+  const float len = glm::length(r);
+  return len > 1e-7f ? r / len : any_perpendicular(t1);
+}
+
+glm::vec3 rotate(const glm::vec4& q, const glm::vec3& v) {
+  const glm::vec3 u(q.x, q.y, q.z);
+  return v + 2.0f * glm::cross(u, glm::cross(u, v) + q.w * v);
+}
+
+// Radial segments a ring of radius r needs so that the polygon strays at most e from the circle:
+// the sagitta of a chord spanning 2*pi/s is r (1 - cos(pi / s)) <= e.
+int segments_for(float r, float e, int most) {
+  if (!(r > e)) return 3;
+  const float s = pi / std::acos(1.0f - e / r);
+  return std::clamp(int(std::ceil(s)), 3, most);
+}
+
+// The final tree's structure, shared by every level's search.
+struct bark_input {
+  const tree_skeleton* t = nullptr;
+  const std::vector<float>* radius = nullptr;  // LOD0's final_radius
+  std::vector<uint8_t> alive;                  // alive at the last step (and its parent too)
+  std::vector<int32_t> cont;                   // the child continuing each node's axis, -1 none
+  std::vector<glm::vec3> dir;                  // unit direction of the internode parent -> node
+  std::vector<uint32_t> starts;                // axis starts: roots and laterals, in index order
+  int most_segments = 8;
+};
+
+bark_input prepare_bark(const tree_skeleton& t, const tree_mesh& m) {
+  bark_input b;
+  b.t = &t;
+  b.radius = &m.final_radius;
+  b.most_segments = std::max(m.radial_segments, 3);
+  const size_t n = t.size();
+  b.alive.assign(n, 0);
+  b.cont.assign(n, -1);
+  b.dir.assign(n, glm::vec3(0, 1, 0));
+  if (m.final_radius.size() != n || t.parent.size() != n || t.born.size() != n || t.died.size() != n ||
+      t.order.size() != n)
+    return b;
+  const int last = std::max(t.steps, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t par = t.parent[i];
+    if (par >= int32_t(i) || par < -1) return bark_input{};  // not a skeleton the mesher accepts
+    b.alive[i] = t.alive(i, last) && (par < 0 || b.alive[par]) && finite3(t.position[i]);
+    if (par < 0) continue;
+    const glm::vec3 d = t.position[i] - t.position[par];
+    const float len = glm::length(d);
+    b.dir[i] = len > 1e-12f && std::isfinite(len) ? d / len : b.dir[par];
+  }
+  // Same rule as the mesher: the same-order child first, then the most aligned one.
+  std::vector<float> best(n, -1e30f);
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t par = t.parent[i];
+    if (par < 0 || !b.alive[i]) continue;
+    const float score = (t.order[i] == t.order[par] ? 4.0f : 0.0f) + glm::dot(b.dir[par], b.dir[i]);
+    if (score > best[par]) { best[par] = score; b.cont[par] = int32_t(i); }
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (b.alive[i] && (t.parent[i] < 0 || b.cont[t.parent[i]] != int32_t(i))) b.starts.push_back(uint32_t(i));
+  return b;
+}
+
+// One axis as the level keeps it: the rings (node ids; the first is the base) and the segments.
+struct kept_axis {
+  int32_t base_parent = -1;       // lateral: its base ring sits at this node; -1 for a root
+  uint32_t first = 0;             // the axis's first node (the base ring's radius and node id)
+  std::vector<uint32_t> ring;     // kept nodes along the axis
+  int segments = 3;
+};
+
+// The axes a tolerance e keeps: nodes thinner than e/2 go (with everything above them), rings whose
+// removal moves the axis by less than e go, and each axis gets the segments its base radius needs.
+// `lookahead` bounds the chord test so that the cost stays linear.
+// With `out` null only the triangles are counted (the search's inner loop allocates nothing).
+void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>* out, size_t& triangles) {
+  if (out) out->clear();
+  kept_axis a;
+  triangles = 0;
+  const tree_skeleton& t = *b.t;
+  const std::vector<float>& r = *b.radius;
+  const float cut = 0.5f * e;
+  constexpr int lookahead = 16;
+  static thread_local std::vector<uint32_t> chain;
+  for (uint32_t s : b.starts) {
+    const int32_t par = t.parent[s];
+    if (r[s] < cut) continue;
+    // A lateral needs its parent node kept as a ring of the parent axis or as any node with r >= cut.
+    if (par >= 0 && r[par] < cut) continue;
+    chain.clear();
+    for (int32_t i = int32_t(s); i >= 0 && b.alive[i] && (r[i] >= cut || (par < 0 && chain.size() < 2)); i = b.cont[i])
+      chain.push_back(uint32_t(i));
+    a.ring.clear();
+    a.base_parent = par;
+    a.first = s;
+    a.segments = segments_for(r[s], e, b.most_segments);
+    // Greedy chord simplification: extend the span from the last kept point while every skipped
+    // node stays within e of the chord, in position and in radius (within the lookahead).
+    glm::vec3 from = par >= 0 ? t.position[par] : t.position[chain[0]];
+    float from_r = r[s];
+    size_t k = 0;
+    if (par < 0) { a.ring.push_back(chain[0]); k = 1; }   // a root's first node is its base ring
+    size_t first_skipped = k;
+    auto keep = [&](size_t j) {
+      a.ring.push_back(chain[j]);
+      from = t.position[chain[j]];
+      from_r = r[chain[j]];
+      first_skipped = k = j + 1;
+    };
+    while (k < chain.size()) {
+      const size_t j = k;   // can chain[first_skipped..j] be skipped by a chord to chain[j + 1]?
+      if (j + 1 >= chain.size() || int(j + 1 - first_skipped) > lookahead) { keep(j); continue; }
+      const glm::vec3 d = t.position[chain[j + 1]] - from;
+      const float len2 = glm::dot(d, d), to_r = r[chain[j + 1]];
+      bool ok = true;
+      for (size_t q = first_skipped; q <= j && ok; ++q) {
+        const glm::vec3 p = t.position[chain[q]];
+        const float u = len2 > 0 ? std::clamp(glm::dot(p - from, d) / len2, 0.0f, 1.0f) : 0.0f;
+        ok = glm::length(p - (from + u * d)) <= e && std::abs(r[chain[q]] - (from_r + u * (to_r - from_r))) <= e;
+      }
+      if (ok) ++k;
+      else keep(j);
+    }
+    const size_t spans = par >= 0 ? a.ring.size() : (a.ring.empty() ? 0 : a.ring.size() - 1);
+    triangles += spans * size_t(2 * a.segments);
+    if (out && !a.ring.empty()) out->push_back(a);
+  }
+}
+
+// Writes the kept axes as tube geometry into m (bark arrays, index sorted by born, index_end).
+void emit_bark(const bark_input& b, const std::vector<kept_axis>& axes, const mesh_params& mp, tree_mesh& m) {
+  const tree_skeleton& t = *b.t;
+  const std::vector<float>& r = *b.radius;
+  const float uv_repeat = std::isfinite(mp.uv_repeat) ? mp.uv_repeat : 1.0f;
+  struct span { uint32_t lo, hi, born; int seg; };
+  std::vector<span> spans;
+  std::vector<float> vcoord(t.size(), 0.0f);   // arc length * uv_repeat along the kept rings
+  auto emit_ring = [&](const glm::vec3& c, const glm::vec3& tan, const glm::vec3& nrm, float rad, float v, uint32_t node,
+                       int seg, float wraps) {
+    const glm::vec3 bin = glm::cross(tan, nrm);
+    const uint32_t start = uint32_t(m.position.size());
+    for (int k = 0; k <= seg; ++k) {
+      const float a = 2 * pi * float(k % seg) / float(seg);
+      const glm::vec3 d = nrm * std::cos(a) + bin * std::sin(a);
+      m.position.push_back(c + d * rad);
+      m.normal.push_back(d);
+      m.uv.push_back({float(k) / float(seg) * wraps, v});
+      m.node.push_back(node);
+    }
+    // Padding up to LOD0's ring stride with copies of the seam vertex, unindexed: exporters find a
+    // vertex's ring neighbours by that stride (render/io/export.cpp, tangents).
+    for (int k = seg + 1; k <= b.most_segments; ++k) {
+      m.position.push_back(m.position[start]);
+      m.normal.push_back(m.normal[start]);
+      m.uv.push_back(m.uv[start + uint32_t(seg)]);
+      m.node.push_back(node);
+    }
+    return start;
+  };
+  for (const kept_axis& a : axes) {
+    const int seg = a.segments;
+    const float wraps = std::clamp(std::round(2 * pi * r[a.first] * std::abs(uv_repeat)), 1.0f, 64.0f);
+    // Points of the axis: the base (parent node for a lateral), then the kept rings.
+    const size_t np = a.ring.size() + (a.base_parent >= 0 ? 1 : 0);
+    auto point = [&](size_t k) {
+      if (a.base_parent >= 0) return k == 0 ? t.position[a.base_parent] : t.position[a.ring[k - 1]];
+      return t.position[a.ring[k]];
+    };
+    auto node_of = [&](size_t k) { return a.base_parent >= 0 ? (k == 0 ? a.first : a.ring[k - 1]) : a.ring[k]; };
+    std::vector<glm::vec3> dir(np);
+    for (size_t k = 1; k < np; ++k) {
+      const glm::vec3 d = point(k) - point(k - 1);
+      const float len = glm::length(d);
+      dir[k] = len > 1e-12f && std::isfinite(len) ? d / len : (k > 1 ? dir[k - 1] : b.dir[node_of(k)]);
+    }
+    dir[0] = np > 1 ? dir[1] : b.dir[node_of(0)];
+    glm::vec3 frame = any_perpendicular(dir[0]), prev_tan = dir[0];
+    float v = a.base_parent >= 0 ? vcoord[a.base_parent] : 0.0f;
+    uint32_t prev_ring = 0;
+    for (size_t k = 0; k < np; ++k) {
+      glm::vec3 tan = dir[k];
+      if (k > 0 && k + 1 < np) {
+        const glm::vec3 sum = dir[k] + dir[k + 1];
+        if (glm::length(sum) > 1e-4f) tan = glm::normalize(sum);
+      }
+      frame = transport(frame, prev_tan, tan);
+      prev_tan = tan;
+      if (k > 0) v += glm::length(point(k) - point(k - 1)) * uv_repeat;
+      const uint32_t node = node_of(k);
+      vcoord[node] = v;
+      // A lateral's base ring takes the lateral's radius (as the mesher's does).
+      const uint32_t ring = emit_ring(point(k), tan, frame, r[node], v, node, seg, wraps);
+      if (k > 0) spans.push_back({prev_ring, ring, t.born[node], seg});
+      prev_ring = ring;
+    }
+  }
+  // Sorted by born so that step s draws a prefix, as LOD0 (DESIGN §5).
+  std::stable_sort(spans.begin(), spans.end(), [](const span& x, const span& y) { return x.born < y.born; });
+  size_t k = 0;
+  for (int s = 0; s <= m.steps; ++s) {
+    for (; k < spans.size() && (int(spans[k].born) <= s || s == m.steps); ++k) {
+      const span& q = spans[k];
+      for (int j = 0; j < q.seg; ++j) {
+        const uint32_t a = q.lo + j, b2 = q.lo + j + 1, c = q.hi + j, d = q.hi + j + 1;
+        m.index.insert(m.index.end(), {a, b2, c, b2, d, c});
+      }
+    }
+    m.index_end[size_t(s)] = uint32_t(m.index.size());
+  }
+}
+
+// Leaves of the final tree, sorted along a Morton curve over their box, so that the leaves of every
+// octree cell are one contiguous run at every depth.
+struct leaf_input {
+  std::vector<leaf_instance> leaves;
+  std::vector<uint32_t> code;     // 30-bit Morton code (10 bits per axis), sorted
+};
+
+uint32_t spread_bits(uint32_t x) {   // 10 bits -> every third bit
+  x &= 0x3ff;
+  x = (x | (x << 16)) & 0x30000ff;
+  x = (x | (x << 8)) & 0x300f00f;
+  x = (x | (x << 4)) & 0x30c30c3;
+  x = (x | (x << 2)) & 0x9249249;
+  return x;
+}
+
+glm::vec3 leaf_centre(const leaf_instance& l) { return l.position + rotate(l.orientation, glm::vec3(0, 0.5f * l.size, 0)); }
+
+leaf_input prepare_leaves(const tree_mesh& m) {
+  leaf_input in;
+  const int last = m.steps;
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const leaf_instance& l : m.leaves) {
+    if (!(int(l.born) <= last && last < int(l.died)) || !finite3(l.position) || !std::isfinite(l.size)) continue;
+    in.leaves.push_back(l);
+    lo = glm::min(lo, l.position);
+    hi = glm::max(hi, l.position);
+  }
+  const float side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-6f});
+  std::vector<std::pair<uint32_t, uint32_t>> keyed(in.leaves.size());
+  for (size_t k = 0; k < in.leaves.size(); ++k) {
+    const glm::vec3 q = (in.leaves[k].position - lo) / side * 1023.0f;
+    const uint32_t code = spread_bits(uint32_t(q.x)) | (spread_bits(uint32_t(q.y)) << 1) | (spread_bits(uint32_t(q.z)) << 2);
+    keyed[k] = {code, uint32_t(k)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<leaf_instance> sorted(in.leaves.size());
+  in.code.resize(keyed.size());
+  for (size_t k = 0; k < keyed.size(); ++k) {
+    sorted[k] = in.leaves[keyed[k].second];
+    in.code[k] = keyed[k].first;
+  }
+  in.leaves.swap(sorted);
+  return in;
+}
+
+// Runs [begin, end) of leaves sharing an octree cell at `depth` (0: the whole box; 10: finest).
+void cells_at(const leaf_input& in, size_t begin, size_t end, int depth, std::vector<std::pair<size_t, size_t>>& out) {
+  const int shift = 3 * (10 - depth);
+  size_t k = begin;
+  while (k < end) {
+    const uint32_t key = shift >= 32 ? 0 : in.code[k] >> shift;
+    size_t j = k + 1;
+    while (j < end && (shift >= 32 ? 0 : in.code[j] >> shift) == key) ++j;
+    out.push_back({k, j});
+    k = j;
+  }
+}
+
+// Groups of at most `cards` runs: the deepest octree level that fits, then its biggest cells split
+// one level further while the budget allows.
+std::vector<std::pair<size_t, size_t>> group_leaves(const leaf_input& in, size_t cards) {
+  std::vector<std::pair<size_t, size_t>> groups, next;
+  const size_t n = in.leaves.size();
+  if (n == 0) return groups;
+  cards = std::max<size_t>(cards, 1);
+  if (cards >= n) {
+    for (size_t k = 0; k < n; ++k) groups.push_back({k, k + 1});
+    return groups;
+  }
+  groups.push_back({0, n});
+  int depth = 0;
+  for (int d = 1; d <= 10; ++d) {
+    next.clear();
+    cells_at(in, 0, n, d, next);
+    if (next.size() > cards) break;
+    groups.swap(next);
+    depth = d;
+  }
+  if (depth < 10) {
+    // Split the biggest groups of `depth` into their children while the count stays in budget.
+    std::vector<size_t> order(groups.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return groups[a].second - groups[a].first > groups[b].second - groups[b].first;
+    });
+    std::vector<std::pair<size_t, size_t>> split;
+    std::vector<std::vector<std::pair<size_t, size_t>>> children(groups.size());
+    size_t count = groups.size();
+    for (size_t k : order) {
+      split.clear();
+      cells_at(in, groups[k].first, groups[k].second, depth + 1, split);
+      if (count + split.size() - 1 > cards) continue;
+      count += split.size() - 1;
+      children[k] = split;
+    }
+    std::vector<std::pair<size_t, size_t>> out;
+    for (size_t k = 0; k < groups.size(); ++k) {
+      if (children[k].empty()) out.push_back(groups[k]);
+      else out.insert(out.end(), children[k].begin(), children[k].end());
+    }
+    groups.swap(out);
+  }
+  // Leaves that share even the finest cell (a whorl at one node) part into single leaves while the
+  // budget allows.
+  size_t count = groups.size();
+  std::vector<std::pair<size_t, size_t>> out;
+  for (const auto& g : groups) {
+    const size_t extra = g.second - g.first - 1;
+    if (extra > 0 && count + extra <= cards) {
+      count += extra;
+      for (size_t k = g.first; k < g.second; ++k) out.push_back({k, k + 1});
+    } else {
+      out.push_back(g);
+    }
+  }
+  groups.swap(out);
+  return groups;
+}
+
+// One card per group: centred on the group's leaves, oriented as the member nearest that centre,
+// covering the leaves' opaque area (sum of sides^2 times each texture's alpha coverage, over the
+// card texture's) but no wider than 3x the group's spread, so the crown's outline stays.
+// The card texture is baked from the tree's own leaves (render/mesh/lod_cards.h): a few representative
+// groups of the level, at evenly spaced quantiles of their expected coverage, are rasterised onto
+// their cards' planes into `baked`, and every merged card takes the one whose expected coverage is
+// nearest its own; the card's area rule then uses that texture's own opaque share. Without room
+// for more baked textures, the cluster archetype `card_texture` stands in.
+void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t>>& groups, uint8_t card_texture,
+                float area_gain, baked_card_textures& baked, tree_mesh& m) {
+  m.leaves.clear();
+  m.leaves.reserve(groups.size());
+  struct merged { size_t group, slot; card_fit fit; glm::vec3 centre; float opaque, spread; };
+  std::vector<merged> cards;
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto [a, b] = groups[gi];
+    if (b - a == 1) { m.leaves.push_back(in.leaves[a]); continue; }
+    glm::vec3 c(0);
+    float opaque = 0, occl = 0;
+    uint16_t born = 0xffff, died = 0;
+    for (size_t k = a; k < b; ++k) {
+      const leaf_instance& l = in.leaves[k];
+      c += leaf_centre(l);
+      opaque += l.size * l.size * archetype_opaque_share(l.texture);
+      occl += float(l.occlusion);
+      born = std::min(born, l.born);
+      died = std::max(died, l.died);
+    }
+    c /= float(b - a);
+    size_t nearest = a;
+    float spread = 0, best = 1e30f;
+    for (size_t k = a; k < b; ++k) {
+      const glm::vec3 lc = leaf_centre(in.leaves[k]);
+      const float d = glm::length(lc - c);
+      spread = std::max(spread, d + 0.5f * in.leaves[k].size);
+      if (d < best) { best = d; nearest = k; }
+    }
+    leaf_instance card = in.leaves[nearest];
+    card.born = born;
+    card.died = died;
+    card.texture = card_texture;
+    card.occlusion = uint8_t(std::clamp(occl / float(b - a), 0.0f, 255.0f));
+    cards.push_back({gi, m.leaves.size(), fit_card(&in.leaves[a], b - a, card.orientation), c, opaque, spread});
+    m.leaves.push_back(card);
+  }
+  std::vector<std::pair<float, int>> tiles;   // expected coverage, texture index
+  std::vector<size_t> order(cards.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return cards[x].fit.coverage < cards[y].fit.coverage; });
+  const size_t room = size_t(max_baked_cards) - std::min(baked.sets.size(), size_t(max_baked_cards));
+  const size_t count = std::min({size_t(cards_per_level), order.size(), room});
+  for (size_t q = 0; q < count; ++q) {
+    const merged& p = cards[order[(2 * q + 1) * order.size() / (2 * count)]];
+    const auto [a, b] = groups[p.group];
+    baked.sets.push_back(bake_card(&in.leaves[a], b - a, p.fit));
+    std::array<int, leaf_archetype_count> votes{};
+    for (size_t k = a; k < b; ++k) ++votes[size_t(std::clamp(int(in.leaves[k].texture), 0, leaf_archetype_count - 1))];
+    baked.source.push_back(uint8_t(std::max_element(votes.begin(), votes.end()) - votes.begin()));
+    baked.opaque.push_back(opaque_share(baked.sets.back().color));
+    tiles.push_back({p.fit.coverage, leaf_archetype_count + int(baked.sets.size()) - 1});
+  }
+  for (const merged& p : cards) {
+    leaf_instance& card = m.leaves[p.slot];
+    float share = archetype_opaque_share(card_texture), best = 1e30f;
+    for (const auto& [cov, tex] : tiles)
+      if (std::abs(cov - p.fit.coverage) < best) {
+        best = std::abs(cov - p.fit.coverage);
+        card.texture = uint8_t(tex);
+        share = baked.opaque[size_t(tex - leaf_archetype_count)];
+      }
+    // The card's opaque area matches its leaves' opaque area (each texture's alpha coverage), so a
+    // sparse card texture standing for solid leaves grows to cover as many pixels. The cap, 3x
+    // the group's spread, lets a tight whorl's card reach the disc its leaves sweep; 2x held oak
+    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/gl/lod_render_test.cpp, docs/LOD.md).
+    card.size = std::min(std::sqrt(p.opaque / share * area_gain), 3.0f * p.spread);
+    card.position = p.centre - rotate(card.orientation, glm::vec3(0, 0.5f * card.size, 0));
+  }
+  // Sorted by born, with the per-step table, as LOD0's leaves.
+  std::stable_sort(m.leaves.begin(), m.leaves.end(), [](const leaf_instance& x, const leaf_instance& y) { return x.born < y.born; });
+  size_t k = 0;
+  for (int s = 0; s <= m.steps; ++s) {
+    while (k < m.leaves.size() && (int(m.leaves[k].born) <= s || s == m.steps)) ++k;
+    m.leaf_end[size_t(s)] = uint32_t(k);
+  }
+}
+
+float clamp_budget(float v, int level, std::string& message) {
+  float c = std::isfinite(v) ? std::clamp(v, 1.0f, 100.0f) : 40.0f;
+  if (c != v) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "LOD%d budget %g%% is outside 1-100%%: using %g%%", level, double(v), double(c));
+    message += (message.empty() ? "" : "; ") + std::string(buf);
+  }
+  return c;
+}
+
+}  // namespace
+
+size_t final_triangles(const tree_mesh& m) {
+  if (m.index_end.empty()) return 2 * m.leaves.size() + m.index.size() / 3;
+  const size_t s = m.index_end.size() - 1;
+  size_t leaves = 0;
+  for (const leaf_instance& l : m.leaves) leaves += int(l.born) <= m.steps && m.steps < int(l.died);
+  return m.index_end[s] / 3 + 2 * leaves;
+}
+
+lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_params& mp, const lod_params& p) {
+  lod_chain c;
+  c.budget = {100, clamp_budget(p.lod1_budget, 1, c.message), clamp_budget(p.lod2_budget, 2, c.message),
+              clamp_budget(p.lod3_budget, 3, c.message)};
+  // Coverage: a level with a budget of b (fraction of LOD0) has b times LOD0's triangles per
+  // pixel of screen when its coverage is sqrt(b), LOD0 being meant to fill the view's height
+  // (triangles per pixel constant, pixels growing as coverage squared).
+  for (int k = 0; k + 1 < lod_levels; ++k) c.coverage[size_t(k)] = std::sqrt(c.budget[size_t(k) + 1] / 100.0f);
+  c.coverage[3] = 0.5f * c.coverage[2];
+  c.impostor_coverage = 0.1f * c.coverage[3];   // the impostor down to a few pixels, then culled
+
+  const size_t t0 = final_triangles(m);
+  c.triangles[0] = c.target[0] = t0;
+  const size_t bark0 = m.index_end.empty() ? 0 : m.index_end.back() / 3;
+  auto keep_lod0 = [&](const std::string& why) {
+    for (int k = 1; k < lod_levels; ++k) {
+      c.level[size_t(k) - 1] = m;
+      c.triangles[size_t(k)] = t0;
+      c.target[size_t(k)] = size_t(double(t0) * c.budget[size_t(k)] / 100.0);
+    }
+    c.reduced = false;
+    c.message += (c.message.empty() ? "" : "; ") + why;
+    return c;
+  };
+  if (t0 < min_reducible_triangles)
+    return keep_lod0("tree too small to reduce (" + std::to_string(t0) + " triangles): LOD1-LOD3 keep LOD0");
+
+  const bark_input bark = prepare_bark(t, m);
+  if (bark.alive.empty() || bark.starts.empty())
+    return keep_lod0("tree has no bark the levels can reduce: LOD1-LOD3 keep LOD0");
+  const leaf_input leaves = prepare_leaves(m);
+  const glm::vec3 extent = m.bounds_max - m.bounds_min;
+  const float size = std::max({extent.x, extent.y, extent.z, 1e-3f});
+  const uint8_t card_texture = uint8_t(std::clamp(int(mp.leaves.cluster_archetype), 0, leaf_archetype_count - 1));
+
+  c.reduced = true;
+  std::vector<kept_axis> axes;
+  // Merged cards get textures baked from the tree's own leaves (render/mesh/lod_cards.h), shared by the
+  // three levels (every level's mesh points at the same set).
+  auto baked = std::make_shared<baked_card_textures>();
+  for (int k = 1; k < lod_levels; ++k) {
+    const float b = c.budget[size_t(k)] / 100.0f;
+    const size_t target = size_t(double(t0) * b);
+    c.target[size_t(k)] = target;
+    // The bark gets 0.3 of its share of LOD0 (most of it hides inside the crown) and the leaves what
+    // it leaves: measured on the oak, LOD1's silhouette IoU goes from 0.83 (full share) to 0.97; pine
+    // LOD1 from 0.96 (half share) to 0.97 (docs/LOD.md).
+    // When every leaf fits anyway, the bark takes the rest.
+    const size_t all_leaves = 2 * leaves.leaves.size();
+    const size_t bark_target = std::max(size_t(0.3 * double(bark0) * b), target > all_leaves ? target - all_leaves : 0);
+    // Largest mesh within budget: bisect the tolerance (log scale) between 1e-6 and 1x the tree.
+    float lo = std::log(1e-6f * size), hi = std::log(size);
+    size_t tris = 0;
+    simplify_bark(bark, std::exp(hi), nullptr, tris);
+    const bool reachable = tris <= bark_target;
+    for (int it = 0; it < 16 && reachable; ++it) {   // 2^-16 of the log range: within 0.03 % in e
+      const float mid = 0.5f * (lo + hi);
+      simplify_bark(bark, std::exp(mid), nullptr, tris);
+      if (tris <= bark_target) hi = mid; else lo = mid;
+    }
+    simplify_bark(bark, std::exp(hi), &axes, tris);
+    tree_mesh& out = c.level[size_t(k) - 1];
+    out.steps = m.steps;
+    out.radial_segments = m.radial_segments;
+    out.final_radius = m.final_radius;
+    out.index_end.assign(size_t(m.steps) + 1, 0);
+    out.leaf_end.assign(size_t(m.steps) + 1, 0);
+    out.position.reserve(tris * 2);
+    emit_bark(bark, axes, mp, out);
+    const size_t bark_tris = out.index.size() / 3;
+    const size_t cards = (target > bark_tris ? target - bark_tris : 0) / 2;
+    // A merged card stands for its leaves' area; 1.0 keeps the total card area of LOD0.
+    emit_cards(leaves, group_leaves(leaves, std::max<size_t>(cards, leaves.leaves.empty() ? 0 : 1)), card_texture, 1.0f,
+               *baked, out);
+    out.cards = baked;
+    out.bounds_min = m.bounds_min;
+    out.bounds_max = m.bounds_max;
+    bake_crown_occlusion(out);
+    c.triangles[size_t(k)] = final_triangles(out);
+    if (c.triangles[size_t(k)] > target && c.triangles[size_t(k)] > 0) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "LOD%d: %zu triangles, over its budget of %zu (the trunk and one card per cell stay)", k,
+                    c.triangles[size_t(k)], target);
+      c.message += (c.message.empty() ? "" : "; ") + std::string(buf);
+    }
+  }
+  return c;
+}
+
+float screen_coverage(float radius, float distance, float fov_degrees) {
+  const float t = std::tan(0.5f * fov_degrees * pi / 180.0f);
+  if (!(distance > 0) || !(t > 0) || !std::isfinite(radius)) return 1.0f;
+  return radius / (distance * t);
+}
+
+int pick_lod(const lod_chain& c, float coverage, float bias) {
+  const float cov = coverage * std::exp2(-(std::isfinite(bias) ? std::clamp(bias, -8.0f, 8.0f) : 0.0f));
+  for (int k = 0; k < lod_levels; ++k)
+    if (cov >= c.coverage[size_t(k)]) return k;
+  return lod_levels;
+}
+
+}  // namespace sylva

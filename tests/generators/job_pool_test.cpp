@@ -1,0 +1,110 @@
+// The shared job pool (generators/job_pool.h) and the mesher on it: every job runs once, errors
+// come back to the caller, nested calls end, and the parallel mesh and self-organizing growth are
+// the single thread's, byte for byte.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "generators/job_pool.h"
+#include "generators/self_organizing_grid.h"
+#include "render/mesh/mesh.h"
+#include "render/io/preset.h"
+
+using namespace sylva;
+
+TEST(JobPool, RunsEveryJobOnceAndRethrows) {
+  EXPECT_GE(job_pool_helpers(), 1);
+  std::vector<std::atomic<int>> hits(10007);
+  parallel_jobs(hits.size(), [&](size_t k) { hits[k].fetch_add(1); });
+  for (size_t k = 0; k < hits.size(); ++k) ASSERT_EQ(hits[k].load(), 1) << k;
+
+  std::atomic<size_t> sum{0};
+  parallel_chunks(1000, 7, [&](size_t b, size_t e) {   // nested: the inner calls must end too
+    parallel_jobs(e - b, [&](size_t k) { sum += b + k; });
+  });
+  EXPECT_EQ(sum.load(), 999u * 1000u / 2);
+
+  EXPECT_THROW(parallel_jobs(64, [](size_t k) { if (k == 40) throw std::runtime_error("job 40"); }), std::runtime_error);
+  std::atomic<int> after{0};
+  parallel_jobs(64, [&](size_t) { ++after; });   // the pool still works after a failed batch
+  EXPECT_EQ(after.load(), 64);
+}
+
+// Presets whose meshes run every parallel stage: the foliage model (shoots, tips, clumps,
+// clusters), the generator's own leaves, a leaf cap, flare, collars, caps and the crown occlusion.
+TEST(JobPool, ParallelMeshIsTheSingleThreadedMeshByteForByte) {
+  int checked = 0;
+  for (const char* name : {"species_oak", "species_maple_cards", "species_palm", "species_willow",
+                           "self_organizing_default", "lsystem_honda_f", "species_sapling"}) {
+    SCOPED_TRACE(name);
+    preset p;
+    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
+    const tree_skeleton t = grow(p.spec, grow_options{});
+    std::vector<mesh_params> variants{p.mesh};
+    mesh_params capped = p.mesh;
+    capped.leaves.cap = 1000;   // stops placement part way through a chunk
+    variants.push_back(capped);
+    mesh_params tips = p.mesh;
+    tips.leaves.mode = leaf_mode::tips;
+    variants.push_back(tips);
+    for (const mesh_params& m : variants) {
+      const int old = set_job_pool_limit(1);
+      const tree_mesh one = mesh_tree(t, m, p.spec.seed);
+      set_job_pool_limit(old);
+      const tree_mesh many = mesh_tree(t, m, p.spec.seed);
+      ASSERT_GT(one.position.size(), 0u);
+      EXPECT_EQ(one.position, many.position);
+      EXPECT_EQ(one.occlusion, many.occlusion);
+      EXPECT_EQ(one.index, many.index);
+      EXPECT_EQ(one.leaves.size(), many.leaves.size());
+      EXPECT_EQ(mesh_digest(one), mesh_digest(many));
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 21);
+}
+
+// The self-organizing growth scans its buds' cones and adds its shadow pyramids on the pool: the
+// tree is the single thread's, bit for bit, with ties in the cones (seed 000's planar rule draws
+// from the same stream) and with shedding (pyramids taken away).
+TEST(JobPool, ParallelSelfOrganizingGrowthIsTheSingleThreadedGrowth) {
+  for (const char* name : {"self_organizing_default", "self_organizing_seed000_planar", "self_organizing_seed001_fig2",
+                           "species_maple_cards"}) {
+    SCOPED_TRACE(name);
+    preset p;
+    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
+    const int old = set_job_pool_limit(1);
+    const tree_skeleton one = grow(p.spec, grow_options{});
+    set_job_pool_limit(old);
+    const tree_skeleton many = grow(p.spec, grow_options{});
+    ASSERT_GT(one.size(), 500u);
+    EXPECT_EQ(one.parent, many.parent);
+    EXPECT_EQ(one.position, many.position);
+    EXPECT_EQ(one.radius, many.radius);
+  }
+}
+
+// Many pyramids at once give the cells, and the chunk layout, of one pyramid after another.
+TEST(JobPool, ShadowPyramidsInPartsAreOneAfterAnother) {
+  rng r(7);
+  std::vector<glm::ivec3> voxels;
+  for (int k = 0; k < 3000; ++k) voxels.push_back({r.uniform_int(40) - 20, r.uniform_int(30) - 5, r.uniform_int(40) - 20});
+  for (float sign : {1.0f, -1.0f}) {
+    shadow_grid one, many;
+    for (const glm::ivec3& v : voxels) add_shadow_pyramid(one, v, 0.2f, 2.0f, 5, sign);
+    add_shadow_pyramids(many, voxels, 0.2f, 2.0f, 5, sign);
+    ASSERT_GT(one.chunk_count(), 8u);
+    EXPECT_EQ(one.chunk_pos, many.chunk_pos);
+    ASSERT_EQ(one.cells.size(), many.cells.size());
+    EXPECT_EQ(0, std::memcmp(one.cells.data(), many.cells.data(), one.cells.size() * sizeof(float)));
+  }
+  shadow_grid capped;   // past the memory cap the writes go nowhere, as one at a time
+  capped.chunk_cap = 5;
+  add_shadow_pyramids(capped, voxels, 0.2f, 2.0f, 5);
+  EXPECT_TRUE(capped.full);
+  EXPECT_EQ(capped.chunk_count(), 5u);
+}
