@@ -42,12 +42,13 @@ void handle_keys(editor_state& e) {
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
-  // Undo and redo take one step per press: a held Ctrl+Z does not run through the history.
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z) && !e.input.is_repeat(GLFW_KEY_Z)) {
+  // Undo and redo take one step per press: a held Ctrl+Z does not run through the history (neither
+  // the system's key repeats nor ImGui's own, which fires when a slow frame outlasts its delay).
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false) && !e.input.is_repeat(GLFW_KEY_Z)) {
     if (shift) apply_undo(e, e.cur().redo, e.cur().undo);
     else apply_undo(e, e.cur().undo, e.cur().redo);
   }
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.cur().redo, e.cur().undo);
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.cur().redo, e.cur().undo);
   // Front, right side and top views (Blender's numpad keys; Ctrl: the opposite side).
   const struct { int kp, row; view_axis axis, opposite; } views[] = {{GLFW_KEY_KP_1, GLFW_KEY_1, view_axis::front, view_axis::back},
                                                                      {GLFW_KEY_KP_3, GLFW_KEY_3, view_axis::right, view_axis::left},
