@@ -119,6 +119,9 @@ inline int octant_of(const glm::vec3& v, const glm::vec3& w) {
 }
 // The 8 Yao-8 targets of v: the nearest point in each octant (-1 when empty), built on first use.
 const int32_t* yao8_edges(gv_graph& g, int32_t v);
+// Builds the edges of every vertex not built yet, in parallel on the job pool. The edges equal
+// those yao8_edges builds one at a time.
+void build_all_yao8_edges(gv_graph& g);
 
 // Xu & Mould 2015 §B: c = ‖v−u‖·(1 − ê·g_u).
 float gv_edge_cost(const glm::vec3& u, const glm::vec3& v, const glm::vec3& g_u);

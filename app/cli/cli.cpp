@@ -1,4 +1,5 @@
 // The headless commands: `sylva params`, `sylva export` (with batch variants) and `sylva bench`.
+#include "generators/job_pool.h"
 #include "app/cli/cli.h"
 #include "app/bench/bench.h"
 #include "app/bench/bench_set.h"
@@ -460,6 +461,10 @@ int run_cli(int argc, char** argv) {
                   "--render: keep each preset's sun (default: backlit with shadows and god rays, every pass runs)");
   std::string bench_ab;
   bench->add_option("--ab", bench_ab, "--render: time the A/B view (each preset as A beside this one as B) against A alone");
+  int bench_threads = 0;
+  bench->add_option("--threads", bench_threads,
+                    "Threads the job pool may use for each parallel stage (1: the single-threaded path; default: all)")
+      ->check(CLI::Range(1, 64));
   std::vector<std::string> bench_sets;
   bench->add_option("--set", bench_sets,
                     "key=value (as export --set, one value; repeatable) applied to every preset benched, e.g. render.wind=true")
@@ -484,6 +489,7 @@ int run_cli(int argc, char** argv) {
     if (bench->parsed()) {
       if (std::string e = set_bench_sets(bench_sets); !e.empty()) return usage_error("bench", e);
       if (!bench_sets.empty()) std::fprintf(stderr, "sylva bench: every preset with %s\n", bench_sets_label().c_str());
+      if (bench_threads > 0) set_job_pool_limit(bench_threads);
     }
     if (bench->parsed() && bench_lods)
       return run_bench_lods(bench_paths, repeat, bench_json, bench_sheet, bench_width, bench_height);

@@ -12,6 +12,7 @@
 #include "generators/job_pool.h"
 #include "generators/self_organizing_grid.h"
 #include "render/mesh/mesh.h"
+#include "generators/guiding_vectors.h"
 #include "render/io/preset.h"
 
 using namespace sylva;
@@ -85,6 +86,36 @@ TEST(JobPool, ParallelSelfOrganizingGrowthIsTheSingleThreadedGrowth) {
     EXPECT_EQ(one.parent, many.parent);
     EXPECT_EQ(one.position, many.position);
     EXPECT_EQ(one.radius, many.radius);
+  }
+}
+
+// The guiding-vector graph's edges are found for every vertex at once on the pool (after a few
+// built one by one, which keep theirs): each vertex gets the edges yao8_edges finds alone, and the
+// grown tree is the single thread's, bit for bit.
+TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
+  rng random(5);
+  std::vector<glm::vec3> pts(3000);
+  for (glm::vec3& q : pts) q = glm::vec3(random.uniform(), random.uniform(), random.uniform());
+  gv_graph lazy = make_gv_graph(pts, 0.05f), all = make_gv_graph(pts, 0.05f);
+  for (int32_t v : {7, 1200, 2999}) yao8_edges(all, v);
+  build_all_yao8_edges(all);
+  for (int32_t v = 0; v < int32_t(pts.size()); ++v) {
+    ASSERT_GE(all.edge_at[size_t(v)], 0);
+    const int32_t* want = yao8_edges(lazy, v);
+    const int32_t* got = yao8_edges(all, v);
+    for (int o = 0; o < 8; ++o) ASSERT_EQ(got[o], want[o]) << "vertex " << v << " octant " << o;
+  }
+  for (const char* name : {"guiding_vectors_default", "guiding_vectors_fig7_radial"}) {
+    SCOPED_TRACE(name);
+    preset p;
+    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
+    const int old = set_job_pool_limit(1);
+    const tree_skeleton one = grow(p.spec, grow_options{});
+    set_job_pool_limit(old);
+    const tree_skeleton many = grow(p.spec, grow_options{});
+    ASSERT_GT(one.size(), 150u);
+    EXPECT_EQ(one.parent, many.parent);
+    EXPECT_EQ(one.position, many.position);
   }
 }
 
