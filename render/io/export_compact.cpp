@@ -21,7 +21,7 @@ void remap(std::vector<T>& v, const std::vector<unsigned>& order, size_t unique)
   v = std::move(out);
 }
 
-constexpr int gl_byte = 5120, gl_ubyte = 5121, gl_short = 5122, gl_ushort = 5123, gl_uint = 5125, gl_float = 5126;
+constexpr int gl_byte = 5120, gl_ubyte = 5121, gl_short = 5122, gl_ushort = 5123;
 constexpr int element_array_buffer = 34963;
 
 size_t component_bytes(int type) {
