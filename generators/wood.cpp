@@ -28,6 +28,7 @@
 #endif
 
 #include <glm/geometric.hpp>
+#include <glm/gtx/quaternion.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 namespace sylva {
@@ -343,6 +344,53 @@ struct engine {
       prev = s;
     }
     forward(n, false);
+    rest_on_ground();
+  }
+
+  // The soil: an internode whose bent tip would lie below ground_rest above its tree's base is
+  // turned up about its base until the tip lies at that height, heading where it headed (its
+  // length kept); the turn carries everything beyond it. A tree that stays above the soil is
+  // left exactly as it is (one scan, no other work).
+  void rest_on_ground() {
+    if (!(p.ground_rest >= 0) || n < 2) return;
+    // Nothing can be below its soil when every node stands above the lowest base's: the common
+    // case, found with no allocation.
+    float lowest_base = INFINITY, lowest = INFINITY;
+    for (size_t k = 0; k < n; ++k) {
+      if (t.parent[k] < 0) lowest_base = std::min(lowest_base, rest[k].y);
+      else lowest = std::min(lowest, at[k].x.y);
+    }
+    if (!(lowest < lowest_base + p.ground_rest)) return;
+    std::vector<glm::vec3> bent(n);
+    std::vector<glm::quat> lift(n, glm::quat(1, 0, 0, 0));
+    std::vector<float> base_y(n);
+    for (size_t k = 0; k < n; ++k) bent[k] = at[k].x;
+    for (size_t k = 0; k < n; ++k) {
+      const int32_t par = t.parent[k];
+      if (par < 0) {
+        base_y[k] = rest[k].y;
+        continue;
+      }
+      const size_t pk = size_t(par);
+      base_y[k] = base_y[pk];
+      const glm::vec3 d = lift[pk] * (bent[k] - bent[pk]);
+      glm::vec3 x = at[pk].x + d;
+      lift[k] = lift[pk];
+      const float floor_y = base_y[k] + p.ground_rest;
+      const float len = glm::length(d);
+      if (x.y < floor_y && len > 1e-9f) {
+        // Level: the tip at floor_y when the base is above it, else level with the base.
+        const float dy = std::clamp(floor_y - at[pk].x.y, -len, 0.0f);
+        glm::vec2 h(d.x, d.z);
+        const float hl = glm::length(h);
+        h = hl > 1e-9f ? h / hl : glm::vec2(1, 0);
+        const float hr = std::sqrt(std::max(len * len - dy * dy, 0.0f));
+        const glm::vec3 e(h.x * hr, dy, h.y * hr);
+        lift[k] = glm::rotation(d / len, e / len) * lift[pk];
+        x = at[pk].x + e;
+      }
+      at[k].x = x;
+    }
   }
 
   // One past the last node born at or before s (all nodes when they are not born in index order).

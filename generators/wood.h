@@ -34,6 +34,10 @@ struct wood_params {
   int recovery_age = 2;       // shoots recover while their age in steps is at most this
   float recovery_up = 0;      // the set direction: 0 the generator's own, 1 straight up
   float max_bend = 30;        // degrees: most an internode may bend; more load is clamped and reported
+  // The soil: a shoot bent below this height above its tree's base rests on the ground there,
+  // laid level in the direction it was heading (its length kept), and carries its descendants
+  // with it. A negative value switches the soil off.
+  float ground_rest = 0.05f;  // metres
   bool operator==(const wood_params&) const = default;
 };
 
@@ -49,6 +53,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.recovery, param_info{"recovery", "Gravitropic recovery", "", 0, 1, "Reaction wood: share of a young shoot's sag undone per step, so a bent branch turns up at its tip", param_on_release});
   v(p.recovery_age, param_info{"recovery_age", "Recovery age", "", 0, 64, "Shoots form reaction wood while they are at most this many steps old", param_on_release | param_advanced});
   v(p.recovery_up, param_info{"recovery_up", "Recover toward up", "", 0, 1, "Direction shoots recover toward: 0 the generator's own (its set angle), 1 straight up", param_on_release | param_advanced});
+  v(p.ground_rest, param_info{"ground_rest", "Rest on the ground", "", -1, 2, "A shoot that bends down to this height above the tree's base rests on the soil there instead of passing through it (metres; below 0: no soil)", param_on_release | param_advanced});
   v(p.max_bend, param_info{"max_bend", "Maximum bend", "", 1, 90, "Most an internode may bend; a heavier load is clamped here and the status bar says so", param_degrees | param_on_release | param_advanced});
 }
 

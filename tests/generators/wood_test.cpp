@@ -37,6 +37,7 @@ wood_params beam_wood() {
   p.leaf_mass = 0;
   p.recovery = 0;
   p.max_bend = 90;
+  p.ground_rest = -1;   // a cantilever in the air: the beam formulas have no soil under the tip
   return p;
 }
 
@@ -44,6 +45,44 @@ bool all_finite(const std::vector<glm::vec3>& v) {
   for (const glm::vec3& p : v)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
   return true;
+}
+
+// The soil: a heavy horizontal branch 1 m up sags to the ground and rests there, level, at
+// ground_rest above its base, with every internode's length kept; off (ground_rest < 0) it passes
+// through. A branch that stays above the soil is bit for bit the pass without it.
+TEST(Wood, AShootBentDownToTheSoilRestsOnIt) {
+  // A 3 m branch of 8 mm radius, held level 0.5 m up on a short stiff stem.
+  auto branch = [] {
+    tree_skeleton t;
+    t.add_node(glm::vec3(0), -1, 0.2f, 0, 0);
+    t.add_node(glm::vec3(0, 0.5f, 0), 0, 0.2f, 0, 1);
+    for (int k = 1; k <= 10; ++k) t.add_node(glm::vec3(0.3f * float(k), 0.5f, 0), k, 0.008f, 0, 1);
+    return t;
+  };
+  const tree_skeleton t = branch();
+  wood_params p = beam_wood();
+  p.max_bend = 30;
+  p.ground_rest = 0.1f;
+  const std::vector<glm::vec3> rest = bend_static(t, p);
+  p.ground_rest = -1;
+  const std::vector<glm::vec3> through = bend_static(t, p);
+  ASSERT_LT(through.back().y, -0.1f) << "the load must reach below the soil for the test to mean anything";
+  float lowest = INFINITY;
+  for (size_t k = 1; k < t.size(); ++k) {
+    lowest = std::min(lowest, rest[k].y);
+    const float len0 = glm::length(t.position[k] - t.position[size_t(t.parent[k])]);
+    EXPECT_NEAR(glm::length(rest[k] - rest[size_t(t.parent[k])]), len0, 1e-4f) << k;
+  }
+  EXPECT_NEAR(lowest, 0.1f, 1e-4f);
+  EXPECT_NEAR(rest.back().y, 0.1f, 1e-4f);   // the tip lies on the soil
+  EXPECT_GT(rest.back().x, through.back().x);   // heading on where it headed, not folded back
+  EXPECT_EQ(rest[5], through[5]);   // the part still in the air is the pass's own bend
+  // Light enough to stay in the air: the soil changes nothing.
+  p.gravity = 0.05f;
+  p.ground_rest = 0.1f;
+  const std::vector<glm::vec3> air = bend_static(t, p);
+  p.ground_rest = -1;
+  EXPECT_EQ(air, bend_static(t, p));
 }
 
 }  // namespace
