@@ -38,7 +38,14 @@ void grow_thumbnail(preset_browser_state& b, thumbnail_job& job) {
   auto skeleton = std::make_shared<tree_skeleton>(grow(job.doc.spec, o, &report));
   if (report.error) job.error = report.message;
   else if (!b.cancel.load()) {
-    job.mesh = std::make_shared<tree_mesh>(mesh_tree(*skeleton, job.doc.mesh, job.doc.spec.seed));
+    // A 128-pixel picture shows no bark ring detail: thumbnails mesh with at most 5 segments a
+    // ring, straight internodes and no caps, which cuts the triangles llvmpipe shades (and the
+    // shadow pass draws) to about half; the leaves, the crown and the colours stay the preset's.
+    mesh_params mp = job.doc.mesh;
+    mp.radial_segments = std::min(mp.radial_segments, 5);
+    mp.curve_rings = 0;
+    mp.caps = false;
+    job.mesh = std::make_shared<tree_mesh>(mesh_tree(*skeleton, mp, job.doc.spec.seed));
     job.skeleton = std::move(skeleton);
   }
 }
