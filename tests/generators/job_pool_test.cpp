@@ -72,21 +72,27 @@ TEST(JobPool, ParallelMeshIsTheSingleThreadedMeshByteForByte) {
 // The self-organizing growth scans its buds' cones and adds its shadow pyramids on the pool: the
 // tree is the single thread's, bit for bit, with ties in the cones (seed 000's planar rule draws
 // from the same stream) and with shedding (pyramids taken away).
+namespace {
+// A shipped preset grown with the pool limited to one thread and with all of it: the same tree.
+void expect_growth_is_the_single_threaded_one(const char* name, size_t min_nodes) {
+  SCOPED_TRACE(name);
+  preset p;
+  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
+  const int old = set_job_pool_limit(1);
+  const tree_skeleton one = grow(p.spec, grow_options{});
+  set_job_pool_limit(old);
+  const tree_skeleton many = grow(p.spec, grow_options{});
+  ASSERT_GT(one.size(), min_nodes);
+  EXPECT_EQ(one.parent, many.parent);
+  EXPECT_EQ(one.position, many.position);
+  EXPECT_EQ(one.radius, many.radius);
+}
+}  // namespace
+
 TEST(JobPool, ParallelSelfOrganizingGrowthIsTheSingleThreadedGrowth) {
   for (const char* name : {"self_organizing_default", "self_organizing_seed000_planar", "self_organizing_seed001_fig2",
-                           "species_maple_cards"}) {
-    SCOPED_TRACE(name);
-    preset p;
-    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
-    const int old = set_job_pool_limit(1);
-    const tree_skeleton one = grow(p.spec, grow_options{});
-    set_job_pool_limit(old);
-    const tree_skeleton many = grow(p.spec, grow_options{});
-    ASSERT_GT(one.size(), 500u);
-    EXPECT_EQ(one.parent, many.parent);
-    EXPECT_EQ(one.position, many.position);
-    EXPECT_EQ(one.radius, many.radius);
-  }
+                           "species_maple_cards"})
+    expect_growth_is_the_single_threaded_one(name, 500);
 }
 
 // The guiding-vector graph's edges are found for every vertex at once on the pool (after a few
@@ -105,18 +111,8 @@ TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
     const int32_t* got = yao8_edges(all, v);
     for (int o = 0; o < 8; ++o) ASSERT_EQ(got[o], want[o]) << "vertex " << v << " octant " << o;
   }
-  for (const char* name : {"guiding_vectors_default", "guiding_vectors_fig7_radial"}) {
-    SCOPED_TRACE(name);
-    preset p;
-    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
-    const int old = set_job_pool_limit(1);
-    const tree_skeleton one = grow(p.spec, grow_options{});
-    set_job_pool_limit(old);
-    const tree_skeleton many = grow(p.spec, grow_options{});
-    ASSERT_GT(one.size(), 150u);
-    EXPECT_EQ(one.parent, many.parent);
-    EXPECT_EQ(one.position, many.position);
-  }
+  for (const char* name : {"guiding_vectors_default", "guiding_vectors_fig7_radial"})
+    expect_growth_is_the_single_threaded_one(name, 150);
 }
 
 // Many pyramids at once give the cells, and the chunk layout, of one pyramid after another.
