@@ -17,8 +17,8 @@
 #include <epoxy/gl.h>
 
 #include "app/bench/bench_set.h"
-#include "app/messages.h"
-#include "app/gl_window.h"
+#include "app/common/messages.h"
+#include "app/common/gl_window.h"
 #include "generators/timing.h"
 #include "render/io/export.h"
 #include "render/io/preset.h"

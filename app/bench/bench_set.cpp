@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "app/messages.h"
+#include "app/common/messages.h"
 #include "render/io/preset.h"
 
 namespace sylva {

@@ -11,9 +11,9 @@
 
 #include "app/bench/bench.h"
 #include "app/bench/bench_set.h"
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "generators/timing.h"
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "render/io/preset.h"
 #include "render/gl/renderer.h"
 

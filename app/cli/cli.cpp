@@ -23,7 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/cli_textures.h"
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "generators/timing.h"
 #include "generators/lsystem_engine.h"
 #include "generators/memory_bound.h"

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "app/messages.h"   // fail, usage_error, warn
+#include "app/common/messages.h"   // fail, usage_error, warn
 
 namespace sylva {
 

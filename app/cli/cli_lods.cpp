@@ -9,7 +9,7 @@
 
 #include "app/bench/bench.h"
 #include "app/bench/bench_set.h"
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "generators/timing.h"
 #include "generators/tree_spec.h"
 #include "render/gl/renderer.h"

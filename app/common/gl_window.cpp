@@ -1,5 +1,5 @@
 // Off-screen PNG rendering: a hidden GLFW window, the editor's renderer, one frame, read back.
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,5 +1,5 @@
 // The headless commands' shared messages (app/messages.h).
-#include "app/messages.h"
+#include "app/common/messages.h"
 
 #include <cstdio>
 

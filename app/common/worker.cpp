@@ -1,5 +1,5 @@
 // Growth worker: grows and meshes off the UI thread; publishes immutable results.
-#include "app/worker.h"
+#include "app/common/worker.h"
 
 #include <algorithm>
 #include <chrono>

@@ -20,7 +20,7 @@
 #include "app/editor/editor_script.h"
 #include "app/editor/editor_settings.h"
 #include "app/editor/editor_state.h"
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "app/editor/view_gizmo.h"
 
 namespace sylva {

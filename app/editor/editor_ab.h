@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/editor/editor_lod.h"
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "render/io/preset.h"
 #include "render/gl/renderer.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "generators/lsystem_engine.h"
 #include "generators/tree_spec.h"
 #include "render/gl/overlays.h"

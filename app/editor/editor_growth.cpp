@@ -1,4 +1,4 @@
-// Growth requests to the worker (app/worker.h) and the trees it sends back.
+// Growth requests to the worker (app/common/worker.h) and the trees it sends back.
 #include "app/editor/editor_state.h"
 
 #include "generators/timing.h"

@@ -1,5 +1,5 @@
 // The editor's level of detail: has the LOD chain of the shown tree built off the UI thread
-// (app/worker.h lod_worker), picks the level by the tree's size on screen (or the "Show LOD"
+// (app/common/worker.h lod_worker), picks the level by the tree's size on screen (or the "Show LOD"
 // override) and keeps that level uploaded.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "render/gl/impostor.h"
 #include "render/gl/renderer.h"
 #include "render/mesh/lod.h"

@@ -5,7 +5,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "generators/tree_spec.h"
 #include "render/camera.h"   // orbit_camera, view_rect, view_ray
 

@@ -23,7 +23,7 @@
 #include "app/editor/export_dialog.h"
 #include "app/editor/input_queue.h"
 #include "app/editor/preset_browser.h"
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "render/io/preset.h"
 #include "render/gl/renderer.h"
 

@@ -7,7 +7,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "render/gl/renderer.h"
 
 namespace sylva {

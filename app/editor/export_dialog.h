@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "render/io/export.h"
 #include "render/io/preset.h"
 

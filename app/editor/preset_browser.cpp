@@ -10,7 +10,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "generators/job_pool.h"
 #include "render/files.h"
 

@@ -92,7 +92,7 @@ struct export_result {
 
 // Every format `sylva export` and the editor's export dialog write, in the dialog's order, with
 // what each can carry. The CLI's checks, its messages and the dialog all read this one table: a new
-// format is a row here and a writer in export_tree (or, for a render, app/gl_window.h).
+// format is a row here and a writer in export_tree (or, for a render, app/common/gl_window.h).
 struct export_format {
   const char* ext;      // lower case, with the dot
   const char* label;    // for people: "glTF binary"

@@ -13,7 +13,7 @@
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "render/gl/renderer.h"
 
 using namespace sylva;

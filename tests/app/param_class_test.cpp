@@ -9,7 +9,7 @@
 #include <string>
 #include <thread>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "render/io/preset.h"
 #include "tests/fixtures.h"
 

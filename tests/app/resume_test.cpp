@@ -8,7 +8,7 @@
 #include <thread>
 #include <type_traits>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 #include "generators/keyframes.h"
 #include "generators/resume.h"
 #include "tests/tree_compare.h"

@@ -1,4 +1,4 @@
-// The growth worker (app/worker.cpp): newest request wins, mesh-only edits reuse the skeleton, and
+// The growth worker (app/common/worker.cpp): newest request wins, mesh-only edits reuse the skeleton, and
 // a stress of many requests across every generator with a polling reader and stops mid-growth.
 // `make tsan` runs this file under ThreadSanitizer.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <thread>
 
-#include "app/worker.h"
+#include "app/common/worker.h"
 
 using namespace sylva;
 

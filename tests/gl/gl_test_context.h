@@ -13,7 +13,7 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
-#include "app/gl_window.h"
+#include "app/common/gl_window.h"
 #include "generators/tree_spec.h"
 #include "render/mesh/mesh.h"
 #include "render/io/preset.h"
