@@ -9,7 +9,7 @@
 // Run by scripts/blind-pairs.sh, which exports the GLBs first.
 //
 //   node tools/viewer/blind-pairs.mjs --glb-dir DIR --preset-dir presets --out-dir /tmp/sylva-judging
-//        [--seed 23] [--views iso,front] [--size 768] [--binary PATH]
+//        [--seed 23] [--views iso,front] [--close-ups detail_leaves,detail_bark] [--size 768] [--binary PATH]
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
@@ -17,7 +17,7 @@ import { openViewer, writeDataURL, reportHeader } from './lib/harness.mjs';
 import { EXCLUDED_PRESETS, EZ_FOR_SPECIES, makeKey } from './lib/blind.js';
 
 const args = process.argv.slice(2);
-const opt = { glbDir: null, presetDir: 'presets', outDir: '/tmp/sylva-judging', seed: 23, views: ['iso', 'front'], size: 768, binary: '' };
+const opt = { glbDir: null, presetDir: 'presets', outDir: '/tmp/sylva-judging', seed: 23, views: ['iso', 'front'], closeUps: ['detail_leaves', 'detail_bark'], size: 768, binary: '' };
 for (let i = 0; i < args.length; i++) {
   const a = args[i];
   const next = () => args[++i];
@@ -26,6 +26,8 @@ for (let i = 0; i < args.length; i++) {
   else if (a === '--out-dir') opt.outDir = next();
   else if (a === '--seed') opt.seed = Number(next());
   else if (a === '--views') opt.views = next().split(',').map((s) => s.trim()).filter(Boolean);
+  // Close-ups (viewer.js detailCamera) for the recognition plates only; the pairs keep whole trees.
+  else if (a === '--close-ups') opt.closeUps = next().split(',').map((s) => s.trim()).filter(Boolean);
   else if (a === '--size') opt.size = Number(next());
   else if (a === '--binary') opt.binary = next();
   else {
@@ -34,12 +36,13 @@ for (let i = 0; i < args.length; i++) {
   }
 }
 if (!opt.glbDir || !Number.isInteger(opt.seed) || !opt.views.length || !Number.isInteger(opt.size)) {
-  process.stderr.write('usage: blind-pairs.mjs --glb-dir DIR [--preset-dir DIR] [--out-dir DIR] [--seed N] [--views iso,front] [--size N]\n');
+  process.stderr.write('usage: blind-pairs.mjs --glb-dir DIR [--preset-dir DIR] [--out-dir DIR] [--seed N] [--views iso,front] [--close-ups detail_leaves,detail_bark] [--size N]\n');
   process.exit(2);
 }
 
 // The first view's images carry no suffix; the others carry _VIEW.
 const suffix = (view) => (view === opt.views[0] ? '' : `_${view.replace(/[^a-z0-9]+/gi, '_')}`);
+const viewsOf = (kind) => (kind === 'sylva' ? [...opt.views, ...opt.closeUps] : opt.views);
 
 const species = fs
   .readdirSync(opt.presetDir)
@@ -78,7 +81,7 @@ try {
     ...ezPresets.map((p) => ({ kind: 'ez', name: p, spec: { kind: 'ez', preset: p } })),
   ];
   for (const job of jobs) {
-    for (const view of opt.views) {
+    for (const view of viewsOf(job.kind)) {
       try {
         const r = await viewer.show(job.spec, { view, size: opt.size });
         writeDataURL(r.image, renderPath(job.kind, job.name, view));
@@ -107,7 +110,7 @@ for (const p of key.pairs) {
   }
 }
 for (const r of key.recognition) {
-  for (const view of opt.views) {
+  for (const view of viewsOf('sylva')) {
     const src = renderPath('sylva', r.species, view);
     if (fs.existsSync(src)) fs.copyFileSync(src, path.join(judgeDir, 'recognition', `${r.image}${suffix(view)}.png`));
   }
@@ -120,7 +123,8 @@ const template = {
   recognition: Object.fromEntries(key.recognition.map((r) => [r.image, { species: '', confidence: null, note: '' }])),
 };
 fs.writeFileSync(path.join(judgeDir, 'answers-template.json'), JSON.stringify(template, null, 2) + '\n');
-const viewNote = opt.views.length > 1 ? ` Each image has a second view (${opt.views.slice(1).map((v) => `\`_${v}\``).join(', ')}) of the same trees, in the same order.` : '';
+const viewNote = (opt.views.length > 1 ? ` Each image has a second view (${opt.views.slice(1).map((v) => `\`_${v}\``).join(', ')}) of the same trees, in the same order.` : '') +
+  (opt.closeUps.length ? ` In part 1 each tree also has close-ups (${opt.closeUps.map((v) => `\`_${v}\``).join(', ')}): about 1.4 m of the crown's surface at mid-height, and the trunk at breast height.` : '');
 fs.writeFileSync(
   path.join(judgeDir, 'INSTRUCTIONS.md'),
   `# Tree judging
@@ -148,6 +152,7 @@ only when you truly cannot choose). A short \`note\` on what is wrong helps most
 const report = {
   ...reportHeader(opt, viewer),
   views: opt.views,
+  close_ups: opt.closeUps,
   size: opt.size,
   excluded: EXCLUDED_PRESETS,
   ez_for_species: Object.fromEntries(judged.map((sp) => [sp, key.pairs.find((p) => p.species === sp).ez_preset])),

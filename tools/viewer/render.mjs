@@ -55,7 +55,7 @@ try {
   delete r.overlay;
   r.name = opts.ez || path.basename(pos[0]);
   if (opts.measure) process.stdout.write(JSON.stringify(r) + '\n');
-  process.stderr.write(`${out}: ${r.name}, ${r.triangles} triangles, ${r.draw_calls} draw calls (${viewer.webgl})\n`);
+  process.stderr.write(`${out}: ${r.name}, ${r.triangles} triangles, ${r.draw_calls} draw calls${r.detail_target ? `, close-up on ${r.detail_target.map((v) => v.toFixed(2)).join(" ")}` : ""} (${viewer.webgl})\n`);
   if (viewer.errors.length) {
     process.stderr.write(viewer.errors.join('\n') + '\n');
     code = 1;

@@ -204,6 +204,87 @@ function fitCamera(points, box, viewName, aspect) {
   return { target, dist };
 }
 
+// Close-up views for the recognition plates, as a field guide pairs the whole tree with its
+// leaves and its bark: "detail_leaves" frames about 1.4 m of the crown's surface at mid-height on
+// the side facing the camera, "detail_bark" about 1.2 m of the trunk at breast height (1.3 m, or
+// a tenth of a smaller tree's height). Both look from 10 degrees up at azimuth 30, lit like the
+// other views. Returns false for any other view name.
+const DETAIL_VIEW = { elevation: 10, azimuth: 30 };
+function worldPoints(mesh, filter, out) {
+  const pos = mesh.geometry && mesh.geometry.attributes.position;
+  if (!pos) return;
+  const v = new THREE.Vector3();
+  const m = new THREE.Matrix4();
+  const instances = mesh.isInstancedMesh ? mesh.count : 0;
+  if (instances) {
+    for (let k = 0; k < instances; k++) {
+      mesh.getMatrixAt(k, m);
+      v.set(0, 0, 0).applyMatrix4(m).applyMatrix4(mesh.matrixWorld);
+      if (filter(v)) out.push(v.clone());
+    }
+    return;
+  }
+  for (let i = 0; i < pos.count; i++) {
+    v.fromBufferAttribute(pos, i).applyMatrix4(mesh.matrixWorld);
+    if (filter(v)) out.push(v.clone());
+  }
+}
+function detailCamera(viewName, box) {
+  if (viewName !== 'detail_leaves' && viewName !== 'detail_bark') return false;
+  const el = THREE.MathUtils.degToRad(DETAIL_VIEW.elevation);
+  const az = THREE.MathUtils.degToRad(DETAIL_VIEW.azimuth);
+  const dir = new THREE.Vector3(Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az));
+  const h = box.max.y - box.min.y;
+  const c = box.getCenter(new THREE.Vector3());
+  let target = null;
+  let half = 0.7;
+  if (viewName === 'detail_leaves') {
+    const lo = box.min.y + 0.4 * h, hi = box.min.y + 0.75 * h;
+    const pts = [];
+    for (const mesh of current.leaves) worldPoints(mesh, (p) => p.y >= lo && p.y <= hi, pts);
+    // The leaf point nearest the camera, then the mean of the points within half a frame of it
+    // (a cluster's middle rather than one stray leaf tip).
+    let best = null, bestD = -Infinity;
+    for (const p of pts) { const d = p.clone().sub(c).dot(dir); if (d > bestD) { bestD = d; best = p; } }
+    if (!best) throw new Error('detail_leaves: the tree has no leaves at mid-crown height');
+    const near = pts.filter((p) => p.distanceTo(best) < half);
+    target = near.reduce((a, p) => a.add(p), new THREE.Vector3()).multiplyScalar(1 / near.length);
+  } else {
+    half = 0.6;
+    const y = box.min.y + Math.min(1.3, 0.1 * h);
+    const pts = [];
+    // Rings can stand metres apart on a clear bole: take those within 0.5 m of that height, or
+    // within 1, 2 or 4 m where there are none.
+    for (let w = 0.5; !pts.length && w <= 4; w *= 2) {
+      for (const mesh of current.bark) worldPoints(mesh, (p) => Math.abs(p.y - y) < w, pts);
+    }
+    if (!pts.length) throw new Error('detail_bark: no bark at breast height');
+    // The trunk's centre: the middle of the box of the points within 1.5 m of the tree's axis
+    // (a ring's vertices crowd its seam and its texture-wrap columns, so a mean or median drifts).
+    const near = pts.filter((p) => Math.hypot(p.x - c.x, p.z - c.z) < 1.5);
+    const use = near.length ? near : pts;
+    const lo = new THREE.Vector3(Infinity, y, Infinity), hi = new THREE.Vector3(-Infinity, y, -Infinity);
+    for (const p of use) { lo.min(p); hi.max(p); }
+    target = new THREE.Vector3((lo.x + hi.x) / 2, y, (lo.z + hi.z) / 2);
+    // Frame the trunk with some background either side: 1.6 trunk widths, 0.6 to 1.6 m.
+    half = THREE.MathUtils.clamp(0.8 * Math.max(hi.x - lo.x, hi.z - lo.z), 0.3, 0.8);
+  }
+  const dist = half / Math.tan(THREE.MathUtils.degToRad(FOV / 2));
+  camera.position.copy(target).addScaledVector(dir, dist);
+  camera.up.set(0, 1, 0);
+  camera.lookAt(target);
+  camera.near = Math.max(0.01, dist * 0.2);
+  camera.far = dist + box.getSize(new THREE.Vector3()).length() * 1.5;
+  camera.aspect = 1;
+  camera.updateProjectionMatrix();
+  // The sun as fitCamera places it: upper left, in front of the tree as seen from the camera.
+  const r = box.getSize(new THREE.Vector3()).length();
+  const right = new THREE.Vector3().crossVectors(new THREE.Vector3(0, 1, 0), dir).normalize();
+  sun.position.copy(target).addScaledVector(dir, r).addScaledVector(right, -r).addScaledVector(new THREE.Vector3(0, 1, 0), r * 1.5);
+  sun.target.position.copy(target);
+  return target.toArray();
+}
+
 function setPass(pass) {
   for (const m of current.leaves) m.visible = pass === 'whole' || pass === 'leaf';
   for (const m of current.bark) m.visible = pass === 'whole' || pass === 'bark';
@@ -255,7 +336,8 @@ async function show(spec, opts = {}) {
   const loadMs = performance.now() - t0;
 
   renderer.setSize(size, size, false);
-  fitCamera(outlinePoints(current.root), box, view, 1);
+  const detail = detailCamera(view, box);
+  if (!detail) fitCamera(outlinePoints(current.root), box, view, 1);
   // An animation clip posed at opts.time seconds (issue 17's wind), after the camera is fitted to
   // the rest pose so that two moments are seen from the same place.
   let animation = null;
@@ -288,6 +370,7 @@ async function show(spec, opts = {}) {
     size,
     animations: (current.animations || []).map((a) => a.name),
     animation,
+    detail_target: detail || undefined,
   };
   if (opts.image !== false) result.image = canvas.toDataURL('image/png');
 
