@@ -23,7 +23,9 @@ namespace sylva {
   X(palm_frond)   /* a fan of four palm leaflets: one card per rachis side */ \
   X(twig_cluster) /* a broadleaf twig carrying several leaves (cluster cards) */ \
   X(needle_tufts) /* true cedar (Cedrus): rosettes of short needles on spurs */ \
-  X(lanceolate)   /* willow shoot: long narrow leaves, finely toothed, long-pointed */
+  X(lanceolate)   /* willow shoot: long narrow leaves, finely toothed, long-pointed */ \
+  X(beech_spray)  /* beech: flat two-ranked spray of elliptic, wavy-edged leaves (cluster card) */ \
+  X(hazel_spray)  /* hazel: round, heart-based, doubly toothed leaves on a shoot (cluster card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -63,6 +63,8 @@ const glm::vec3 leaf_tints[] = {
     {0.26f, 0.50f, 0.12f},  // twig cluster: maple cluster cards
     {0.09f, 0.22f, 0.16f},  // needle tufts: cedar of Lebanon
     {0.30f, 0.50f, 0.18f},  // lanceolate: weeping willow
+    {0.22f, 0.44f, 0.12f},  // beech spray
+    {0.26f, 0.46f, 0.14f},  // hazel spray
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -118,7 +120,8 @@ void label(image& sheet, const std::string& text, int x, int y, int scale, uint8
 const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        "palmate (maple)",
                                    "pinnate (ash)",       "needles (pine)",     "flat_spray (spruce)",
                                    "scale_spray (cypress)", "palm_frond (palm)", "twig_cluster (maple)",
-                                   "needle_tufts (cedar)", "lanceolate (willow)"};
+                                   "needle_tufts (cedar)", "lanceolate (willow)", "beech_spray (beech)",
+                                   "hazel_spray (hazel)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (beech)", "fissured (ash)", "fibrous (cypress)"};

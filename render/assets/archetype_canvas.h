@@ -324,6 +324,8 @@ void draw_palm_frond(leaf_canvas& c, rng& g);
 void draw_twig_cluster(leaf_canvas& c, rng& g);
 void draw_needle_tufts(leaf_canvas& c, rng& g);
 void draw_lanceolate(leaf_canvas& c, rng& g);
+void draw_beech_spray(leaf_canvas& c, rng& g);
+void draw_hazel_spray(leaf_canvas& c, rng& g);
 
 // ================================================================ bark
 // Tile coordinates u (around the branch) and v (along it, image rows), both periodic in [0, 1).

@@ -177,4 +177,66 @@ void draw_twig_cluster(leaf_canvas& c, rng& g) {
   blade(c, tip + vec2(0, 0.025f), 90, fit(tip, {0, 1}, 0.32f) - 0.02f, 0.13f, leaf, st);
 }
 
+// A flat two-ranked beech spray (Fagus sylvatica: leaves elliptic, 5-10 cm, with an entire, wavy
+// margin and 5-9 pairs of straight parallel veins that run out to it; alternate along a zigzag
+// twig and held in one plane): five leaves on a twig that bends at each node.
+void draw_beech_spray(leaf_canvas& c, rng& g) {
+  auto twig = [](float t) { return vec2(0.5f + 0.035f * std::sin(9.0f * t), 0.6f * t); };  // zigzag
+  blade_style st;
+  st.serration = 0.025f, st.teeth = 12, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
+  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.8f)), 0.62f); };
+  const int leaves = 5;
+  for (int i = 0; i < leaves; ++i) {
+    const float t = 0.24f + 0.72f * float(i) / float(leaves - 1);
+    const vec2 p = twig(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    const float ang = 90 + side * g.range(52, 66) * (1.1f - 0.3f * t);
+    const vec2 d = heading(ang);
+    const vec2 q = p + d * 0.02f;
+    stroke(c, p, q, 0.0035f, 0.003f, petiole_style);
+    st.bend = side * g.range(0.0f, 0.04f);
+    const float len = fit(q, d, g.range(0.34f, 0.4f), 0.01f);
+    blade(c, q - d * 0.004f, ang, len, len * 0.3f, leaf, st);
+  }
+  curve_stroke(c, twig, 6, 0.009f, 0.005f, twig_style);
+  const vec2 tip = twig(1.0f);
+  st.bend = 0;
+  stroke(c, tip, tip + vec2(0, 0.02f), 0.0035f, 0.003f, petiole_style);
+  blade(c, tip + vec2(0, 0.016f), 90, fit(tip, {0, 1}, 0.36f) - 0.02f, 0.1f, leaf, st);
+}
+
+// A hazel shoot (Corylus avellana: leaves broad, nearly round, 6-12 cm, with a heart-shaped base,
+// a doubly toothed margin and a short abrupt point; alternate in two ranks): four leaves on a
+// hairy twig. The outline is a circle set on its base (already 70 % wide where the petiole joins,
+// the heart's notch) that narrows to the point in its last fifth; teeth on teeth double the margin.
+void draw_hazel_spray(leaf_canvas& c, rng& g) {
+  auto twig = [](float t) { return vec2(0.5f + 0.03f * std::sin(7.0f * t), 0.5f * t); };
+  blade_style st;
+  st.serration = 0.07f, st.teeth = 46, st.vein_angle = 44, st.veins = 7, st.dome = 0.14f;
+  auto leaf = [](float t, int) {
+    const float round = std::sqrt(std::max(0.0f, 1 - std::pow((t - 0.4f) / 0.62f, 2.0f)));
+    const float tip = 1 - 0.55f * std::max(0.0f, (t - 0.78f) / 0.22f);
+    const float teeth2 = 1 - 0.05f * (0.5f + 0.5f * std::cos(2 * pi * 11.0f * t));  // the larger teeth
+    return round * tip * teeth2;
+  };
+  const int leaves = 4;
+  for (int i = 0; i < leaves; ++i) {
+    const float t = 0.26f + 0.7f * float(i) / float(leaves - 1);
+    const vec2 p = twig(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    const float ang = 90 + side * g.range(50, 62) * (1.1f - 0.3f * t);
+    const vec2 d = heading(ang);
+    const vec2 q = p + d * 0.03f;
+    stroke(c, p, q, 0.004f, 0.0035f, petiole_style);
+    st.bend = side * g.range(0.0f, 0.03f);
+    const float len = fit(q, d, g.range(0.38f, 0.44f), 0.01f);
+    blade(c, q - d * 0.01f, ang, len, len * 0.43f, leaf, st);
+  }
+  curve_stroke(c, twig, 6, 0.011f, 0.006f, twig_style);
+  const vec2 tip = twig(1.0f);
+  st.bend = 0;
+  stroke(c, tip, tip + vec2(0, 0.03f), 0.004f, 0.0035f, petiole_style);
+  blade(c, tip + vec2(0, 0.02f), 90, fit(tip, {0, 1}, 0.44f) - 0.02f, 0.19f, leaf, st);
+}
+
 }  // namespace sylva::archetype

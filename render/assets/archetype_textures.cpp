@@ -44,6 +44,8 @@ const leaf_entry leaf_table[] = {
     {draw_twig_cluster, {{178, 194, 156}, {206, 208, 160}}, 1},
     {draw_needle_tufts, {{160, 184, 172}, {186, 200, 178}}, 2},  // glaucous blue-green
     {draw_lanceolate, {{172, 192, 150}, {200, 206, 158}}, 0},    // willow: light, slightly greyish
+    {draw_beech_spray, {{176, 192, 152}, {204, 206, 158}}, 1},
+    {draw_hazel_spray, {{172, 190, 150}, {200, 204, 154}}, 1},
 };
 static_assert(std::size(leaf_table) == size_t(leaf_archetype_count), "one leaf_table row per leaf archetype");
 
