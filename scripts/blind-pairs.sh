@@ -18,6 +18,7 @@ PRESETS=${2:-presets}
 OUT=${3:-/tmp/sylva-judging}
 SEED=${SEED:-23}
 VIEWS=${VIEWS:-iso,front}
+CLOSE_UPS=${CLOSE_UPS-detail_leaves,detail_bark}  # recognition plates only; CLOSE_UPS= for none
 SIZE=${SIZE:-768}
 VIEWER="$(cd "$(dirname "$0")/../tools/viewer" && pwd)"
 start=$(date +%s)
@@ -44,6 +45,6 @@ echo "blind-pairs: exported $(ls "$GLB_DIR"/*.glb 2>/dev/null | wc -l) species i
 
 status=0
 node "$VIEWER/blind-pairs.mjs" --glb-dir "$GLB_DIR" --preset-dir "$PRESETS" --out-dir "$OUT" \
-  --seed "$SEED" --views "$VIEWS" --size "$SIZE" --binary "$SYLVA" || status=$?
+  --seed "$SEED" --views "$VIEWS" --close-ups "$CLOSE_UPS" --size "$SIZE" --binary "$SYLVA" || status=$?
 echo "blind-pairs: done in $(($(date +%s) - start)) s; give a reader $OUT/judge/, keep $OUT/key.json" >&2
 exit $status
