@@ -25,7 +25,8 @@ namespace sylva {
   X(needle_tufts) /* true cedar (Cedrus): rosettes of short needles on spurs */ \
   X(lanceolate)   /* willow shoot: long narrow leaves, finely toothed, long-pointed */ \
   X(beech_spray)  /* beech: flat two-ranked spray of elliptic, wavy-edged leaves (cluster card) */ \
-  X(hazel_spray)  /* hazel: round, heart-based, doubly toothed leaves on a shoot (cluster card) */
+  X(hazel_spray)  /* hazel: round, heart-based, doubly toothed leaves on a shoot (cluster card) */ \
+  X(poplar_spray) /* black poplar: deltoid leaves on long petioles (cluster card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -326,6 +326,7 @@ void draw_needle_tufts(leaf_canvas& c, rng& g);
 void draw_lanceolate(leaf_canvas& c, rng& g);
 void draw_beech_spray(leaf_canvas& c, rng& g);
 void draw_hazel_spray(leaf_canvas& c, rng& g);
+void draw_poplar_spray(leaf_canvas& c, rng& g);
 
 // ================================================================ bark
 // Tile coordinates u (around the branch) and v (along it, image rows), both periodic in [0, 1).

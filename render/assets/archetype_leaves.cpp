@@ -239,4 +239,35 @@ void draw_hazel_spray(leaf_canvas& c, rng& g) {
   blade(c, tip + vec2(0, 0.02f), 90, fit(tip, {0, 1}, 0.44f) - 0.02f, 0.19f, leaf, st);
 }
 
+// A black poplar shoot (Populus nigra 'Italica': leaves deltoid to rhombic, 5-10 cm, with a broad
+// truncate base, straight sides drawn out into a long point, a finely crenate margin, and long
+// flattened petioles, so each leaf hangs at its own angle): five leaves on long stalks up a twig.
+void draw_poplar_spray(leaf_canvas& c, rng& g) {
+  auto twig = [](float t) { return vec2(0.5f + 0.02f * std::sin(5.0f * t), 0.55f * t); };
+  blade_style st;
+  st.serration = 0.045f, st.teeth = 34, st.vein_angle = 48, st.veins = 6, st.dome = 0.08f;
+  auto leaf = [](float t, int) {
+    // Widest a fifth of the way up, then straight sides to the point (deltoid).
+    return t < 0.2f ? std::pow(t / 0.2f, 0.45f) : std::pow(1 - (t - 0.2f) / 0.8f, 1.15f);
+  };
+  const int leaves = 5;
+  for (int i = 0; i < leaves; ++i) {
+    const float t = 0.2f + 0.78f * float(i) / float(leaves - 1);
+    const vec2 p = twig(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    const float ang = 90 + side * g.range(40, 62) * (1.1f - 0.3f * t);
+    const vec2 d = heading(ang);
+    const vec2 q = p + d * g.range(0.07f, 0.1f);  // the long petiole
+    stroke(c, p, q, 0.0032f, 0.0028f, petiole_style);
+    st.bend = side * g.range(0.0f, 0.05f);
+    const float len = fit(q, d, g.range(0.28f, 0.33f), 0.01f);
+    blade(c, q - d * 0.004f, ang, len, len * 0.42f, leaf, st);
+  }
+  curve_stroke(c, twig, 6, 0.009f, 0.005f, twig_style);
+  const vec2 tip = twig(1.0f);
+  st.bend = 0;
+  stroke(c, tip, tip + vec2(0, 0.07f), 0.0032f, 0.0028f, petiole_style);
+  blade(c, tip + vec2(0, 0.066f), 90, fit(tip, {0, 1}, 0.36f) - 0.07f, 0.12f, leaf, st);
+}
+
 }  // namespace sylva::archetype

@@ -46,6 +46,7 @@ const leaf_entry leaf_table[] = {
     {draw_lanceolate, {{172, 192, 150}, {200, 206, 158}}, 0},    // willow: light, slightly greyish
     {draw_beech_spray, {{176, 192, 152}, {204, 206, 158}}, 1},
     {draw_hazel_spray, {{172, 190, 150}, {200, 204, 154}}, 1},
+    {draw_poplar_spray, {{170, 190, 152}, {198, 204, 158}}, 1},
 };
 static_assert(std::size(leaf_table) == size_t(leaf_archetype_count), "one leaf_table row per leaf archetype");
 

@@ -157,6 +157,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.10, 0.45},  // lanceolate: narrow blades on a shoot
       {0.20, 0.70},  // beech spray
       {0.25, 0.75},  // hazel spray
+      {0.15, 0.65},  // poplar spray
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
