@@ -184,7 +184,8 @@ void draw_beech_spray(leaf_canvas& c, rng& g) {
   auto twig = [](float t) { return vec2(0.5f + 0.035f * std::sin(9.0f * t), 0.6f * t); };  // zigzag
   blade_style st;
   st.serration = 0.025f, st.teeth = 12, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
-  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.8f)), 0.62f); };
+  // Widest a little below the middle, tapering straight to an acute tip (a pow below 1 would round it off).
+  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.74f)), 0.9f); };
   const int leaves = 5;
   for (int i = 0; i < leaves; ++i) {
     const float t = 0.24f + 0.72f * float(i) / float(leaves - 1);
