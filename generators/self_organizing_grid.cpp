@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "generators/job_pool.h"
 
 namespace sylva {
 namespace {
@@ -134,43 +133,49 @@ struct chunk_cache {
   chunk_cache() { std::fill(key, key + size, shadow_grid::empty_key); }
 };
 
-// The chunk of each chunk row segment a pyramid visits (layer by layer, z then x: the order in
-// which chunks are created), appended to ids; -1 where the memory cap sends the write nowhere.
-void pyramid_chunks(shadow_grid& g, const glm::ivec3& v, int q_max, chunk_cache& cache, std::vector<int32_t>& ids) {
-  constexpr int bits = shadow_grid::chunk_bits;
-  for (int q = 0; q <= q_max; ++q) {
-    const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
-    for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz)
-      for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
-        const glm::ivec3 c{cx, y >> bits, cz};
-        const uint64_t key = pack(c);
-        const size_t slot = size_t((key ^ (key >> 21) ^ (key >> 42)) & (chunk_cache::size - 1));
-        if (cache.key[slot] != key) {
-          const float* cells = get_chunk(g, c);
-          if (cells == g.scratch.data()) { ids.push_back(-1); continue; }   // over the cap: not remembered
-          cache.key[slot] = key;
-          cache.id[slot] = int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells);
-        }
-        ids.push_back(cache.id[slot]);
-      }
-  }
+// The index of chunk c, made if new; -1 where the memory cap sends the write nowhere.
+int32_t chunk_id(shadow_grid& g, const glm::ivec3& c, chunk_cache& cache) {
+  const uint64_t key = pack(c);
+  const size_t slot = size_t((key ^ (key >> 21) ^ (key >> 42)) & (chunk_cache::size - 1));
+  if (cache.key[slot] == key) return cache.id[slot];
+  const float* cells = get_chunk(g, c);
+  if (cells == g.scratch.data()) return -1;   // over the cap: not remembered
+  cache.key[slot] = key;
+  cache.id[slot] = int32_t((cells - g.cells.data()) / shadow_grid::chunk_cells);
+  return cache.id[slot];
 }
 
-// Adds one pyramid's Δs to the chunks in ids (pyramid_chunks' order) whose index is `part` modulo
-// `parts`. Each chunk row takes one fixed 8-wide add (two SIMD adds) of ds inside [x0, x1] and
-// ds·0 = ±0 outside. Adding ±0 changes no value a cell can hold: cells start at +0 and a sum is -0
-// only when both terms are, so no cell is ever -0.
-const int32_t* add_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign,
-                           const int32_t* ids, size_t part, size_t parts) {
+// Adds one pyramid's Δs, layer by layer, z then x chunk row segments: the order in which chunks
+// are created. Each chunk of the pyramid's chunk box is looked up once, on its first row (a
+// pyramid of depth 4 spans at most 2 × 2 × 2 chunks but some 20 row segments). Each chunk row takes
+// one fixed 8-wide add (two SIMD adds) of ds inside [x0, x1] and ds·0 = ±0 outside. Adding ±0
+// changes no value a cell can hold: cells start at +0 and a sum is -0 only when both terms are, so
+// no cell is ever -0.
+void add_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign, chunk_cache& cache) {
   constexpr int side = shadow_grid::chunk_side, bits = shadow_grid::chunk_bits, m = side - 1;
+  constexpr int32_t unknown = -2;
+  const int cx0 = (v.x - q_max) >> bits, cy0 = (v.y - q_max) >> bits, cz0 = (v.z - q_max) >> bits;
+  const int nx = ((v.x + q_max) >> bits) - cx0 + 1, ny = (v.y >> bits) - cy0 + 1, nz = ((v.z + q_max) >> bits) - cz0 + 1;
+  constexpr int box_max = 128;   // q_max ≤ 16 (its range) spans at most 3 × 5 × 5 chunks
+  int32_t box[box_max];
+  const bool boxed = q_max >= 0 && int64_t(nx) * ny * nz <= box_max;
+  if (boxed) std::fill(box, box + nx * ny * nz, unknown);
   float ds = sign * a;  // Palubicki 2009 §4.2: Δs = a·b^(−q), one division by b per layer
   for (int q = 0; q <= q_max; ++q, ds /= b) {
     const int y = v.y - q, x0 = v.x - q, x1 = v.x + q, z0 = v.z - q, z1 = v.z + q;
+    const int cy = y >> bits;
     for (int cz = z0 >> bits; cz <= z1 >> bits; ++cz) {
       const int za = std::max(z0, cz * side), zb = std::min(z1, cz * side + m);
       for (int cx = x0 >> bits; cx <= x1 >> bits; ++cx) {
-        const int32_t id = *ids++;
-        if (id < 0 || size_t(id) % parts != part) continue;
+        int32_t id;
+        if (boxed) {
+          int32_t& at = box[((cy - cy0) * nz + (cz - cz0)) * nx + (cx - cx0)];
+          if (at == unknown) at = chunk_id(g, {cx, cy, cz}, cache);
+          id = at;
+        } else {
+          id = chunk_id(g, {cx, cy, cz}, cache);
+        }
+        if (id < 0) continue;
         const int xa = std::max(x0, cx * side) & m, xb = std::min(x1, cx * side + m) & m;
         const float* mask = row_masks.m[xa][xb];
         float add[side];
@@ -181,30 +186,21 @@ const int32_t* add_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b
       }
     }
   }
-  return ids;
 }
 
 }  // namespace
 
 void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign) {
-  std::vector<int32_t> ids;
   chunk_cache cache;
-  pyramid_chunks(g, v, q_max, cache, ids);
-  add_pyramid(g, v, a, b, q_max, sign, ids.data(), 0, 1);
+  add_pyramid(g, v, a, b, q_max, sign, cache);
 }
 
 void add_shadow_pyramids(shadow_grid& g, const std::vector<glm::ivec3>& voxels, float a, float b, int q_max, float sign) {
-  // The chunks first, made in the order one pyramid after another makes them (so the grid's layout
-  // is the same); then the adds in parts by chunk, so each cell (and cache line) is written by one
-  // part only, in pyramid order, and holds the bits one thread gives.
-  std::vector<int32_t> ids;
+  // One pass, one pyramid after another, on the calling thread: splitting the adds among threads
+  // by chunk needed a first pass to list every row segment's chunk, and that pass plus each part
+  // walking every segment cost more than the adds themselves (a default tree grew ~5 ms slower).
   chunk_cache cache;
-  for (const glm::ivec3& v : voxels) pyramid_chunks(g, v, q_max, cache, ids);
-  const size_t parts = voxels.size() < 64 ? 1 : size_t(std::min(job_pool_helpers() + 1, 4));
-  parallel_jobs(parts, [&](size_t part) {
-    const int32_t* at = ids.data();
-    for (const glm::ivec3& v : voxels) at = add_pyramid(g, v, a, b, q_max, sign, at, part, parts);
-  });
+  for (const glm::ivec3& v : voxels) add_pyramid(g, v, a, b, q_max, sign, cache);
 }
 
 size_t count_shadowed_voxels(const shadow_grid& g) {

@@ -41,8 +41,8 @@ float shadow_at(const shadow_grid& g, const glm::ivec3& v);
 // Palubicki 2009 §4.2: a bud in voxel (I,J,K) adds Δs = a·b^(−q) to the voxels (I±p, J−q, K±p),
 // q = 0..q_max, p = 0..q. sign = −1 removes what sign = +1 added.
 void add_shadow_pyramid(shadow_grid& g, const glm::ivec3& v, float a, float b, int q_max, float sign = 1);
-// add_shadow_pyramid for each voxel in turn, the same bits, with the adds shared among the job
-// pool's threads (generators/job_pool.h).
+// add_shadow_pyramid for each voxel in turn, the same bits, with one small cache of chunk indices
+// shared by the pyramids (one step's lie close together).
 void add_shadow_pyramids(shadow_grid& g, const std::vector<glm::ivec3>& voxels, float a, float b, int q_max, float sign = 1);
 // The 512 values of a chunk (chunk coordinates = voxel >> chunk_bits), or nullptr when unwritten.
 const float* shadow_chunk(const shadow_grid& g, const glm::ivec3& chunk);
