@@ -116,6 +116,10 @@ struct so_state : so_vars {
   // k^e for whole k, filled on first use: tip counts and bud ages repeat every step, and std::pow
   // per node and step was ~7% of a default tree's growth. Same calls, so the same bits.
   std::vector<float> tips_pow, age_pow;
+  // Scratch of shed: the nodes shed this step, their voxels, the ancestors to sweep again (marked).
+  std::vector<int32_t> shed_nodes, resweep;
+  std::vector<glm::ivec3> shed_voxels;
+  std::vector<uint8_t> resweep_mark;
 
   so_state(const self_organizing_params& pp, tree_skeleton& tt, rng& rr) : p(pp), t(tt), r(rr) {}
 
@@ -218,42 +222,76 @@ struct so_state : so_vars {
   // Basipetal pass (children before parents): Q flow with seed 001 eq. 2 upkeep, living tips and
   // buds. Dead nodes are never reached: their parents' links say no_bud.
   void sweep_flow() {
-    const float be_over_n = p.be / p.pipe_exponent;
-    // Seed 001 eq. 2 prints BM·radius^BE / default_radius; with r = r₀·(r/r₀) that is
-    // r₀^(BE−1)·BM·(r/r₀)^BE, r in metres. The relative form (default) does not change with the
-    // choice of unit or of r₀, which is why Sylva uses it; upkeep_form = seed001 follows the text.
-    const float bm = p.upkeep_form == so_upkeep_form::seed001 ? p.bm * std::pow(p.tip_radius, p.be - 1) : p.bm;
-    for (size_t i = t.size(); i-- > 0;) {
-      if (t.died[i] != never_died) { flow[i] = 0; buds[i] = 0; continue; }
-      const int32_t m = main[i], la = lat[i];
-      const float qm = m >= 0 ? flow[m] : m == bud_here ? q[2 * i] : 0.0f;
-      const float ql = la >= 0 ? flow[la] : la == bud_here ? q[2 * i + 1] : 0.0f;
-      const float tp = (m >= 0 ? tips[m] : 0.0f) + (la >= 0 ? tips[la] : 0.0f);
-      tips[i] = tp > 0 ? tp : 1.0f;
-      buds[i] = (m >= 0 ? buds[m] : m == bud_here) + (la >= 0 ? buds[la] : la == bud_here);
-      // Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): upkeep BM·(r/r₀)^BE, where the pipe model
-      // gives (r/r₀)^n = number of tips, so (r/r₀)^BE = tips^(BE/n).
-      const float upkeep = bm > 0 ? bm * whole_pow(tips_pow, tips[i], be_over_n) : 0.0f;
-      flow[i] = qm + ql - upkeep;
+    const float be_over_n = p.be / p.pipe_exponent, bm = upkeep_bm();
+    for (size_t i = t.size(); i-- > 0;) sweep_node(i, bm, be_over_n);
+  }
+
+  // Seed 001 eq. 2 prints BM·radius^BE / default_radius; with r = r₀·(r/r₀) that is
+  // r₀^(BE−1)·BM·(r/r₀)^BE, r in metres. The relative form (default) does not change with the
+  // choice of unit or of r₀, which is why Sylva uses it; upkeep_form = seed001 follows the text.
+  float upkeep_bm() const {
+    return p.upkeep_form == so_upkeep_form::seed001 ? p.bm * std::pow(p.tip_radius, p.be - 1) : p.bm;
+  }
+
+  // One node of the basipetal pass, from its children's values.
+  void sweep_node(size_t i, float bm, float be_over_n) {
+    if (t.died[i] != never_died) { flow[i] = 0; buds[i] = 0; return; }
+    const int32_t m = main[i], la = lat[i];
+    const float qm = m >= 0 ? flow[m] : m == bud_here ? q[2 * i] : 0.0f;
+    const float ql = la >= 0 ? flow[la] : la == bud_here ? q[2 * i + 1] : 0.0f;
+    const float tp = (m >= 0 ? tips[m] : 0.0f) + (la >= 0 ? tips[la] : 0.0f);
+    tips[i] = tp > 0 ? tp : 1.0f;
+    buds[i] = (m >= 0 ? buds[m] : m == bud_here) + (la >= 0 ? buds[la] : la == bud_here);
+    // Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): upkeep BM·(r/r₀)^BE, where the pipe model
+    // gives (r/r₀)^n = number of tips, so (r/r₀)^BE = tips^(BE/n).
+    const float upkeep = bm > 0 ? bm * whole_pow(tips_pow, tips[i], be_over_n) : 0.0f;
+    flow[i] = qm + ql - upkeep;
+  }
+
+  // The basipetal pass again after shedding `gone` (in index order): only the shed nodes and their
+  // ancestors can change, each computed from its children as the full pass does, children first,
+  // so every value is the full pass's bit for bit.
+  void resweep_after_shed(const std::vector<int32_t>& gone) {
+    const float be_over_n = p.be / p.pipe_exponent, bm = upkeep_bm();
+    std::vector<int32_t>& redo = resweep;
+    redo.clear();
+    for (int32_t i : gone) {
+      flow[size_t(i)] = 0, buds[size_t(i)] = 0;
+      for (int32_t a = t.parent[size_t(i)]; a >= 0 && !resweep_mark[size_t(a)]; a = t.parent[size_t(a)]) {
+        resweep_mark[size_t(a)] = 1;
+        redo.push_back(a);
+      }
+    }
+    std::sort(redo.begin(), redo.end(), std::greater<int32_t>());
+    for (int32_t a : redo) {
+      resweep_mark[size_t(a)] = 0;
+      sweep_node(size_t(a), bm, be_over_n);
     }
   }
 
-  // Sheds per seed 001; returns true when anything went.
+  // Sheds per seed 001, then brings the flow up to date; returns true when anything went.
   bool shed(uint16_t step) {
     if (p.shed_min_buds <= 0) return false;
     const std::vector<uint8_t> s = select_shed(t.parent, flow, buds, p.shed_min_buds);
-    bool any = false;
+    std::vector<int32_t>& gone = shed_nodes;
+    gone.clear();
     for (size_t i = 0; i < s.size(); ++i) {
       if (!s[i] || t.died[i] != never_died) continue;
-      any = true;
+      gone.push_back(int32_t(i));
       t.died[i] = step;
       const int32_t par = t.parent[i];
       if (main[par] == int32_t(i)) main[par] = no_bud;
       if (lat[par] == int32_t(i)) lat[par] = no_bud;
-      if (p.environment == so_environment::shadow)
-        add_shadow_pyramid(grid, voxel[i], p.shadow_a, p.shadow_b, p.q_max, -1);
     }
-    return any;
+    if (gone.empty()) return false;
+    if (p.environment == so_environment::shadow) {   // their shadow goes, in the same order
+      shed_voxels.clear();
+      for (int32_t i : gone) shed_voxels.push_back(voxel[size_t(i)]);
+      add_shadow_pyramids(grid, shed_voxels, p.shadow_a, p.shadow_b, p.q_max, -1);
+    }
+    resweep_mark.resize(t.size(), 0);
+    resweep_after_shed(gone);
+    return true;
   }
 
   // Pruning (Palubicki et al. 2009, §7 and fig. 12): a cut branch goes as a shed one does. Its
@@ -520,7 +558,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     if (const std::vector<int32_t> cut = apply_cuts(t, o.cuts, T, rep); !cut.empty()) st.prune(cut);
     st.compute_bud_light(T);
     st.sweep_flow();
-    if (st.shed(uint16_t(T))) st.sweep_flow();
+    st.shed(uint16_t(T));   // and the flow again where it sheds
     if (debug) last_flow = st.flow;
     st.allocate(T, roots);
 
