@@ -68,7 +68,8 @@ void bake_sky(leaf_grid& g, float window) {
               const int bx = x + steps * dx, by = y + steps, bz = z + steps * dz;
               const float beyond = g.inside(bx, by, bz) ? prefix[g.at(bx, by, bz)] : 0.0f;
               const float depth = std::max(prefix[c] - beyond - lad[c], 0.0f) * ds;   // the cell's own leaves do not shade it
-              sky[c] += w * std::exp(-0.5f * depth);
+              // No foliage in the window (most cells round and above a crown): exp(∓0) is exactly 1.
+              sky[c] += depth == 0.0f ? w : w * std::exp(-0.5f * depth);
             }
       });
       weights += w;
