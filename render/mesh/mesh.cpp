@@ -4,11 +4,13 @@
 #include "generators/wood.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstring>
 #include <functional>
 #include <numeric>
+#include <thread>
 
 #include "generators/job_pool.h"
 #include "generators/timing.h"
@@ -34,8 +36,6 @@ glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1
   return len > 1e-7f ? r / len : any_perpendicular(t1);
 }
 
-
-
 // Stable counting sort of `count` items by a born step clamped into 0..steps; writes the
 // per-step "end" table (size steps+1) and returns the permutation (order[k] = item index).
 template <class BornOf>
@@ -49,7 +49,6 @@ std::vector<uint32_t> sort_by_born(size_t count, int steps, BornOf born_of, std:
   for (size_t k = 0; k < count; ++k) perm[cursor[std::min<int>(born_of(k), steps)]++] = uint32_t(k);
   return perm;
 }
-
 
 // Angle in radians between two vectors (0 when either is zero).
 float angle_between(const glm::vec3& a, const glm::vec3& b) {
@@ -78,7 +77,6 @@ uint64_t position_hash(const glm::vec3& p, uint64_t salt) {
   rng r(salt ^ (uint64_t(b[0]) << 32 | b[1]) ^ (uint64_t(b[2]) * 0xD1B54A32D192ED03ull));
   return r.next();
 }
-
 
 }  // namespace
 
@@ -128,23 +126,18 @@ glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& ro
   return t.position[par] + disp[par] + rotate_by(d, rot[k]);
 }
 
-tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed, mesh_stage_times* times) {
-  tree_mesh m;
-  mesh_stage_times unused;
-  mesh_stage_times& st = times ? *times : unused;
-  st = {};
+namespace {
+
+// The bark: the frame, budget, rings and index stages of mesh_tree (their times in st); rot and
+// disp are the gnarl, which the leaves follow too.
+void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_stage_times& st,
+               std::vector<glm::vec3>& rot, std::vector<glm::vec3>& disp) {
   auto lap_start = clock_type::now();
   auto lap = [&](double& field) {   // adds the time since the last lap to one stage
     const auto now = clock_type::now();
     field += ms_between(lap_start, now);
     lap_start = now;
   };
-  m.steps = std::max(t.steps, 0);
-  m.radial_segments = std::clamp(p.radial_segments, 3, 256);
-  m.index_end.assign(size_t(m.steps) + 1, 0);
-  m.leaf_end.assign(size_t(m.steps) + 1, 0);
-  if (!structurally_sound(t)) return m;
-
   const size_t n = t.size();
   const int seg = m.radial_segments, stride = seg + 1;
   const float min_radius = std::isfinite(p.min_radius) && p.min_radius > 0 ? p.min_radius : 1e-5f;
@@ -158,8 +151,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   }
 
   // Gnarl: every internode turned by seeded angular noise, its subtree carried along.
-  const std::vector<glm::vec3> rot = gnarl_rotations(t, p);
-  const std::vector<glm::vec3> disp = gnarl_offsets(t, rot);
+  rot = gnarl_rotations(t, p);
+  disp = gnarl_offsets(t, rot);
   std::vector<glm::vec3> q(n);
   for (size_t i = 0; i < n; ++i) q[i] = t.position[i] + disp[i];
 
@@ -597,13 +590,52 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   });
 
   lap(st.index);
+}
+
+}  // namespace
+
+tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed, mesh_stage_times* times) {
+  tree_mesh m;
+  mesh_stage_times unused;
+  mesh_stage_times& st = times ? *times : unused;
+  st = {};
+  auto lap_start = clock_type::now();
+  auto lap = [&](double& field) {   // adds the time since the last lap to one stage
+    const auto now = clock_type::now();
+    field += ms_between(lap_start, now);
+    lap_start = now;
+  };
+  m.steps = std::max(t.steps, 0);
+  m.radial_segments = std::clamp(p.radial_segments, 3, 256);
+  m.index_end.assign(size_t(m.steps) + 1, 0);
+  m.leaf_end.assign(size_t(m.steps) + 1, 0);
+  if (!structurally_sound(t)) return m;
+
+  const size_t n = t.size();
+  std::vector<glm::vec3> rot, disp;
+  foliage placed;
+  const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
+  // Leaf placement reads only the skeleton: it runs on a pool helper beside the bark (job_pool.h),
+  // or after it on this thread when none is free; st.leaf_place is its own time either way. The
+  // bark stays on this thread when it can, so its large arrays come from this thread's heap.
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<bool> bark_taken{false}, leaves_taken{false};
+  auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
+  auto leaves = [&] {
+    const auto t0 = clock_type::now();
+    placed = place_leaves(t, p.leaves, seed);
+    st.leaf_place = ms_since(t0);
+  };
+  parallel_jobs(p.leaves_enabled && !own ? 2 : 1, [&](size_t) {
+    // Each run takes its thread's task if still free, else the other: two runs do both, once each.
+    const bool here = std::this_thread::get_id() == caller;
+    if (!(here ? bark_taken : leaves_taken).exchange(true)) return here ? bark() : leaves();
+    if (!(here ? leaves_taken : bark_taken).exchange(true)) return here ? leaves() : bark();
+  });
+  lap_start = clock_type::now();
 
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
-    foliage placed;
-    const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
-    if (!own) placed = place_leaves(t, p.leaves, seed);
-    lap(st.leaf_place);
     const std::vector<leaf>& src = own ? t.leaves : placed.leaves;   // the generator's, uncopied
     const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
