@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "generators/job_pool.h"
-#include "generators/self_organizing_grid.h"
 #include "render/mesh/mesh.h"
 #include "generators/guiding_vectors.h"
 #include "render/io/preset.h"
@@ -115,23 +114,3 @@ TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
     expect_growth_is_the_single_threaded_one(name, 150);
 }
 
-// Many pyramids at once give the cells, and the chunk layout, of one pyramid after another.
-TEST(JobPool, ShadowPyramidsInPartsAreOneAfterAnother) {
-  rng r(7);
-  std::vector<glm::ivec3> voxels;
-  for (int k = 0; k < 3000; ++k) voxels.push_back({r.uniform_int(40) - 20, r.uniform_int(30) - 5, r.uniform_int(40) - 20});
-  for (float sign : {1.0f, -1.0f}) {
-    shadow_grid one, many;
-    for (const glm::ivec3& v : voxels) add_shadow_pyramid(one, v, 0.2f, 2.0f, 5, sign);
-    add_shadow_pyramids(many, voxels, 0.2f, 2.0f, 5, sign);
-    ASSERT_GT(one.chunk_count(), 8u);
-    EXPECT_EQ(one.chunk_pos, many.chunk_pos);
-    ASSERT_EQ(one.cells.size(), many.cells.size());
-    EXPECT_EQ(0, std::memcmp(one.cells.data(), many.cells.data(), one.cells.size() * sizeof(float)));
-  }
-  shadow_grid capped;   // past the memory cap the writes go nowhere, as one at a time
-  capped.chunk_cap = 5;
-  add_shadow_pyramids(capped, voxels, 0.2f, 2.0f, 5);
-  EXPECT_TRUE(capped.full);
-  EXPECT_EQ(capped.chunk_count(), 5u);
-}

@@ -238,3 +238,24 @@ TEST(SelfOrganizingTree, EnvironmentsAllocationsAndForests) {
   EXPECT_EQ(t.position[1], glm::vec3(3, 0, 1));
 }
 
+// Pyramids added as one batch (one chunk-index cache shared by them) give the cells, and the
+// chunk layout, of one pyramid after another.
+TEST(ShadowGrid, PyramidsInOneBatchAreOneAfterAnother) {
+  rng r(7);
+  std::vector<glm::ivec3> voxels;
+  for (int k = 0; k < 3000; ++k) voxels.push_back({r.uniform_int(40) - 20, r.uniform_int(30) - 5, r.uniform_int(40) - 20});
+  for (float sign : {1.0f, -1.0f}) {
+    shadow_grid one, many;
+    for (const glm::ivec3& v : voxels) add_shadow_pyramid(one, v, 0.2f, 2.0f, 5, sign);
+    add_shadow_pyramids(many, voxels, 0.2f, 2.0f, 5, sign);
+    ASSERT_GT(one.chunk_count(), 8u);
+    EXPECT_EQ(one.chunk_pos, many.chunk_pos);
+    ASSERT_EQ(one.cells.size(), many.cells.size());
+    EXPECT_EQ(0, std::memcmp(one.cells.data(), many.cells.data(), one.cells.size() * sizeof(float)));
+  }
+  shadow_grid capped;   // past the memory cap the writes go nowhere, as one at a time
+  capped.chunk_cap = 5;
+  add_shadow_pyramids(capped, voxels, 0.2f, 2.0f, 5);
+  EXPECT_TRUE(capped.full);
+  EXPECT_EQ(capped.chunk_count(), 5u);
+}
