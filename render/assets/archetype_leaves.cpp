@@ -154,56 +154,63 @@ void draw_lanceolate(leaf_canvas& c, rng& g) {
   blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.3f), 0.022f, leaf, st);
 }
 
-void draw_twig_cluster(leaf_canvas& c, rng& g) {
-  auto twig = [](float t) { return vec2(0.5f + 0.04f * std::sin(2.4f * t), 0.62f * t); };
-  blade_style st;
-  st.serration = 0.08f, st.teeth = 14, st.vein_angle = 42, st.veins = 6;
-  auto leaf = [](float t, int) { return ovate_profile(t); };
-  const int leaves = 7;
-  for (int i = 0; i < leaves; ++i) {
-    const float t = 0.22f + 0.74f * float(i) / float(leaves - 1);
+// A twig carrying leaves up the card, alternate left and right, and one leaf at its tip: the
+// layout the cluster cards share (twig_cluster and the beech, hazel and poplar sprays).
+struct spray_layout {
+  float wobble, freq, height;        // twig: x = 0.5 + wobble sin(freq t), y = height t
+  float twig_w0, twig_w1;            // twig width at its base and tip
+  int leaves;                        // side leaves, at t0 .. t0 + t_span along the twig
+  float t0, t_span;
+  float ang_lo, ang_hi;              // degrees off the twig (times 1.1 - 0.3 t)
+  float petiole_lo, petiole_hi;      // petiole length (drawn from the range when lo < hi)
+  float petiole_w0, petiole_w1;
+  float sink;                        // the blade starts this far back along the petiole
+  float bend;                        // at most this sideways curve per blade (none at 0)
+  float len_lo, len_hi;              // blade length, and half-width as a share of it
+  float width;
+  float tip_petiole, tip_base, tip_len, tip_trim, tip_width;  // the tip leaf
+};
+
+template <class Profile>
+void leaf_spray(leaf_canvas& c, rng& g, const spray_layout& s, blade_style st, Profile leaf) {
+  auto twig = [&](float t) { return vec2(0.5f + s.wobble * std::sin(s.freq * t), s.height * t); };
+  for (int i = 0; i < s.leaves; ++i) {
+    const float t = s.t0 + s.t_span * float(i) / float(s.leaves - 1);
     const vec2 p = twig(t);
     const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(48, 64) * (1.1f - 0.3f * t);
+    const float ang = 90 + side * g.range(s.ang_lo, s.ang_hi) * (1.1f - 0.3f * t);
     const vec2 d = heading(ang);
-    const vec2 q = p + d * 0.035f;
-    stroke(c, p, q, 0.0035f, 0.003f, petiole_style);
-    const float len = fit(q, d, g.range(0.27f, 0.32f), 0.01f);
-    blade(c, q - d * 0.005f, ang, len, len * 0.42f, leaf, st);
+    const vec2 q = p + d * (s.petiole_lo < s.petiole_hi ? g.range(s.petiole_lo, s.petiole_hi) : s.petiole_lo);
+    stroke(c, p, q, s.petiole_w0, s.petiole_w1, petiole_style);
+    if (s.bend > 0) st.bend = side * g.range(0.0f, s.bend);
+    const float len = fit(q, d, g.range(s.len_lo, s.len_hi), 0.01f);
+    blade(c, q - d * s.sink, ang, len, len * s.width, leaf, st);
   }
-  curve_stroke(c, twig, 6, 0.011f, 0.0055f, twig_style);
+  curve_stroke(c, twig, 6, s.twig_w0, s.twig_w1, twig_style);
   const vec2 tip = twig(1.0f);
-  stroke(c, tip, tip + vec2(0, 0.03f), 0.0035f, 0.003f, petiole_style);
-  blade(c, tip + vec2(0, 0.025f), 90, fit(tip, {0, 1}, 0.32f) - 0.02f, 0.13f, leaf, st);
+  st.bend = 0;
+  stroke(c, tip, tip + vec2(0, s.tip_petiole), s.petiole_w0, s.petiole_w1, petiole_style);
+  blade(c, tip + vec2(0, s.tip_base), 90, fit(tip, {0, 1}, s.tip_len) - s.tip_trim, s.tip_width, leaf, st);
+}
+
+void draw_twig_cluster(leaf_canvas& c, rng& g) {
+  blade_style st;
+  st.serration = 0.08f, st.teeth = 14, st.vein_angle = 42, st.veins = 6;
+  const spray_layout s{0.04f, 2.4f, 0.62f, 0.011f, 0.0055f, 7, 0.22f, 0.74f, 48, 64, 0.035f, 0.035f, 0.0035f, 0.003f,
+                       0.005f, 0, 0.27f, 0.32f, 0.42f, 0.03f, 0.025f, 0.32f, 0.02f, 0.13f};
+  leaf_spray(c, g, s, st, [](float t, int) { return ovate_profile(t); });
 }
 
 // A flat two-ranked beech spray (Fagus sylvatica: leaves elliptic, 5-10 cm, with an entire, wavy
 // margin and 5-9 pairs of straight parallel veins that run out to it; alternate along a zigzag
 // twig and held in one plane): five leaves on a twig that bends at each node.
 void draw_beech_spray(leaf_canvas& c, rng& g) {
-  auto twig = [](float t) { return vec2(0.5f + 0.035f * std::sin(9.0f * t), 0.6f * t); };  // zigzag
   blade_style st;
   st.serration = 0.025f, st.teeth = 12, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
+  const spray_layout s{0.035f, 9.0f, 0.6f, 0.009f, 0.005f, 5, 0.24f, 0.72f, 52, 66, 0.02f, 0.02f, 0.0035f, 0.003f,
+                       0.004f, 0.04f, 0.34f, 0.4f, 0.3f, 0.02f, 0.016f, 0.36f, 0.02f, 0.1f};
   // Widest a little below the middle, tapering straight to an acute tip (a pow below 1 would round it off).
-  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.74f)), 0.9f); };
-  const int leaves = 5;
-  for (int i = 0; i < leaves; ++i) {
-    const float t = 0.24f + 0.72f * float(i) / float(leaves - 1);
-    const vec2 p = twig(t);
-    const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(52, 66) * (1.1f - 0.3f * t);
-    const vec2 d = heading(ang);
-    const vec2 q = p + d * 0.02f;
-    stroke(c, p, q, 0.0035f, 0.003f, petiole_style);
-    st.bend = side * g.range(0.0f, 0.04f);
-    const float len = fit(q, d, g.range(0.34f, 0.4f), 0.01f);
-    blade(c, q - d * 0.004f, ang, len, len * 0.3f, leaf, st);
-  }
-  curve_stroke(c, twig, 6, 0.009f, 0.005f, twig_style);
-  const vec2 tip = twig(1.0f);
-  st.bend = 0;
-  stroke(c, tip, tip + vec2(0, 0.02f), 0.0035f, 0.003f, petiole_style);
-  blade(c, tip + vec2(0, 0.016f), 90, fit(tip, {0, 1}, 0.36f) - 0.02f, 0.1f, leaf, st);
+  leaf_spray(c, g, s, st, [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.74f)), 0.9f); });
 }
 
 // A hazel shoot (Corylus avellana: leaves broad, nearly round, 6-12 cm, with a heart-shaped base,
@@ -211,64 +218,28 @@ void draw_beech_spray(leaf_canvas& c, rng& g) {
 // hairy twig. The outline is a circle set on its base (already 70 % wide where the petiole joins,
 // the heart's notch) that narrows to the point in its last fifth; teeth on teeth double the margin.
 void draw_hazel_spray(leaf_canvas& c, rng& g) {
-  auto twig = [](float t) { return vec2(0.5f + 0.03f * std::sin(7.0f * t), 0.5f * t); };
   blade_style st;
   st.serration = 0.07f, st.teeth = 46, st.vein_angle = 44, st.veins = 7, st.dome = 0.14f;
-  auto leaf = [](float t, int) {
+  const spray_layout s{0.03f, 7.0f, 0.5f, 0.011f, 0.006f, 4, 0.26f, 0.7f, 50, 62, 0.03f, 0.03f, 0.004f, 0.0035f,
+                       0.01f, 0.03f, 0.38f, 0.44f, 0.43f, 0.03f, 0.02f, 0.44f, 0.02f, 0.19f};
+  leaf_spray(c, g, s, st, [](float t, int) {
     const float round = std::sqrt(std::max(0.0f, 1 - std::pow((t - 0.4f) / 0.62f, 2.0f)));
     const float tip = 1 - 0.55f * std::max(0.0f, (t - 0.78f) / 0.22f);
     const float teeth2 = 1 - 0.05f * (0.5f + 0.5f * std::cos(2 * pi * 11.0f * t));  // the larger teeth
     return round * tip * teeth2;
-  };
-  const int leaves = 4;
-  for (int i = 0; i < leaves; ++i) {
-    const float t = 0.26f + 0.7f * float(i) / float(leaves - 1);
-    const vec2 p = twig(t);
-    const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(50, 62) * (1.1f - 0.3f * t);
-    const vec2 d = heading(ang);
-    const vec2 q = p + d * 0.03f;
-    stroke(c, p, q, 0.004f, 0.0035f, petiole_style);
-    st.bend = side * g.range(0.0f, 0.03f);
-    const float len = fit(q, d, g.range(0.38f, 0.44f), 0.01f);
-    blade(c, q - d * 0.01f, ang, len, len * 0.43f, leaf, st);
-  }
-  curve_stroke(c, twig, 6, 0.011f, 0.006f, twig_style);
-  const vec2 tip = twig(1.0f);
-  st.bend = 0;
-  stroke(c, tip, tip + vec2(0, 0.03f), 0.004f, 0.0035f, petiole_style);
-  blade(c, tip + vec2(0, 0.02f), 90, fit(tip, {0, 1}, 0.44f) - 0.02f, 0.19f, leaf, st);
+  });
 }
 
 // A black poplar shoot (Populus nigra 'Italica': leaves deltoid to rhombic, 5-10 cm, with a broad
 // truncate base, straight sides drawn out into a long point, a finely crenate margin, and long
 // flattened petioles, so each leaf hangs at its own angle): five leaves on long stalks up a twig.
 void draw_poplar_spray(leaf_canvas& c, rng& g) {
-  auto twig = [](float t) { return vec2(0.5f + 0.02f * std::sin(5.0f * t), 0.55f * t); };
   blade_style st;
   st.serration = 0.045f, st.teeth = 34, st.vein_angle = 48, st.veins = 6, st.dome = 0.08f;
-  auto leaf = [](float t, int) {
-    // Widest a fifth of the way up, then straight sides to the point (deltoid).
-    return t < 0.2f ? std::pow(t / 0.2f, 0.45f) : std::pow(1 - (t - 0.2f) / 0.8f, 1.15f);
-  };
-  const int leaves = 5;
-  for (int i = 0; i < leaves; ++i) {
-    const float t = 0.2f + 0.78f * float(i) / float(leaves - 1);
-    const vec2 p = twig(t);
-    const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(40, 62) * (1.1f - 0.3f * t);
-    const vec2 d = heading(ang);
-    const vec2 q = p + d * g.range(0.07f, 0.1f);  // the long petiole
-    stroke(c, p, q, 0.0032f, 0.0028f, petiole_style);
-    st.bend = side * g.range(0.0f, 0.05f);
-    const float len = fit(q, d, g.range(0.28f, 0.33f), 0.01f);
-    blade(c, q - d * 0.004f, ang, len, len * 0.42f, leaf, st);
-  }
-  curve_stroke(c, twig, 6, 0.009f, 0.005f, twig_style);
-  const vec2 tip = twig(1.0f);
-  st.bend = 0;
-  stroke(c, tip, tip + vec2(0, 0.07f), 0.0032f, 0.0028f, petiole_style);
-  blade(c, tip + vec2(0, 0.066f), 90, fit(tip, {0, 1}, 0.36f) - 0.07f, 0.12f, leaf, st);
+  const spray_layout s{0.02f, 5.0f, 0.55f, 0.009f, 0.005f, 5, 0.2f, 0.78f, 40, 62, 0.07f, 0.1f, 0.0032f, 0.0028f,
+                       0.004f, 0.05f, 0.28f, 0.33f, 0.42f, 0.07f, 0.066f, 0.36f, 0.07f, 0.12f};
+  // Widest a fifth of the way up, then straight sides to the point (deltoid).
+  leaf_spray(c, g, s, st, [](float t, int) { return t < 0.2f ? std::pow(t / 0.2f, 0.45f) : std::pow(1 - (t - 0.2f) / 0.8f, 1.15f); });
 }
 
 }  // namespace sylva::archetype
