@@ -145,14 +145,27 @@ function outlinePoints(root) {
 // within FILL of the frame, then moved sideways/up so the projected tree is centred; three rounds.
 // Fitting the points rather than the bounding box keeps the empty corners of the box (its
 // ground corners in the iso view) from shrinking the tree.
+// Unit vector from the target toward a camera at this elevation and azimuth (degrees).
+function viewDirection(elevation, azimuth) {
+  const el = THREE.MathUtils.degToRad(elevation);
+  const az = THREE.MathUtils.degToRad(azimuth);
+  return new THREE.Vector3(Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az));
+}
+
+// Sun from the upper left, in front of the tree as seen from a camera looking along -dir.
+function placeSun(target, dir, radius) {
+  const up = new THREE.Vector3(0, 1, 0);
+  const right = new THREE.Vector3().crossVectors(up, dir).normalize();
+  sun.position.copy(target).addScaledVector(dir, radius).addScaledVector(right, -radius).addScaledVector(up, radius * 1.5);
+  sun.target.position.copy(target);
+}
+
 function fitCamera(points, box, viewName, aspect) {
   // A named view, or "ELEVATION,AZIMUTH" in degrees.
   const m = /^(-?[\d.]+),(-?[\d.]+)$/.exec(viewName);
   const v = m ? { elevation: Number(m[1]), azimuth: Number(m[2]) } : VIEWS[viewName];
   if (!v) throw new Error(`unknown view ${viewName}; views: ${Object.keys(VIEWS).join(', ')} or ELEVATION,AZIMUTH`);
-  const el = THREE.MathUtils.degToRad(v.elevation);
-  const az = THREE.MathUtils.degToRad(v.azimuth);
-  const dir = new THREE.Vector3(Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az));
+  const dir = viewDirection(v.elevation, v.azimuth);
   const up = new THREE.Vector3(0, 1, 0);
   const right = new THREE.Vector3().crossVectors(up, dir).normalize();
   const camUp = new THREE.Vector3().crossVectors(dir, right).normalize();
@@ -198,16 +211,14 @@ function fitCamera(points, box, viewName, aspect) {
   camera.near = Math.max(0.01, dist - radius * 1.5);
   camera.far = dist + radius * 1.5;
   camera.updateProjectionMatrix();
-  // Sun from the upper left, in front of the tree as seen from the camera.
-  sun.position.copy(target).addScaledVector(dir, radius).addScaledVector(right, -radius).addScaledVector(up, radius * 1.5);
-  sun.target.position.copy(target);
+  placeSun(target, dir, radius);
   return { target, dist };
 }
 
 // Close-up views for the recognition plates, as a field guide pairs the whole tree with its
 // leaves and its bark: "detail_leaves" frames about 1.4 m of the crown's surface at mid-height on
-// the side facing the camera, "detail_bark" about 1.2 m of the trunk at breast height (1.3 m, or
-// a tenth of a smaller tree's height). Both look from 10 degrees up at azimuth 30, lit like the
+// the side facing the camera, "detail_bark" the trunk at breast height (1.3 m, or a tenth of a
+// smaller tree's height), 1.6 trunk widths across. Both look from 10 degrees up at azimuth 30, lit like the
 // other views. Returns false for any other view name.
 const DETAIL_VIEW = { elevation: 10, azimuth: 30 };
 function worldPoints(mesh, filter, out) {
@@ -231,9 +242,7 @@ function worldPoints(mesh, filter, out) {
 }
 function detailCamera(viewName, box) {
   if (viewName !== 'detail_leaves' && viewName !== 'detail_bark') return false;
-  const el = THREE.MathUtils.degToRad(DETAIL_VIEW.elevation);
-  const az = THREE.MathUtils.degToRad(DETAIL_VIEW.azimuth);
-  const dir = new THREE.Vector3(Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az));
+  const dir = viewDirection(DETAIL_VIEW.elevation, DETAIL_VIEW.azimuth);
   const h = box.max.y - box.min.y;
   const c = box.getCenter(new THREE.Vector3());
   let target = null;
@@ -250,7 +259,6 @@ function detailCamera(viewName, box) {
     const near = pts.filter((p) => p.distanceTo(best) < half);
     target = near.reduce((a, p) => a.add(p), new THREE.Vector3()).multiplyScalar(1 / near.length);
   } else {
-    half = 0.6;
     const y = box.min.y + Math.min(1.3, 0.1 * h);
     const pts = [];
     // Rings can stand metres apart on a clear bole: take those within 0.5 m of that height, or
@@ -274,14 +282,11 @@ function detailCamera(viewName, box) {
   camera.up.set(0, 1, 0);
   camera.lookAt(target);
   camera.near = Math.max(0.01, dist * 0.2);
-  camera.far = dist + box.getSize(new THREE.Vector3()).length() * 1.5;
+  const radius = box.getSize(new THREE.Vector3()).length();
+  camera.far = dist + radius * 1.5;
   camera.aspect = 1;
   camera.updateProjectionMatrix();
-  // The sun as fitCamera places it: upper left, in front of the tree as seen from the camera.
-  const r = box.getSize(new THREE.Vector3()).length();
-  const right = new THREE.Vector3().crossVectors(new THREE.Vector3(0, 1, 0), dir).normalize();
-  sun.position.copy(target).addScaledVector(dir, r).addScaledVector(right, -r).addScaledVector(new THREE.Vector3(0, 1, 0), r * 1.5);
-  sun.target.position.copy(target);
+  placeSun(target, dir, radius);
   return target.toArray();
 }
 
