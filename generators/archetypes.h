@@ -26,7 +26,11 @@ namespace sylva {
   X(lanceolate)   /* willow shoot: long narrow leaves, finely toothed, long-pointed */ \
   X(beech_spray)  /* beech: flat two-ranked spray of elliptic, wavy-edged leaves (cluster card) */ \
   X(hazel_spray)  /* hazel: round, heart-based, doubly toothed leaves on a shoot (cluster card) */ \
-  X(poplar_spray) /* black poplar: deltoid leaves on long petioles (cluster card) */
+  X(poplar_spray) /* black poplar: deltoid leaves on long petioles (cluster card) */ \
+  X(cone_hanging) /* spruce: a pendent cylindrical seed cone (fruit card, generators/fruits.h) */ \
+  X(cone_upright) /* fir, cedar: an upright barrel-shaped seed cone (fruit card) */ \
+  X(samaras)      /* maple: a hanging cluster of paired winged fruits (fruit card) */ \
+  X(hazelnuts)    /* hazel: nuts in leafy, toothed husks (fruit card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

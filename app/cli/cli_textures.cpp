@@ -66,6 +66,10 @@ const glm::vec3 leaf_tints[] = {
     {0.22f, 0.44f, 0.12f},  // beech spray
     {0.26f, 0.46f, 0.14f},  // hazel spray
     {0.20f, 0.42f, 0.12f},  // poplar spray
+    {1, 1, 1},              // cone_hanging: fruit cards keep their own colours
+    {1, 1, 1},              // cone_upright
+    {1, 1, 1},              // samaras
+    {1, 1, 1},              // hazelnuts
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -122,7 +126,8 @@ const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        
                                    "pinnate (ash)",       "needles (pine)",     "flat_spray (spruce)",
                                    "scale_spray (cypress)", "palm_frond (palm)", "twig_cluster (maple)",
                                    "needle_tufts (cedar)", "lanceolate (willow)", "beech_spray (beech)",
-                                   "hazel_spray (hazel)", "poplar_spray (poplar)"};
+                                   "hazel_spray (hazel)", "poplar_spray (poplar)", "cone_hanging (spruce)",
+                                   "cone_upright (fir)",  "samaras (maple)",    "hazelnuts (hazel)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (beech)", "fissured (ash)", "fibrous (cypress)"};

@@ -15,7 +15,8 @@ const char* panel_tab_label(panel_tab t) {
 
 panel_tab tab_of_group(const char* group, bool* known) {
   static const struct { const char* group; panel_tab tab; } table[] = {
-      {"Leaves", panel_tab::leaves},          {"Season", panel_tab::scene},
+      {"Leaves", panel_tab::leaves},          {"Cones and fruit", panel_tab::leaves},
+      {"Season", panel_tab::scene},
       {"Wood", panel_tab::wood},              {"Mesh", panel_tab::wood},
       {"Bark mesh", panel_tab::wood},         {"Bark shape", panel_tab::wood},
       {"Materials", panel_tab::wood},         {"Textures", panel_tab::wood},

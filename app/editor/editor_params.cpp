@@ -355,7 +355,7 @@ void draw_panel(editor_state& e, float top, float bottom) {
   const bool searching = !e.panel_search.empty();
   std::string key_error;
   // The groups of the shared parameters each tab shows, in the order shown (editor_panel_tabs.h).
-  static const std::vector<const char*> leaves{"Leaves"}, bark_mesh{"Mesh", "Bark mesh", "Bark shape"},
+  static const std::vector<const char*> leaves{"Leaves", "Cones and fruit"}, bark_mesh{"Mesh", "Bark mesh", "Bark shape"},
       materials{"Materials", "Textures"}, season_wind{"Season", "Wind"}, sky{"Sun and sky", "Shadows", "Light shafts and fog"},
       output{"Level of detail"};
   if (searching) {   // every tab's parameters at once, only those that match

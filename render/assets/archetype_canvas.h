@@ -327,6 +327,11 @@ void draw_lanceolate(leaf_canvas& c, rng& g);
 void draw_beech_spray(leaf_canvas& c, rng& g);
 void draw_hazel_spray(leaf_canvas& c, rng& g);
 void draw_poplar_spray(leaf_canvas& c, rng& g);
+// Fruit cards (render/assets/archetype_fruits.cpp), drawn in their final colours.
+void draw_cone_hanging(leaf_canvas& c, rng& g);
+void draw_cone_upright(leaf_canvas& c, rng& g);
+void draw_samaras(leaf_canvas& c, rng& g);
+void draw_hazelnuts(leaf_canvas& c, rng& g);
 
 // ================================================================ bark
 // Tile coordinates u (around the branch) and v (along it, image rows), both periodic in [0, 1).

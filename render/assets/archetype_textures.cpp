@@ -47,6 +47,11 @@ const leaf_entry leaf_table[] = {
     {draw_beech_spray, {{176, 192, 152}, {204, 206, 158}}, 1},
     {draw_hazel_spray, {{172, 190, 150}, {200, 204, 154}}, 1},
     {draw_poplar_spray, {{170, 190, 152}, {198, 204, 158}}, 1},
+    // Fruit cards: final colours (no tint): shadowed scale colour, then the scales' pale edges.
+    {draw_cone_hanging, {{112, 70, 40}, {176, 124, 78}}, 1},    // Picea abies: light brown when ripe
+    {draw_cone_upright, {{92, 84, 58}, {150, 140, 96}}, 1},     // Abies, Cedrus: grey-green brown
+    {draw_samaras, {{176, 172, 112}, {150, 98, 60}}, 1},        // pale tan-green wings, red-brown nutlets
+    {draw_hazelnuts, {{140, 158, 74}, {168, 120, 64}}, 1},      // green husks, brown nuts
 };
 static_assert(std::size(leaf_table) == size_t(leaf_archetype_count), "one leaf_table row per leaf archetype");
 

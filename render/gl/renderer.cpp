@@ -131,7 +131,8 @@ void set_season_uniforms(const gl_program& p, const season_look& s) {
   set_uniform(p, "u_leaf_color", s.evergreen_color);
   set_uniform(p, "u_autumn_a", s.deciduous_color_a);
   set_uniform(p, "u_autumn_b", s.deciduous_color_b);
-  glUniform1ui(glGetUniformLocation(p.id, "u_deciduous"), s.deciduous_mask);
+  glUniform2ui(glGetUniformLocation(p.id, "u_deciduous"), uint32_t(s.deciduous_mask), uint32_t(s.deciduous_mask >> 32));
+  glUniform1ui(glGetUniformLocation(p.id, "u_fruit"), fruit_archetype_mask());
   set_uniform(p, "u_keep", s.deciduous_keep);
   set_uniform(p, "u_season_scale", s.deciduous_scale);
 }

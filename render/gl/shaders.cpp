@@ -113,7 +113,8 @@ layout(location = 7) in uint i_node;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
 uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (render/gl/impostor.h) instead of its camera card
 // The season (render/mesh/season.h season_look): deciduous archetypes' colour range, share kept, size.
-uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uint u_deciduous;
+uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uvec2 u_deciduous;
+uniform uint u_fruit;   // bit k: archetype k is a cone's or fruit's card, in its own colours (season.h archetype_is_fruit)
 uniform float u_keep; uniform float u_season_scale;
 uniform vec3 u_crown_centre; uniform vec3 u_crown_radii;   // the leaves' ellipsoid (render/mesh/leaf_shading.h)
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
@@ -127,7 +128,9 @@ float leaf_random(uint i, uint salt) {   // season_leaf_random (render/mesh/seas
 }
 void main() {
   bool alive = int(i_born_died.x) <= u_step && u_step < int(i_born_died.y);
-  bool deciduous = i_texture < 32u && ((u_deciduous >> i_texture) & 1u) != 0u;
+  bool deciduous = i_texture < 32u ? ((u_deciduous.x >> i_texture) & 1u) != 0u
+                                   : i_texture < 64u && ((u_deciduous.y >> (i_texture - 32u)) & 1u) != 0u;
+  bool fruit = i_texture < 32u && ((u_fruit >> i_texture) & 1u) != 0u;
   float size = i_size;
   v_color = u_leaf_color;
   if (deciduous) {
@@ -159,7 +162,7 @@ void main() {
   v_outward = length(g) > 1e-6 ? normalize(g) : vec3(0.0, 1.0, 0.0);
   float h = hash(i_position);
   v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
-  if (plain) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/assets/textures.h)
+  if (plain || fruit) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/assets/textures.h)
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
 }
 )";

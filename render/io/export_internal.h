@@ -240,10 +240,12 @@ class material_source {
   std::string error;  // a PNG that could not be encoded
 
  private:
-  // A deciduous archetype's material is tinted with the middle of the season's per-leaf range.
+  // A deciduous archetype's material is tinted with the middle of the season's per-leaf range; a
+  // fruit's card keeps its own colours (render/mesh/season.h archetype_is_fruit).
   glm::vec3 season_color(int slot) const {
     const season_look& s = o_.season;
-    if (slot < 32 && (s.deciduous_mask >> slot) & 1u) return 0.5f * (s.deciduous_color_a + s.deciduous_color_b);
+    if (slot < leaf_archetype_count && archetype_is_fruit(leaf_archetype(slot))) return glm::vec3(1.0f);
+    if (season_deciduous(s, slot)) return 0.5f * (s.deciduous_color_a + s.deciduous_color_b);
     return o_.leaf_color;
   }
   void warn(const std::string& line) { warning_ += (warning_.empty() ? "" : "\n") + line; }

@@ -127,6 +127,11 @@ mesh_counts counts_of(const tree_skeleton& t, const mesh_params& p) {
   c.laterals = c.tubes - parents;
   c.curve_wants = c.tubes * std::clamp(p.curve_rings, 0, 16);
   count_leaves(t, p, c);
+  if (p.leaves_enabled && p.fruits.count > 0) {   // fruit cards (generators/fruits.h), copied with the leaves
+    const double fruit = std::min(double(std::clamp(p.fruits.count, 0, 100000)), c.tips) * std::clamp(p.fruits.cards, 1, 3);
+    c.leaves += fruit;
+    c.placed += fruit;
+  }
   return c;
 }
 

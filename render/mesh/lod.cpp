@@ -1,6 +1,7 @@
 // LOD1-LOD3 from the final tree: a tolerance-driven bark simplifier and a leaf-card merger,
 // each searched for the largest mesh within its share of the triangle budget.
 #include "render/mesh/lod.h"
+#include "render/mesh/season.h"
 
 #include <algorithm>
 #include <array>
@@ -268,6 +269,9 @@ leaf_input prepare_leaves(const tree_mesh& m) {
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (const leaf_instance& l : m.leaves) {
     if (!(int(l.born) <= last && last < int(l.died)) || !finite3(l.position) || !std::isfinite(l.size)) continue;
+    // Cones and fruit (generators/fruits.h) are too small to show at a LOD's distance, and a baked
+    // card would tint their colours as leaves.
+    if (l.texture < leaf_archetype_count && archetype_is_fruit(leaf_archetype(l.texture))) continue;
     in.leaves.push_back(l);
     lo = glm::min(lo, l.position);
     hi = glm::max(hi, l.position);

@@ -615,6 +615,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   std::vector<glm::vec3> rot, disp;
   foliage placed;
   const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
+  const bool fruit = p.fruits.count > 0;   // the generator's own leaves are then copied, fruit added
   // Leaf placement reads only the skeleton: it runs on a pool helper beside the bark (job_pool.h),
   // or after it on this thread when none is free; st.leaf_place is its own time either way. The
   // bark stays on this thread when it can, so its large arrays come from this thread's heap.
@@ -623,10 +624,12 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
   auto leaves = [&] {
     const auto t0 = clock_type::now();
-    placed = place_leaves(t, p.leaves, seed);
+    if (!own) placed = place_leaves(t, p.leaves, seed);
+    else placed.leaves = t.leaves;
+    if (fruit) place_fruits(t, p.fruits, seed, p.leaves.ground, placed.leaves);
     st.leaf_place = ms_since(t0);
   };
-  parallel_jobs(p.leaves_enabled && !own ? 2 : 1, [&](size_t) {
+  parallel_jobs(p.leaves_enabled && (!own || fruit) ? 2 : 1, [&](size_t) {
     // Each run takes its thread's task if still free, else the other: two runs do both, once each.
     const bool here = std::this_thread::get_id() == caller;
     if (!(here ? bark_taken : leaves_taken).exchange(true)) return here ? bark() : leaves();
@@ -636,7 +639,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
 
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
-    const std::vector<leaf>& src = own ? t.leaves : placed.leaves;   // the generator's, uncopied
+    const std::vector<leaf>& src = own && !fruit ? t.leaves : placed.leaves;   // the generator's, uncopied
     const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
     auto usable = [&](const leaf& l) { return l.node >= 0 && size_t(l.node) < n && finite3(l.position); };

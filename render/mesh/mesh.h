@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "generators/fruits.h"
 #include "generators/leaves.h"
 #include "generators/params.h"
 #include "generators/skeleton.h"
@@ -37,6 +38,7 @@ struct mesh_params {
   bool caps = true;             // close every tube end
   bool leaves_enabled = true;
   leaf_params leaves;           // used when the generator places no leaves itself
+  fruit_params fruits;          // cones and fruit on shoot tips (with the leaves, by any leaf mode)
   float leaf_scale = 1.0f;      // multiplies every leaf's size (generator-placed leaves too)
   bool operator==(const mesh_params&) const = default;
 };
@@ -64,6 +66,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.leaves_enabled, param_info{"leaves", "Leaves", "", 0, 1, "Show and export leaves", 0, "Leaves"});
   v(p.leaf_scale, param_info{"leaf_scale", "Leaf scale", "", 0.05f, 10, "Multiplies every leaf's size", param_log});
   visit_params(p.leaves, v);
+  visit_params(p.fruits, v);
 }
 
 // The leaf sliders follow the leaf mode (leaves.h); the rest always show.
@@ -71,6 +74,8 @@ inline bool param_relevant(const mesh_params& p, const void* field, const param_
   const char* lo = reinterpret_cast<const char*>(&p.leaves);
   const char* at = static_cast<const char*>(field);
   if (at >= lo && at < lo + sizeof(leaf_params)) return p.leaves_enabled && param_relevant(p.leaves, field, info);
+  const char* fo = reinterpret_cast<const char*>(&p.fruits);
+  if (at >= fo && at < fo + sizeof(fruit_params)) return p.leaves_enabled && param_relevant(p.fruits, field, info);
   return true;
 }
 

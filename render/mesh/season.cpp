@@ -14,15 +14,28 @@ bool archetype_is_evergreen(leaf_archetype a) {
          a == leaf_archetype::palm_frond || a == leaf_archetype::needle_tufts;
 }
 
+bool archetype_is_fruit(leaf_archetype a) {
+  return a == leaf_archetype::cone_hanging || a == leaf_archetype::cone_upright || a == leaf_archetype::samaras ||
+         a == leaf_archetype::hazelnuts;
+}
+
+uint32_t fruit_archetype_mask() {
+  static_assert(leaf_archetype_count <= 32, "the leaf shader's u_fruit holds one bit per archetype");
+  uint32_t m = 0;
+  for (int k = 0; k < leaf_archetype_count; ++k)
+    if (archetype_is_fruit(leaf_archetype(k))) m |= 1u << k;
+  return m;
+}
+
 season_look season_leaf_look(const render_params& rp) {
   season_look s;
   const glm::vec3 summer = rp.leaf_color;
   s.evergreen_color = summer;
   s.deciduous_color_a = s.deciduous_color_b = summer;
   for (int k = 0; k < leaf_archetype_count; ++k) {
-    const bool evergreen = rp.habit == leaf_habit::evergreen ||
+    const bool evergreen = rp.habit == leaf_habit::evergreen || archetype_is_fruit(leaf_archetype(k)) ||
                            (rp.habit != leaf_habit::deciduous && archetype_is_evergreen(leaf_archetype(k)));
-    if (!evergreen) s.deciduous_mask |= 1u << k;
+    if (!evergreen) s.deciduous_mask |= uint64_t(1) << k;
   }
   switch (leaf_season(std::clamp(int(rp.season), 0, 3))) {
     case leaf_season::spring: {
@@ -66,9 +79,9 @@ bool season_changes_leaves(const season_look& s) {
 
 season_look with_card_seasons(season_look s, const baked_card_textures* cards) {
   if (!cards) return s;
-  const uint32_t archetypes = s.deciduous_mask;
-  for (size_t k = 0; k < cards->source.size() && leaf_archetype_count + k < 32; ++k)
-    if (cards->source[k] < 32 && (archetypes >> cards->source[k]) & 1u) s.deciduous_mask |= 1u << (leaf_archetype_count + k);
+  const season_look archetypes = s;
+  for (size_t k = 0; k < cards->source.size() && leaf_archetype_count + k < 64; ++k)
+    if (season_deciduous(archetypes, cards->source[k])) s.deciduous_mask |= uint64_t(1) << (leaf_archetype_count + k);
   return s;
 }
 
@@ -80,7 +93,7 @@ tree_mesh apply_season(const tree_mesh& m, const season_look& look) {
   std::vector<uint32_t> kept_before(m.leaves.size() + 1, 0);   // leaves kept among the first i
   for (size_t i = 0; i < m.leaves.size(); ++i) {
     leaf_instance l = m.leaves[i];
-    const bool deciduous = l.texture < 32 && (s.deciduous_mask >> l.texture) & 1u;
+    const bool deciduous = season_deciduous(s, l.texture);
     kept_before[i] = uint32_t(out.leaves.size());
     if (deciduous) {
       if (season_leaf_random(uint32_t(i), 0) >= s.deciduous_keep) continue;

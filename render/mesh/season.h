@@ -18,7 +18,7 @@ namespace sylva {
 struct season_look {
   glm::vec3 evergreen_color{0.30f, 0.55f, 0.18f};
   glm::vec3 deciduous_color_a{0.30f, 0.55f, 0.18f}, deciduous_color_b{0.30f, 0.55f, 0.18f};
-  uint32_t deciduous_mask = 0;   // bit k: leaves of archetype k (leaf_instance::texture) are deciduous
+  uint64_t deciduous_mask = 0;   // bit k: leaves of texture k (leaf_instance::texture: archetypes, then baked cards) are deciduous
   float deciduous_keep = 1.0f;
   float deciduous_scale = 1.0f;
   bool operator==(const season_look&) const = default;
@@ -26,6 +26,17 @@ struct season_look {
 
 // True for the archetypes that stay green through winter: needles, conifer sprays, needle tufts (Cedrus), palm fronds.
 bool archetype_is_evergreen(leaf_archetype a);
+
+// True for the cards of cones and fruit (generators/fruits.h): drawn in their own colours (no leaf
+// tint, in the viewport and the exports), never deciduous, and left out of the LOD cards.
+bool archetype_is_fruit(leaf_archetype a);
+// Bit k set where archetype k is a fruit's (the leaf shader's u_fruit).
+uint32_t fruit_archetype_mask();
+
+// Whether leaves of texture k (leaf_instance::texture) follow the deciduous colours, size and fall.
+inline bool season_deciduous(const season_look& s, int texture) {
+  return texture >= 0 && texture < 64 && ((s.deciduous_mask >> texture) & 1u) != 0;
+}
 
 // The look of `rp.season` for this preset's leaf colour, autumn colours and leaf habit. An
 // out-of-range season (a corrupt value) is clamped to the nearest one.

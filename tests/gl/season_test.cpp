@@ -19,6 +19,7 @@
 #include "render/io/preset.h"
 #include "render/gl/renderer.h"
 #include "render/mesh/season.h"
+#include "render/mesh/lod_cards.h"
 #include "tests/gl/gl_test_context.h"
 
 using namespace sylva;
@@ -75,13 +76,44 @@ TEST(Season, HabitFollowsTheArchetypeUnlessThePresetSaysOtherwise) {
   render_params rp;
   const season_look by_archetype = season_leaf_look(rp);
   for (int k = 0; k < leaf_archetype_count; ++k)
-    EXPECT_EQ(bool((by_archetype.deciduous_mask >> k) & 1u), !archetype_is_evergreen(leaf_archetype(k))) << k;
+    EXPECT_EQ(bool((by_archetype.deciduous_mask >> k) & 1u),
+              !archetype_is_evergreen(leaf_archetype(k)) && !archetype_is_fruit(leaf_archetype(k))) << k;
   EXPECT_FALSE((by_archetype.deciduous_mask >> int(leaf_archetype::needles)) & 1u);
   EXPECT_TRUE((by_archetype.deciduous_mask >> int(leaf_archetype::lobed)) & 1u);
   rp.habit = leaf_habit::evergreen;
   EXPECT_EQ(season_leaf_look(rp).deciduous_mask, 0u);
   rp.habit = leaf_habit::deciduous;
-  EXPECT_EQ(season_leaf_look(rp).deciduous_mask, (1u << leaf_archetype_count) - 1);
+  // Every archetype but the cones' and fruit's (generators/fruits.h), which keep their colours.
+  uint64_t leaves = 0;
+  for (int k = 0; k < leaf_archetype_count; ++k)
+    if (!archetype_is_fruit(leaf_archetype(k))) leaves |= uint64_t(1) << k;
+  EXPECT_EQ(season_leaf_look(rp).deciduous_mask, leaves);
+}
+
+// Baked LOD cards take texture leaf_archetype_count + k, past bit 31 for the last of them: the
+// mask is 64 bits wide, so each still follows the season of the leaves it was baked from.
+TEST(Season, EveryBakedCardKeepsItsSeasonBitPastBit31) {
+  render_params rp;
+  rp.habit = leaf_habit::deciduous;
+  const season_look s = season_leaf_look(rp);
+  baked_card_textures cards;
+  for (int k = 0; k < max_baked_cards; ++k)
+    cards.source.push_back(uint8_t(k % 2 ? leaf_archetype::lobed : leaf_archetype::cone_hanging));
+  cards.sets.resize(cards.source.size());
+  ASSERT_GT(leaf_archetype_count + max_baked_cards, 32);
+  const season_look with = with_card_seasons(s, &cards);
+  for (int k = 0; k < max_baked_cards; ++k)
+    EXPECT_EQ(season_deciduous(with, leaf_archetype_count + k), k % 2 == 1) << "card " << k;
+  // apply_season drops the deciduous cards in winter, the ones past bit 31 too.
+  tree_mesh m;
+  m.steps = 0;
+  m.leaf_end = {uint32_t(max_baked_cards)};
+  for (int k = 0; k < max_baked_cards; ++k)
+    m.leaves.push_back({{0, 1, 0}, {0, 0, 0, 1}, 0.1f, 0, never_died, 0, uint8_t(leaf_archetype_count + k)});
+  m.cards = std::make_shared<baked_card_textures>(cards);
+  season_look winter = s;
+  winter.deciduous_keep = 0;
+  EXPECT_EQ(apply_season(m, winter).leaves.size(), size_t(max_baked_cards / 2));
 }
 
 TEST(Season, WinterDropsDeciduousLeavesAndKeepsConifersWithScrubbingIntact) {

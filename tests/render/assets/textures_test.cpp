@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/assets/textures.h"
+#include "render/mesh/season.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;
@@ -158,6 +159,10 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.20, 0.70},  // beech spray
       {0.25, 0.75},  // hazel spray
       {0.15, 0.65},  // poplar spray
+      {0.12, 0.30},  // cone_hanging: a slim cylinder on a stalk
+      {0.15, 0.40},  // cone_upright: a broader barrel
+      {0.10, 0.45},  // samaras: wings with sky between the pairs
+      {0.10, 0.45},  // hazelnuts: three nuts in husks
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
@@ -235,6 +240,7 @@ TEST(ArchetypeTextures, LeafArchetypesDifferFromEachOther) {
 
 TEST(ArchetypeTextures, LeafColourIsNearAMidGreenWithVeinsEdgesAndNoDarkFringe) {
   for (int i = 0; i < leaf_archetype_count; ++i) {
+    if (archetype_is_fruit(leaf_archetype(i))) continue;   // final colours: FruitCardsAreInTheirOwnColours
     const image& c = leaf_archetype_textures(leaf_archetype(i), kSize).color;
     double sum[3] = {0, 0, 0}, count = 0, sq = 0;
     double outside_min = 1e9;
@@ -410,4 +416,37 @@ TEST(TexturesCli, SheetDirAndBenchWriteWhatTheySay) {
   EXPECT_NE(r.err.find("--sheet"), std::string::npos) << r.err;
   r = run_sylva("env", "textures --size 3 --bench");
   EXPECT_EQ(r.code, 2) << r.err;
+}
+
+// Cones and fruit are drawn in their own colours (no tint follows): brown cones, a pale nut or
+// wing beside a green husk, and they stand in the card's middle with sky around them.
+TEST(ArchetypeTextures, FruitCardsAreInTheirOwnColours) {
+  int fruits = 0;
+  for (int i = 0; i < leaf_archetype_count; ++i) {
+    if (!archetype_is_fruit(leaf_archetype(i))) continue;
+    ++fruits;
+    const image& c = leaf_archetype_textures(leaf_archetype(i), kSize).color;
+    double sum[3] = {0, 0, 0}, count = 0;
+    for (size_t k = 0; k < size_t(kSize) * kSize; ++k) {
+      const uint8_t* p = &c.pixels[k * 4];
+      if (p[3] < 255) continue;
+      for (int ch = 0; ch < 3; ++ch) sum[ch] += srgb_to_linear(p[ch]);
+      ++count;
+    }
+    ASSERT_GT(count, 0) << leaf_archetype_names[i];
+    const double r = sum[0] / count, g = sum[1] / count, b = sum[2] / count;
+    EXPECT_GT(r, b) << leaf_archetype_names[i] << ": warm, woody or ripening colours";
+    EXPECT_GT(r, 0.6 * g) << leaf_archetype_names[i] << ": not a leaf's green";
+    EXPECT_GT(g, 0.04) << leaf_archetype_names[i] << ": not black";
+  }
+  EXPECT_EQ(fruits, 4);
+  // The two cones differ in colour (a ripe spruce cone is brown, a fir or cedar cone grey-green).
+  auto mean_rg = [](leaf_archetype a) {
+    const image& c = leaf_archetype_textures(a, kSize).color;
+    double r = 0, g = 0;
+    for (size_t k = 0; k < size_t(kSize) * kSize; ++k)
+      if (c.pixels[k * 4 + 3] == 255) r += c.pixels[k * 4], g += c.pixels[k * 4 + 1];
+    return r / g;
+  };
+  EXPECT_GT(mean_rg(leaf_archetype::cone_hanging), mean_rg(leaf_archetype::cone_upright) + 0.1);
 }

@@ -393,7 +393,7 @@ TEST(Preset, UnknownArchetypeLoadsWithAWarningAndTheDefault) {
 
 TEST(Preset, EverySpeciesPresetNamesItsArchetypes) {
   // Issue 11: every species preset chooses its leaf archetype and bark; the library has at least
-  // one preset per leaf archetype.
+  // one preset per leaf archetype (as its leaf, cluster or fruit card).
   std::set<int> leaf_used;
   int species = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(SYLVA_SOURCE_DIR) / "presets")) {
@@ -409,6 +409,7 @@ TEST(Preset, EverySpeciesPresetNamesItsArchetypes) {
     ASSERT_TRUE(load_preset_json(text, p).warnings.empty()) << name;
     leaf_used.insert(int(p.mesh.leaves.archetype));
     if (p.mesh.leaves.clusters) leaf_used.insert(int(p.mesh.leaves.cluster_archetype));
+    if (p.mesh.fruits.count > 0) leaf_used.insert(int(p.mesh.fruits.archetype));   // cone and fruit cards
   }
   EXPECT_GE(species, 13);
   EXPECT_EQ(leaf_used.size(), size_t(leaf_archetype_count));

@@ -2,6 +2,7 @@
 // leaf's cut-out, the LOD levels share one set of baked textures, and the exports carry them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "tests/scratch_dir.h"
 #include "generators/tree_spec.h"
 #include "render/io/export.h"
+#include "render/io/export_internal.h"
 #include "render/mesh/lod.h"
 #include "render/mesh/lod_cards.h"
 #include "render/io/preset.h"
@@ -158,4 +160,53 @@ TEST(LodCards, BadLeavesBakeNothingAndNeverCrash) {
   EXPECT_TRUE(std::isfinite(f.size));
   const leaf_texture_set s = bake_card(bad + 1, 2, fit_card(bad, 1, glm::vec4(0, 0, 0, 1)), 32);
   EXPECT_EQ(s.color.pixels.size(), size_t(32 * 32 * 4));
+}
+
+// Cones and fruit (generators/fruits.h) stay on LOD0: a merged card would tint them as leaves,
+// and they are too small to show at a LOD's distance. Their exported material keeps their own
+// colours: the fir's cone texture is the untinted archetype's, not the leaf colour's green.
+TEST(LodCards, ConesStayOnLod0AndExportUntinted) {
+  preset p;
+  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/species_fir.json", p).ok);
+  ASSERT_GT(p.mesh.fruits.count, 0);
+  const tree_skeleton t = grow(p.spec, grow_options{});
+  const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
+  const uint8_t cone = uint8_t(leaf_archetype::cone_upright);
+  EXPECT_GT(std::count_if(m.leaves.begin(), m.leaves.end(), [&](const leaf_instance& l) { return l.texture == cone; }), 50);
+  const lod_chain c = build_lods(t, m, p.mesh, p.render.lod);
+  ASSERT_TRUE(c.reduced);
+  for (int k = 0; k < 3; ++k)
+    for (const leaf_instance& l : c.level[size_t(k)].leaves) ASSERT_NE(l.texture, cone) << "LOD" << k + 1;
+  for (uint8_t s : c.level[0].cards->source) EXPECT_NE(s, cone);
+
+  export_options o;
+  apply_render_params(o, p.render);
+  o.mesh = p.mesh;
+  o.texture_size = 64;
+  const fs::path dir = fs::temp_directory_path() / ("sylva-fruit-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_EQ(export_tree(t, m, {"fir", 1}, (dir / "tree.gltf").string(), o).error, "");
+  const nlohmann::json j = nlohmann::json::parse(slurp((dir / "tree.gltf").string()));
+  bool found = false;
+  for (const auto& mat : j["materials"]) {
+    if (mat["name"] != "leaves_cone_upright") continue;
+    found = true;
+    const int tex = mat["pbrMetallicRoughness"]["baseColorTexture"]["index"];
+    const int img = j["textures"][size_t(tex)]["source"];
+    export_internal::user_image u;
+    ASSERT_EQ(export_internal::load_user_image((dir / j["images"][size_t(img)]["uri"].get<std::string>()).string(), u), "");
+    const image& own = leaf_archetype_textures(leaf_archetype::cone_upright, 64).color;
+    ASSERT_EQ(u.pixels.pixels.size(), own.pixels.size());
+    double diff = 0, opaque = 0;
+    for (size_t k = 0; k < own.pixels.size(); k += 4) {
+      if (own.pixels[k + 3] < 255) continue;
+      ++opaque;
+      for (int ch = 0; ch < 3; ++ch) diff += std::abs(int(u.pixels.pixels[k + size_t(ch)]) - int(own.pixels[k + size_t(ch)]));
+    }
+    ASSERT_GT(opaque, 0);
+    EXPECT_LT(diff / (3 * opaque), 1.5) << "the cone's own colours, untinted";
+  }
+  EXPECT_TRUE(found);
+  fs::remove_all(dir);
 }

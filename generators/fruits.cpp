@@ -1,0 +1,98 @@
+// Cones and fruit on shoot tips (generators/fruits.h).
+#include "generators/fruits.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "generators/leaves.h"
+
+namespace sylva {
+namespace {
+
+uint64_t mix(uint64_t x) {   // SplitMix64's finaliser
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+float unit(uint64_t x) { return float(mix(x) >> 40) * (1.0f / 16777216.0f); }
+
+// The card's frame: +Y along `axis` (petiole at the origin), its face turned to azimuth `turn`
+// and then `spin` radians further around the axis (the crossed cards of one fruit).
+glm::quat card_frame(const glm::vec3& axis, float turn, float spin) {
+  const glm::vec3 y = glm::normalize(axis);
+  glm::vec3 z(std::cos(turn), 0, std::sin(turn));
+  z = z - glm::dot(z, y) * y;
+  if (glm::length(z) < 1e-4f) z = glm::vec3(0, 0, 1) - y.z * y;
+  z = glm::normalize(z);
+  z = std::cos(spin) * z + std::sin(spin) * glm::cross(y, z);
+  const glm::vec3 x = glm::cross(y, z);
+  return glm::normalize(glm::quat_cast(glm::mat3(x, y, z)));
+}
+
+}  // namespace
+
+void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, float ground, std::vector<leaf>& out) {
+  const size_t n = t.size();
+  const int count = std::clamp(p.count, 0, 100000);
+  if (count == 0 || n == 0) return;
+  const int last = std::max(t.steps, 0);
+  auto alive = [&](size_t i) { return int(t.born[i]) <= last && last < int(t.died[i]); };
+  std::vector<uint8_t> parent_of_living(n, 0);
+  float top = -1e30f, bottom = 1e30f;
+  for (size_t i = 0; i < n; ++i) {
+    if (!alive(i)) continue;
+    if (t.parent[i] >= 0) parent_of_living[size_t(t.parent[i])] = 1;
+    top = std::max(top, t.position[i].y), bottom = std::min(bottom, t.position[i].y);
+  }
+  if (!(top > bottom)) return;
+  const float lowest = top - std::clamp(p.crown_top, 0.0f, 1.0f) * (top - bottom);
+  // Eligible tips, ranked by a seeded hash of their node: the first `count` bear fruit.
+  std::vector<std::pair<uint64_t, uint32_t>> tips;
+  for (size_t i = 0; i < n; ++i)
+    if (alive(i) && !parent_of_living[i] && t.parent[i] >= 0 && int(t.order[i]) >= p.min_order && int(t.order[i]) <= p.max_order &&
+        t.position[i].y >= lowest && std::isfinite(t.position[i].y))
+      tips.push_back({mix(seed * 0x100000001B3ull ^ (uint64_t(i) + 0x5851F42D4C957F2Dull)), uint32_t(i)});
+  const size_t take = std::min(tips.size(), size_t(count));
+  std::partial_sort(tips.begin(), tips.begin() + std::ptrdiff_t(take), tips.end());
+  tips.resize(take);
+  std::sort(tips.begin(), tips.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+
+  const int cards = std::clamp(p.cards, 1, 3);
+  const float pi = 3.14159265f;
+  const float tilt = std::clamp(p.tilt, 0.0f, 90.0f) * pi / 180.0f;
+  const uint8_t archetype = uint8_t(std::clamp(int(p.archetype), 0, leaf_archetype_count - 1));
+  const size_t first = out.size();
+  for (const auto& [h, node] : tips) {
+    const float r0 = unit(h ^ 1), r1 = unit(h ^ 2), r2 = unit(h ^ 3), r3 = unit(h ^ 4);
+    // Straight down or up, leaning by up to `tilt` toward a random side.
+    const float lean = tilt * std::sqrt(r0), side = 2 * pi * r1;
+    const glm::vec3 across(std::cos(side) * std::sin(lean), 0, std::sin(side) * std::sin(lean));
+    const glm::vec3 axis = across + glm::vec3(0, p.pose == fruit_pose::upright ? std::cos(lean) : -std::cos(lean), 0);
+    const float size = std::max(0.001f, p.size * (1 + std::clamp(p.size_jitter, 0.0f, 1.0f) * (2 * r2 - 1)));
+    const float turn = 2 * pi * r3;
+    for (int k = 0; k < cards; ++k) {
+      leaf l;
+      l.position = t.position[node];
+      l.orientation = card_frame(axis, turn, pi * float(k) / float(cards));
+      l.size = size;
+      l.born = uint16_t(std::max<int>(t.born[node], last > 0 ? last - 1 : 0));
+      l.died = t.died[node];
+      l.node = int32_t(node);
+      l.archetype = archetype;
+      out.push_back(l);
+    }
+  }
+  // Fruit whose card would reach below the ground is dropped (not turned up as a leaf is).
+  out.erase(std::remove_if(out.begin() + std::ptrdiff_t(first), out.end(), [&](const leaf& l) {
+              const glm::vec3 x = l.orientation * glm::vec3(1, 0, 0), y = l.orientation * glm::vec3(0, 1, 0);
+              return l.position.y - 0.5f * l.size * std::abs(x.y) + l.size * std::min(0.0f, y.y) < ground;
+            }),
+            out.end());
+}
+
+}  // namespace sylva

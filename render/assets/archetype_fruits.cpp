@@ -1,0 +1,175 @@
+// Cone and fruit cards (generators/fruits.h places them): hanging spruce cones, upright fir and
+// cedar cones, maple samaras and hazelnuts in their husks. Unlike the leaf cards they are drawn in
+// their own colours (the leaf_look's two colours are final, not a pale base for the leaf tint):
+// render/mesh/season.h archetype_is_fruit keeps the tint off them.
+//
+// Card coordinates as for the leaves (render/assets/archetype_canvas.h): the stalk enters at
+// (0.5, 0) and the fruit runs up the card; the placement turns the card to hang or stand.
+#include <algorithm>
+#include <cmath>
+
+#include "render/assets/archetype_canvas.h"
+
+namespace sylva::archetype {
+namespace {
+
+inline float fract(float x) { return x - ffloor(x); }
+
+// The outline of a cone's body: half-width along t in [0, 1] (base to apex), widest at `widest`,
+// with rounded ends (exponent below 1: flat sides, as a cylinder seen from the side).
+struct cone_shape {
+  float length = 0.8f, width = 0.12f;   // card units: body length and greatest half-width
+  float widest = 0.45f;                 // t of the greatest width
+  float sides = 0.45f;                  // sin(pi t')^sides: smaller is more cylindrical
+  float stalk = 0.06f;                  // stalk before the body
+  float rows = 16, around = 11;         // scale rows along the body, scales around it
+  float lip = 0.35f;                    // how far each scale's free edge lifts (relief)
+  float bract = 0;                      // 0..1: a bract's pointed tip showing below each scale (Abies)
+};
+
+float cone_half_width(const cone_shape& s, float t) {
+  if (t <= 0 || t >= 1) return 0;
+  const float k = std::log(0.5f) / std::log(std::clamp(s.widest, 0.05f, 0.95f));
+  return s.width * std::pow(std::sin(pi * std::pow(t, k)), s.sides);
+}
+
+// A seed cone seen from the side: a body of spirally set woody scales (Farjon 2010: Picea and
+// Abies cones carry them in parastichies), each a rounded plate whose free edge points to the
+// apex, with a dark shadow line under that edge. The body's roundness goes into the height (so the
+// normal map curves it) and, as baked occlusion, into the shade toward its silhouette.
+void draw_cone(leaf_canvas& c, rng& g, const cone_shape& s) {
+  const vec2 base(0.5f, s.stalk);
+  stroke(c, vec2(0.5f, 0.0f), base + vec2(0, 0.02f), 0.012f, 0.011f, twig_style);
+  const float phase = g.range(0, 1);
+  raster(c, base, vec2(0, 1), s.length, s.width, 0, [&](float a, float b) {
+    sample out;
+    const float t = a / s.length;
+    const float w = cone_half_width(s, t);
+    if (w <= 0) return out;
+    out.cover = clamp01((w - std::abs(b)) / c.px + 0.5f);
+    if (out.cover <= 0) return out;
+    const float x = std::clamp(b / w, -0.999f, 0.999f);
+    const float facing = std::sqrt(1 - x * x);   // cosine of the surface's turn away from the viewer
+    const float phi = std::asin(x) / (2 * pi);    // turns around the axis, -0.25 .. 0.25 visible
+    // Scales in staggered rows along the axis; the stagger makes the spiral rows.
+    const float along = t * s.rows;
+    const float row = ffloor(along);
+    const float fr = along - row;                  // 0: the scale's base, 1: its free edge (apex side)
+    const float q = fract(phi * s.around + 0.5f * row + phase) - 0.5f;   // -0.5 .. 0.5 across the scale
+    // The scale's outline: full width at its base, rounding off toward its free edge.
+    const float half = 0.5f * std::sqrt(std::max(0.0f, 1 - std::pow(fr, 2.5f)));
+    const float inside = clamp01((half - std::abs(q)) * 6.0f);
+    const float lift = fr * fr;                   // the plate rises toward its free edge
+    out.height = 0.55f * w * facing + s.lip * 0.012f * (inside * lift - (1 - inside) * 0.6f);
+    float shade = 0.42f + 0.58f * std::pow(facing, 0.6f);
+    shade *= 0.45f + 0.55f * inside;               // the gaps between plates are in shadow
+    shade *= 1 - 0.35f * smooth(0.0f, 0.25f, 0.25f - fr) * inside;   // under the row above's edge
+    out.warm = inside * (0.25f + 0.75f * smooth(0.45f, 0.95f, fr));  // the exposed edges are paler
+    if (s.bract > 0) {   // Abies alba: the bract's pointed tip shows below the scale's edge
+      const float tip = (1 - fr) * 0.12f * s.bract;
+      if (fr < 0.3f && std::abs(q) < tip) out.warm = 1, shade = std::max(shade, 0.85f);
+    }
+    out.shade = shade;
+    out.thin = 0.05f;   // woody: no light through it
+    return out;
+  });
+  // The body's tip: the last scales close over the apex.
+}
+
+// A filled ellipse (nut, seed) with a dome: `warm` picks between the look's two colours.
+void ellipse(leaf_canvas& c, vec2 centre, float degrees, float len, float width, float warm, float shade) {
+  const vec2 dir = heading(degrees);
+  const vec2 base = centre - dir * (0.5f * len);
+  raster(c, base, dir, len, width, 0, [&](float a, float b) {
+    sample s;
+    const float t = a / len;
+    if (t <= 0 || t >= 1) return s;
+    const float w = width * std::sqrt(std::max(0.0f, 1 - (2 * t - 1) * (2 * t - 1)));
+    s.cover = clamp01((w - std::abs(b)) / c.px + 0.5f);
+    if (s.cover <= 0) return s;
+    const float across = std::min(std::abs(b) / std::max(w, 1e-6f), 1.0f);
+    const float round = std::sqrt(1 - across * across) * std::sqrt(std::max(0.0f, 1 - (2 * t - 1) * (2 * t - 1)));
+    s.height = 0.6f * width * round;
+    s.shade = shade * (0.55f + 0.45f * round) * (1 + 0.25f * smooth(0.6f, 0.95f, t) * (1 - across));  // a highlight toward the tip
+    s.warm = warm;
+    s.thin = 0.05f;
+    return s;
+  });
+}
+
+}  // namespace
+
+void draw_cone_hanging(leaf_canvas& c, rng& g) {
+  // Picea abies: cylindrical, 10-16 cm long and 3-4 cm wide, tapering a little to a blunt apex,
+  // thin rhombic scales with a finely notched edge (Farjon 2010). Hung from the shoot tip.
+  cone_shape s;
+  s.length = 0.86f, s.width = 0.125f, s.widest = 0.4f, s.sides = 0.5f, s.stalk = 0.08f;
+  s.rows = 17, s.around = 9, s.lip = 0.3f;
+  draw_cone(c, g, s);
+}
+
+void draw_cone_upright(leaf_canvas& c, rng& g) {
+  // Abies alba and Cedrus: upright, barrel-shaped to cylindrical, 10-15 cm by 4-6 cm, with a
+  // rounded top, standing on the upper side of the shoot; A. alba's bract tips show below the
+  // scales (Farjon 2010).
+  cone_shape s;
+  s.length = 0.8f, s.width = 0.17f, s.widest = 0.55f, s.sides = 0.32f, s.stalk = 0.04f;
+  s.rows = 13, s.around = 8, s.lip = 0.2f, s.bract = 1.0f;
+  draw_cone(c, g, s);
+}
+
+void draw_samaras(leaf_canvas& c, rng& g) {
+  // Acer: a hanging cluster of paired samaras (schizocarp halves), each a round nutlet with a
+  // veined wing 3-5 cm long; the pairs spread their wings at 60-180 degrees (A. pseudoplatanus
+  // near 90, A. platanoides near 180; Rushforth 1999). Three pairs on pedicels from one stalk; the
+  // card hangs, so the wings point down from their nutlets.
+  const vec2 top(0.5f, 0.0f);
+  const vec2 hub(0.5f, 0.14f);
+  stroke(c, top, hub, 0.007f, 0.006f, petiole_style);
+  blade_style wing;
+  wing.veins = 10, wing.vein_angle = 10, wing.midrib = 0.25f, wing.edge_dark = 0.3f, wing.dome = 0.03f;
+  const float fans[3] = {-30, 2, 32}, reach[3] = {0.2f, 0.3f, 0.16f};
+  for (int i = 0; i < 3; ++i) {
+    const float fan = fans[i] + g.range(-5, 5);
+    const vec2 d = heading(90 + fan);
+    const vec2 nut = hub + d * reach[i];
+    curve_stroke(c, [&](float t) { return bezier(hub, hub + d * (0.5f * reach[i]) + vec2(0.01f * fan / 30, 0), nut, t); }, 3, 0.0045f, 0.0035f, petiole_style);
+    const float axis = 90 + fan * 0.5f;
+    const float open = g.range(34, 44);   // half the angle between the wings
+    for (int side : {-1, 1}) {
+      const float deg = axis + float(side) * open;
+      const vec2 wd = heading(deg);
+      wing.bend = -0.1f * float(side);
+      const float len = fit(nut, wd, g.range(0.3f, 0.36f), 0.02f);
+      // A wing: narrow at the nutlet, broadest two thirds out, rounded at its end.
+      blade(c, nut + wd * 0.025f, deg, len, 0.06f, [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 1.4f)), 0.6f) * (0.3f + 0.7f * t); }, wing);
+      ellipse(c, nut + wd * 0.035f, deg, 0.085f, 0.034f, 1.0f, 0.9f);   // the nutlet
+    }
+  }
+}
+
+void draw_hazelnuts(leaf_canvas& c, rng& g) {
+  // Corylus avellana: nuts 1.5-2.5 cm in clusters of one to four, each held in a leafy husk
+  // (involucre) with a torn, toothed rim that reaches about the nut's length (Rushforth 1999).
+  const vec2 top(0.5f, 0.0f);
+  const vec2 hub(0.5f, 0.14f);
+  stroke(c, top, hub, 0.014f, 0.012f, petiole_style);
+  blade_style husk;
+  husk.serration = 0.6f, husk.teeth = 6, husk.veins = 5, husk.vein_angle = 22, husk.midrib = 0.3f, husk.dome = 0.14f;
+  const float fans[3] = {2, -34, 32};   // the middle nut first: the side ones cover its husk
+  const float lens[3] = {0.36f, 0.3f, 0.31f};
+  for (int i = 0; i < 3; ++i) {
+    const float deg = 90 + fans[i] + g.range(-5, 5);
+    const vec2 d = heading(deg);
+    const vec2 at = hub + d * 0.03f;
+    const float len = lens[i] * g.range(0.92f, 1.05f);
+    ellipse(c, at + d * (0.08f + 0.5f * len), deg, len, 0.115f, 1.0f, 1.0f);   // the nut, its tip out of the husk
+    // The husk: two frilled bracts around the nut's lower part, their teeth splayed.
+    for (int side : {-1, 1}) {
+      husk.bend = 0.12f * float(side);
+      blade(c, at, deg + float(side) * 8, 0.98f * len, 0.15f, [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.45f)), 0.45f) * (0.6f + 0.4f * t); }, husk);
+    }
+  }
+}
+
+}  // namespace sylva::archetype
