@@ -618,9 +618,13 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   const bool fruit = p.fruits.count > 0;   // the generator's own leaves are then copied, fruit added
   // Leaf placement reads only the skeleton: it runs on a pool helper beside the bark (job_pool.h),
   // or after it on this thread when none is free; st.leaf_place is its own time either way. The
-  // bark stays on this thread when it can, so its large arrays come from this thread's heap.
+  // bark always runs on this thread, so its large arrays come from this thread's heap: a helper that
+  // also took the second run (this thread not yet at work) finds only the leaves to do, and the bark
+  // follows here once they are placed, as it would have there. A bark built on a helper had put a
+  // whole mesh in that helper's arena beside this thread's (self_organizing_default peaks of 70-90 MB).
   const std::thread::id caller = std::this_thread::get_id();
-  std::atomic<bool> bark_taken{false}, leaves_taken{false};
+  const bool place = p.leaves_enabled && (!own || fruit);
+  std::atomic<bool> bark_taken{false}, leaves_taken{!place};
   auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
   auto leaves = [&] {
     const auto t0 = clock_type::now();
@@ -629,12 +633,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     if (fruit) place_fruits(t, p.fruits, seed, p.leaves.ground, placed.leaves);
     st.leaf_place = ms_since(t0);
   };
-  parallel_jobs(p.leaves_enabled && (!own || fruit) ? 2 : 1, [&](size_t) {
-    // Each run takes its thread's task if still free, else the other: two runs do both, once each.
-    const bool here = std::this_thread::get_id() == caller;
-    if (!(here ? bark_taken : leaves_taken).exchange(true)) return here ? bark() : leaves();
-    if (!(here ? leaves_taken : bark_taken).exchange(true)) return here ? leaves() : bark();
+  parallel_jobs(place ? 2 : 1, [&](size_t) {
+    if (std::this_thread::get_id() == caller && !bark_taken.exchange(true)) bark();
+    if (!leaves_taken.exchange(true)) leaves();
   });
+  if (!bark_taken.exchange(true)) bark();
   lap_start = clock_type::now();
 
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
