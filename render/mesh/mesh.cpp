@@ -534,6 +534,20 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
   release(q), release(dir), release(best), release(vel), release(tangent), release(trunk_h), release(flare_h);
   release(flare_phase), release(m1s), release(m2s), release(want_score), release(collar_score), release(want);
   release(keep), release(collared), release(frame), release(vcoord), release(us);
+  // Each node's share of the index buffer: its internode through its rings, and its cap.
+  const uint32_t quad_ring = uint32_t(6 * seg), cap_idx = uint32_t(3 * seg);
+  auto index_count = [&](size_t i) {
+    const uint32_t rings = off[i + 1] - off[i];
+    return (rings > 1 ? (rings - 1) * quad_ring : 0) + (cap_apex[i] != none ? cap_idx : 0);
+  };
+  // The index buffer, the largest array, is made before the vertex arrays: after the first meshes
+  // the heap's large holes are those of an older mesh, and the largest request taken first still
+  // finds one (made last, it often did not, and the heap grew by it: self_organizing_default).
+  {
+    size_t total = 0;
+    for (size_t i = 0; i < n; ++i) total += index_count(i);
+    m.index.resize(total);
+  }
   const size_t vertices = plans.size() * size_t(stride);
   m.position.resize(vertices);
   m.normal.resize(vertices);
@@ -547,13 +561,11 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
 
   // Each node's triangles (its internode through its rings, and its cap) sorted by born step so
   // that step s draws a prefix of the index buffer (DESIGN §5).
-  const uint32_t quad_ring = uint32_t(6 * seg), cap_idx = uint32_t(3 * seg);
   std::vector<uint32_t> count(n);
   std::vector<uint32_t> item;
   item.reserve(n);
   for (size_t i = 0; i < n; ++i) {
-    const uint32_t rings = off[i + 1] - off[i];
-    count[i] = (rings > 1 ? (rings - 1) * quad_ring : 0) + (cap_apex[i] != none ? cap_idx : 0);
+    count[i] = index_count(i);
     if (count[i]) item.push_back(uint32_t(i));
   }
   std::vector<uint32_t> item_end;
@@ -562,8 +574,7 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
   std::vector<size_t> cum(perm.size() + 1, 0);
   for (size_t k = 0; k < perm.size(); ++k) cum[k + 1] = cum[k] + count[item[perm[k]]];
   for (size_t s = 0; s < item_end.size(); ++s) m.index_end[s] = uint32_t(cum[item_end[s]]);
-  const size_t total = cum.back();
-  m.index.resize(total);
+  assert(cum.back() == m.index.size());
   // Each item's triangles go to their own range (cum), so chunks of items fill in parallel.
   parallel_chunks(perm.size(), 2048, [&](size_t begin, size_t end) {
   for (size_t pk = begin; pk < end; ++pk) {
