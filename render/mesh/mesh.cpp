@@ -690,6 +690,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       }
     });
   }
+  // The gnarl and the placed leaves are done with: their room goes back before the occlusion bake,
+  // the last and fullest moment of the call.
+  std::vector<glm::vec3>().swap(rot);
+  std::vector<glm::vec3>().swap(disp);
+  std::vector<leaf>().swap(placed.leaves);
 
   lap(st.leaf_sort);
 
