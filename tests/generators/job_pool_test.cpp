@@ -114,3 +114,19 @@ TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
     expect_growth_is_the_single_threaded_one(name, 150);
 }
 
+// On a lattice many points tie for an octant's nearest: the grid's first pass hands those vertices
+// to the k-d tree, so the edges are still the ones yao8_edges finds (the first tied point it meets).
+TEST(JobPool, GuidingVectorEdgesOnALatticeAreTheOnesBuiltOneByOne) {
+  std::vector<glm::vec3> pts;
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 11; ++y)
+      for (int x = 0; x < 10; ++x) pts.push_back(glm::vec3(float(x), float(y), float(z)) * 0.25f);
+  gv_graph lazy = make_gv_graph(pts, 0.25f), all = make_gv_graph(pts, 0.25f);
+  build_all_yao8_edges(all);
+  for (int32_t v = 0; v < int32_t(pts.size()); ++v) {
+    const int32_t* want = yao8_edges(lazy, v);
+    const int32_t* got = yao8_edges(all, v);
+    for (int o = 0; o < 8; ++o) ASSERT_EQ(got[o], want[o]) << "vertex " << v << " octant " << o;
+  }
+}
+
