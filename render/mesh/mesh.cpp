@@ -304,9 +304,7 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
       out_node[k] = rp.node;
     }
   };
-
   lap(st.frame);
-
   // Hermite form of each internode's centripetal Catmull-Rom segment (Yuksel, Schaefer & Keyser
   // 2011): the end velocities scaled by the segment's knot interval |b - a|^(1/2). A lateral leaves
   // its parent straight along its first internode; the trunk leaves its upright root upright.
@@ -385,9 +383,7 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
             (pass == 0 ? collar_score[i] > threshold : collar_score[i] == threshold)) { collared[i] = 1; --left; }
       }
   }
-
   lap(st.budget);
-
   // Every ring the loop below can plan (a ring too close to the last is skipped): the plans are
   // allocated once, at no more than this, and the vertex arrays at exactly the planned rings, so
   // the mesh bound (render/io/mesh_bound.h) holds with no vector slack.
@@ -534,20 +530,17 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
   release(q), release(dir), release(best), release(vel), release(tangent), release(trunk_h), release(flare_h);
   release(flare_phase), release(m1s), release(m2s), release(want_score), release(collar_score), release(want);
   release(keep), release(collared), release(frame), release(vcoord), release(us);
-  // Each node's share of the index buffer: its internode through its rings, and its cap.
+  // Each node's share of the index buffer (its internode through its rings, and its cap). The
+  // buffer, the largest array, is made first: the heap's large holes are an older mesh's, and made
+  // last it often found none left (self_organizing_default).
   const uint32_t quad_ring = uint32_t(6 * seg), cap_idx = uint32_t(3 * seg);
   auto index_count = [&](size_t i) {
     const uint32_t rings = off[i + 1] - off[i];
     return (rings > 1 ? (rings - 1) * quad_ring : 0) + (cap_apex[i] != none ? cap_idx : 0);
   };
-  // The index buffer, the largest array, is made before the vertex arrays: after the first meshes
-  // the heap's large holes are those of an older mesh, and the largest request taken first still
-  // finds one (made last, it often did not, and the heap grew by it: self_organizing_default).
-  {
-    size_t total = 0;
-    for (size_t i = 0; i < n; ++i) total += index_count(i);
-    m.index.resize(total);
-  }
+  size_t total_index = 0;  // (the stage below checks it against its prefix sums)
+  for (size_t i = 0; i < n; ++i) total_index += index_count(i);
+  m.index.resize(total_index);
   const size_t vertices = plans.size() * size_t(stride);
   m.position.resize(vertices);
   m.normal.resize(vertices);
@@ -599,7 +592,6 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
     }
   }
   });
-
   lap(st.index);
 }
 
@@ -628,11 +620,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
   const bool fruit = p.fruits.count > 0;   // the generator's own leaves are then copied, fruit added
   // Leaf placement reads only the skeleton: it runs on a pool helper beside the bark (job_pool.h),
-  // or after it on this thread when none is free; st.leaf_place is its own time either way. The
-  // bark always runs on this thread, so its large arrays come from this thread's heap: a helper that
-  // also took the second run (this thread not yet at work) finds only the leaves to do, and the bark
-  // follows here once they are placed, as it would have there. A bark built on a helper had put a
-  // whole mesh in that helper's arena beside this thread's (self_organizing_default peaks of 70-90 MB).
+  // or after it here when none is free (st.leaf_place is its own time). The bark runs here only (a
+  // helper taking both runs places the leaves), so its arrays never fill a helper's malloc arena.
   const std::thread::id caller = std::this_thread::get_id();
   const bool place = p.leaves_enabled && (!own || fruit);
   std::atomic<bool> bark_taken{false}, leaves_taken{!place};
@@ -690,14 +679,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       }
     });
   }
-  // The gnarl and the placed leaves are done with: their room goes back before the occlusion bake,
-  // the last and fullest moment of the call.
-  std::vector<glm::vec3>().swap(rot);
-  std::vector<glm::vec3>().swap(disp);
-  std::vector<leaf>().swap(placed.leaves);
-
+  std::vector<glm::vec3>().swap(rot), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves);  // done with
   lap(st.leaf_sort);
-
   if (!m.position.empty() || !m.leaves.empty()) {
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const glm::vec3& v : m.position) { lo = glm::min(lo, v); hi = glm::max(hi, v); }
