@@ -30,7 +30,8 @@ namespace sylva {
   X(cone_hanging) /* spruce: a pendent cylindrical seed cone (fruit card, generators/fruits.h) */ \
   X(cone_upright) /* fir, cedar: an upright barrel-shaped seed cone (fruit card) */ \
   X(samaras)      /* maple: a hanging cluster of paired winged fruits (fruit card) */ \
-  X(hazelnuts)    /* hazel: nuts in leafy, toothed husks (fruit card) */
+  X(hazelnuts)    /* hazel: nuts in leafy, toothed husks (fruit card) */ \
+  X(cone_ovoid)   /* pine: an ovoid cone of rhombic scale shields (fruit card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -70,6 +70,7 @@ const glm::vec3 leaf_tints[] = {
     {1, 1, 1},              // cone_upright
     {1, 1, 1},              // samaras
     {1, 1, 1},              // hazelnuts
+    {1, 1, 1},              // cone_ovoid
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -127,7 +128,8 @@ const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        
                                    "scale_spray (cypress)", "palm_frond (palm)", "twig_cluster (maple)",
                                    "needle_tufts (cedar)", "lanceolate (willow)", "beech_spray (beech)",
                                    "hazel_spray (hazel)", "poplar_spray (poplar)", "cone_hanging (spruce)",
-                                   "cone_upright (fir)",  "samaras (maple)",    "hazelnuts (hazel)"};
+                                   "cone_upright (fir)",  "samaras (maple)",    "hazelnuts (hazel)",
+                                   "cone_ovoid (pine)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (beech)", "fissured (ash)", "fibrous (cypress)"};

@@ -25,6 +25,7 @@ struct cone_shape {
   float rows = 16, around = 11;         // scale rows along the body, scales around it
   float lip = 0.35f;                    // how far each scale's free edge lifts (relief)
   float bract = 0;                      // 0..1: a bract's pointed tip showing below each scale (Abies)
+  bool shields = false;                 // Pinus: each scale ends in a rhombic shield (apophysis) with a central boss (umbo)
 };
 
 float cone_half_width(const cone_shape& s, float t) {
@@ -56,15 +57,24 @@ void draw_cone(leaf_canvas& c, rng& g, const cone_shape& s) {
     const float row = ffloor(along);
     const float fr = along - row;                  // 0: the scale's base, 1: its free edge (apex side)
     const float q = fract(phi * s.around + 0.5f * row + phase) - 0.5f;   // -0.5 .. 0.5 across the scale
-    // The scale's outline: full width at its base, rounding off toward its free edge.
+    // The scale's outline: full width at its base, rounding off toward its free edge; or a
+    // rhombic shield with a boss in its middle.
     const float half = 0.5f * std::sqrt(std::max(0.0f, 1 - std::pow(fr, 2.5f)));
-    const float inside = clamp01((half - std::abs(q)) * 6.0f);
-    const float lift = fr * fr;                   // the plate rises toward its free edge
+    // Shields: cells between two families of spirals (the cone's parastichies), 0.5 at a
+    // shield's middle and 0 on its seams.
+    const float fa = fract(phi * s.around + 0.5f * along + phase) - 0.5f, fb = fract(phi * s.around - 0.5f * along + phase) - 0.5f;
+    const float rhomb = 0.5f - std::max(std::abs(fa), std::abs(fb));
+    const float inside = s.shields ? clamp01(rhomb * 14.0f - 0.2f) : clamp01((half - std::abs(q)) * 6.0f);
+    const float lift = s.shields ? std::max(0.0f, 2 * rhomb) : fr * fr;   // the plate rises toward its free edge
     out.height = 0.55f * w * facing + s.lip * 0.012f * (inside * lift - (1 - inside) * 0.6f);
     float shade = 0.42f + 0.58f * std::pow(facing, 0.6f);
     shade *= 0.45f + 0.55f * inside;               // the gaps between plates are in shadow
-    shade *= 1 - 0.35f * smooth(0.0f, 0.25f, 0.25f - fr) * inside;   // under the row above's edge
+    if (!s.shields) shade *= 1 - 0.35f * smooth(0.0f, 0.25f, 0.25f - fr) * inside;   // under the row above's edge
     out.warm = inside * (0.25f + 0.75f * smooth(0.45f, 0.95f, fr));  // the exposed edges are paler
+    if (s.shields) {   // the shield is pale, its boss and the seams between shields dark
+      out.warm = inside * (0.35f + 0.65f * smooth(0.05f, 0.3f, rhomb));
+      if (rhomb > 0.42f) shade *= 0.55f;
+    }
     if (s.bract > 0) {   // Abies alba: the bract's pointed tip shows below the scale's edge
       const float tip = (1 - fr) * 0.12f * s.bract;
       if (fr < 0.3f && std::abs(q) < tip) out.warm = 1, shade = std::max(shade, 0.85f);
@@ -115,6 +125,16 @@ void draw_cone_upright(leaf_canvas& c, rng& g) {
   cone_shape s;
   s.length = 0.8f, s.width = 0.17f, s.widest = 0.55f, s.sides = 0.32f, s.stalk = 0.04f;
   s.rows = 13, s.around = 8, s.lip = 0.2f, s.bract = 1.0f;
+  draw_cone(c, g, s);
+}
+
+void draw_cone_ovoid(leaf_canvas& c, rng& g) {
+  // Pinus sylvestris: ovoid-conic, 3-7 cm, grey-brown when ripe, each scale ending in a flat
+  // rhombic shield with a small central boss; pointing back down the shoot on a short stalk
+  // (Farjon 2010).
+  cone_shape s;
+  s.length = 0.78f, s.width = 0.22f, s.widest = 0.35f, s.sides = 0.75f, s.stalk = 0.08f;
+  s.rows = 9, s.around = 6, s.lip = 0.5f, s.shields = true;
   draw_cone(c, g, s);
 }
 
