@@ -31,7 +31,8 @@ namespace sylva {
   X(cone_upright) /* fir, cedar: an upright barrel-shaped seed cone (fruit card) */ \
   X(samaras)      /* maple: a hanging cluster of paired winged fruits (fruit card) */ \
   X(hazelnuts)    /* hazel: nuts in leafy, toothed husks (fruit card) */ \
-  X(cone_ovoid)   /* pine: an ovoid cone of rhombic scale shields (fruit card) */
+  X(cone_ovoid)   /* pine: an ovoid cone of rhombic scale shields (fruit card) */ \
+  X(beechnuts)    /* beech: bristly cupules opening round their nuts (fruit card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

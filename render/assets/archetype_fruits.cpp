@@ -192,4 +192,44 @@ void draw_hazelnuts(leaf_canvas& c, rng& g) {
   }
 }
 
+void draw_beechnuts(leaf_canvas& c, rng& g) {
+  // Fagus sylvatica: a woody cupule 1.5-2.5 cm, covered in soft bristles, that splits into four
+  // valves round two triangular brown nuts; in pairs on a short stalk (Rushforth 1999).
+  const vec2 top(0.5f, 0.0f);
+  const vec2 hub(0.5f, 0.18f);
+  stroke(c, top, hub, 0.012f, 0.01f, petiole_style);
+  const stroke_style bristle{0.75f, 0.2f, 0.1f, 0};
+  for (float fan : {-24.0f, 22.0f}) {
+    const float deg = 90 + fan + g.range(-5, 5);
+    const vec2 d = heading(deg), n(-d.y, d.x);
+    const vec2 base = hub + d * 0.05f;
+    stroke(c, hub, base, 0.008f, 0.007f, petiole_style);
+    const float len = 0.36f, width = 0.12f;
+    const vec2 mid = base + d * (0.5f * len);
+    // The bristles first, radiating from the cupule's outline, then its body over their roots.
+    for (int k = 0; k < 70; ++k) {
+      const float a = 2 * pi * float(k) / 70.0f + g.range(-0.04f, 0.04f);
+      const float along = 0.5f * len * std::sin(a), across = width * std::cos(a);
+      if (along > 0.32f * len) continue;   // the open valves' rim carries none
+      const vec2 p = mid + d * along + n * across;
+      const vec2 out = glm::normalize(d * (std::sin(a) / len) + n * (std::cos(a) / width));
+      stroke(c, p - out * 0.01f, p + out * g.range(0.03f, 0.045f), 0.0035f, 0.001f, bristle);
+    }
+    ellipse(c, mid, deg, len, width, 0.25f, 0.85f);
+    for (int k = 0; k < 45; ++k) {   // bristles over the body, pointing up and out
+      const float u = g.range(-0.42f, 0.3f), w = g.range(-0.85f, 0.85f);
+      const vec2 p = mid + d * (u * len) + n * (w * width * std::sqrt(std::max(0.0f, 1 - 4 * u * u)));
+      const vec2 out = glm::normalize(d + n * (1.2f * w));
+      stroke(c, p, p + out * g.range(0.02f, 0.03f), 0.003f, 0.001f, bristle);
+    }
+    // Four valves opening at the top, and the two nuts' points between them.
+    for (int v = 0; v < 2; ++v) {
+      const float side = v ? 1.0f : -1.0f;
+      ellipse(c, base + d * (0.86f * len) + n * (side * 0.055f), deg + side * 28, 0.17f, 0.035f, 0.3f, 0.9f);
+    }
+    for (int v = 0; v < 2; ++v)
+      ellipse(c, base + d * (0.9f * len) + n * ((v ? 1.0f : -1.0f) * 0.018f), deg + (v ? -6.0f : 6.0f), 0.16f, 0.03f, 1.0f, 0.8f);
+  }
+}
+
 }  // namespace sylva::archetype

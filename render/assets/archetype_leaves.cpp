@@ -223,10 +223,12 @@ void draw_hazel_spray(leaf_canvas& c, rng& g) {
   const spray_layout s{0.03f, 7.0f, 0.5f, 0.011f, 0.006f, 4, 0.26f, 0.7f, 50, 62, 0.03f, 0.03f, 0.004f, 0.0035f,
                        0.01f, 0.03f, 0.38f, 0.44f, 0.43f, 0.03f, 0.02f, 0.44f, 0.02f, 0.19f};
   leaf_spray(c, g, s, st, [](float t, int) {
-    const float round = std::sqrt(std::max(0.0f, 1 - std::pow((t - 0.4f) / 0.62f, 2.0f)));
-    const float tip = 1 - 0.55f * std::max(0.0f, (t - 0.78f) / 0.22f);
-    const float teeth2 = 1 - 0.05f * (0.5f + 0.5f * std::cos(2 * pi * 11.0f * t));  // the larger teeth
-    return round * tip * teeth2;
+    // A round blade that ends in an abrupt short point (cuspidate), with the larger teeth of the
+    // double serration over the fine ones.
+    const float round = std::sqrt(std::max(0.0f, 1 - std::pow((t - 0.38f) / 0.54f, 2.0f)));
+    const float point = t > 0.66f ? 0.26f * (1 - t) / 0.34f : 0.0f;
+    const float teeth2 = 1 - 0.08f * (0.5f + 0.5f * std::cos(2 * pi * 11.0f * t));
+    return std::max(round, point) * teeth2;
   });
 }
 
