@@ -13,14 +13,6 @@
 namespace sylva {
 namespace {
 
-uint64_t mix(uint64_t x) {   // SplitMix64's finaliser
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-float unit(uint64_t x) { return float(mix(x) >> 40) * (1.0f / 16777216.0f); }
-
 // The card's frame: +Y along `axis` (petiole at the origin), its face turned to azimuth `turn`
 // and then `spin` radians further around the axis (the crossed cards of one fruit).
 glm::quat card_frame(const glm::vec3& axis, float turn, float spin) {
@@ -56,7 +48,7 @@ void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, 
   for (size_t i = 0; i < n; ++i)
     if (alive(i) && !parent_of_living[i] && t.parent[i] >= 0 && int(t.order[i]) >= p.min_order && int(t.order[i]) <= p.max_order &&
         t.position[i].y >= lowest && std::isfinite(t.position[i].y))
-      tips.push_back({mix(seed * 0x100000001B3ull ^ (uint64_t(i) + 0x5851F42D4C957F2Dull)), uint32_t(i)});
+      tips.push_back({rng(seed * 0x100000001B3ull ^ (uint64_t(i) + 0x5851F42D4C957F2Dull)).next(), uint32_t(i)});
   const size_t take = std::min(tips.size(), size_t(count));
   std::partial_sort(tips.begin(), tips.begin() + std::ptrdiff_t(take), tips.end());
   tips.resize(take);
@@ -68,7 +60,8 @@ void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, 
   const uint8_t archetype = uint8_t(std::clamp(int(p.archetype), 0, leaf_archetype_count - 1));
   const size_t first = out.size();
   for (const auto& [h, node] : tips) {
-    const float r0 = unit(h ^ 1), r1 = unit(h ^ 2), r2 = unit(h ^ 3), r3 = unit(h ^ 4);
+    rng r(h);
+    const float r0 = r.uniform(), r1 = r.uniform(), r2 = r.uniform(), r3 = r.uniform();
     // Straight down or up, leaning by up to `tilt` toward a random side.
     const float lean = tilt * std::sqrt(r0), side = 2 * pi * r1;
     const glm::vec3 across(std::cos(side) * std::sin(lean), 0, std::sin(side) * std::sin(lean));
@@ -89,8 +82,7 @@ void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, 
   }
   // Fruit whose card would reach below the ground is dropped (not turned up as a leaf is).
   out.erase(std::remove_if(out.begin() + std::ptrdiff_t(first), out.end(), [&](const leaf& l) {
-              const glm::vec3 x = l.orientation * glm::vec3(1, 0, 0), y = l.orientation * glm::vec3(0, 1, 0);
-              return l.position.y - 0.5f * l.size * std::abs(x.y) + l.size * std::min(0.0f, y.y) < ground;
+              return card_lowest_y(l, l.orientation * glm::vec3(1, 0, 0), l.orientation * glm::vec3(0, 1, 0)) < ground;
             }),
             out.end());
 }

@@ -210,12 +210,13 @@ std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p,
   return out;
 }
 
+float card_lowest_y(const leaf& l, const glm::vec3& x, const glm::vec3& y) {
+  return l.position.y - 0.5f * l.size * std::abs(x.y) + l.size * std::min(0.0f, y.y);
+}
+
 void keep_leaves_above_ground(std::vector<leaf>& leaves, float ground) {
   if (!std::isfinite(ground)) return;
-  // Lowest point of the card (corners ±X/2 at the petiole and at one blade length along Y).
-  auto lowest = [](const leaf& l, const glm::vec3& x, const glm::vec3& y) {
-    return l.position.y - 0.5f * l.size * std::abs(x.y) + l.size * std::min(0.0f, y.y);
-  };
+  const auto lowest = card_lowest_y;
   std::erase_if(leaves, [&](leaf& l) {
     if (l.position.y < ground) return true;
     const glm::vec3 x = l.orientation * glm::vec3(1, 0, 0), y = l.orientation * glm::vec3(0, 1, 0);

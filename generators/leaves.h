@@ -107,6 +107,10 @@ std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p,
 // the exporter's: one blade length long from the petiole, half a length wide.
 void keep_leaves_above_ground(std::vector<leaf>& leaves, float ground);
 
+// The lowest height a leaf's card reaches with its frame's axes x (across) and y (along the blade):
+// its corners, ±x/2 at the petiole and one blade length along y.
+float card_lowest_y(const leaf& l, const glm::vec3& x, const glm::vec3& y);
+
 // The leaves `p.mode` asks for, capped at p.cap.
 foliage place_leaves(const tree_skeleton& t, const leaf_params& p, uint64_t seed);
 

@@ -22,10 +22,13 @@ bool archetype_is_fruit(leaf_archetype a) {
 
 uint32_t fruit_archetype_mask() {
   static_assert(leaf_archetype_count <= 32, "the leaf shader's u_fruit holds one bit per archetype");
-  uint32_t m = 0;
-  for (int k = 0; k < leaf_archetype_count; ++k)
-    if (archetype_is_fruit(leaf_archetype(k))) m |= 1u << k;
-  return m;
+  static const uint32_t mask = [] {   // made once: the renderer sets it with every frame's uniforms
+    uint32_t m = 0;
+    for (int k = 0; k < leaf_archetype_count; ++k)
+      if (archetype_is_fruit(leaf_archetype(k))) m |= 1u << k;
+    return m;
+  }();
+  return mask;
 }
 
 season_look season_leaf_look(const render_params& rp) {
