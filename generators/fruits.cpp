@@ -45,10 +45,36 @@ void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, 
   const float lowest = top - std::clamp(p.crown_top, 0.0f, 1.0f) * (top - bottom);
   // Eligible tips, ranked by a seeded hash of their node: the first `count` bear fruit.
   std::vector<std::pair<uint64_t, uint32_t>> tips;
-  for (size_t i = 0; i < n; ++i)
-    if (alive(i) && !parent_of_living[i] && t.parent[i] >= 0 && int(t.order[i]) >= p.min_order && int(t.order[i]) <= p.max_order &&
-        t.position[i].y >= lowest && std::isfinite(t.position[i].y))
-      tips.push_back({rng(seed * 0x100000001B3ull ^ (uint64_t(i) + 0x5851F42D4C957F2Dull)).next(), uint32_t(i)});
+  const bool axils = p.site == fruit_site::axils;
+  // An axil's fruit hangs `reach` metres out along its branch: the walk follows each node's
+  // continuation (its first living child of the same order).
+  std::vector<int32_t> next;
+  if (axils) {
+    next.assign(n, -1);
+    for (size_t i = n; i-- > 0;) {
+      const int32_t q = t.parent[i];
+      if (q >= 0 && alive(i) && t.order[i] == t.order[size_t(q)]) next[size_t(q)] = int32_t(i);
+    }
+  }
+  const float reach = std::clamp(p.reach, 0.0f, 100.0f);
+  auto site = [&](size_t i) {
+    if (!axils) return t.position[i];
+    glm::vec3 at = t.position[size_t(t.parent[i])];
+    float left = reach;
+    for (int32_t k = int32_t(i); k >= 0 && left > 0; k = next[size_t(k)]) {
+      const glm::vec3 step = t.position[size_t(k)] - at;
+      const float len = glm::length(step);
+      if (len >= left) return at + step * (left / len);
+      at = t.position[size_t(k)], left -= len;
+    }
+    return at;
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (!alive(i) || t.parent[i] < 0 || int(t.order[i]) < p.min_order || int(t.order[i]) > p.max_order) continue;
+    if (axils ? t.order[size_t(t.parent[i])] >= t.order[i] : parent_of_living[i] != 0) continue;
+    const float y = site(i).y;
+    if (y >= lowest && std::isfinite(y)) tips.push_back({rng(seed * 0x100000001B3ull ^ (uint64_t(i) + 0x5851F42D4C957F2Dull)).next(), uint32_t(i)});
+  }
   const size_t take = std::min(tips.size(), size_t(count));
   std::partial_sort(tips.begin(), tips.begin() + std::ptrdiff_t(take), tips.end());
   tips.resize(take);
@@ -70,7 +96,7 @@ void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, 
     const float turn = 2 * pi * r3;
     for (int k = 0; k < cards; ++k) {
       leaf l;
-      l.position = t.position[node];
+      l.position = site(node);
       l.orientation = card_frame(axis, turn, pi * float(k) / float(cards));
       l.size = size;
       l.born = uint16_t(std::max<int>(t.born[node], last > 0 ? last - 1 : 0));

@@ -16,15 +16,23 @@ namespace sylva {
 enum class fruit_pose : int { hanging = 0, upright };
 inline constexpr const char* fruit_pose_names[] = {"hanging", "upright", nullptr};
 
+// Where on the branch a fruit sits: on a shoot's tip (cones, samaras, nuts), or in the axil where
+// a branch leaves its parent (a coconut palm's bunches hang among the bases of its fronds: the
+// inflorescences are axillary; Riffle & Craft 2003).
+enum class fruit_site : int { tips = 0, axils };
+inline constexpr const char* fruit_site_names[] = {"tips", "axils", nullptr};
+
 struct fruit_params {
   int count = 0;              // fruits on the tree (0: none); on as many shoot tips, at most one each
   leaf_archetype archetype = leaf_archetype::cone_hanging;
   float size = 0.15f;         // card side, metres
   float size_jitter = 0.15f;  // relative random variation of the size
   fruit_pose pose = fruit_pose::hanging;
+  fruit_site site = fruit_site::tips;
+  float reach = 0;            // axils: metres out along the branch from the junction
   float tilt = 15;            // degrees a fruit leans at random away from straight down (up)
   float crown_top = 1.0f;     // only tips in this top share of the tree's height
-  int min_order = 1;          // only tips of at least this branch order
+  int min_order = 1;          // only tips (branches, for axils) of at least this branch order
   int max_order = 8;          // ... and at most this one (spruce: the laterals' ends, not the hanging branchlets')
   int cards = 2;              // crossed cards per fruit, so it shows from every side
   bool operator==(const fruit_params&) const = default;
@@ -34,10 +42,12 @@ template <params_of<fruit_params> P, class V>
 void visit_params(P& p, V&& visitor) {
   auto v = declare_class(visitor, param_remesh);   // mesh_tree places the fruit on the kept skeleton
   v(p.count, param_info{"fruit_count", "Fruit count", "", 0, 2000, "Cones or fruit on the tree, each on its own shoot tip (0: none); more keeps the ones already there", 0, "Cones and fruit"});
-  v(p.archetype, param_info{"fruit_archetype", "Fruit card", "", 0, leaf_archetype_count - 1, "Card of the cones or fruit: cone_hanging (spruce), cone_upright (fir, cedar), samaras (maple), hazelnuts (hazel), cone_ovoid (pine), beechnuts (beech); drawn in their own colours, not the leaf tint", 0, nullptr, leaf_archetype_names});
+  v(p.archetype, param_info{"fruit_archetype", "Fruit card", "", 0, leaf_archetype_count - 1, "Card of the cones or fruit: cone_hanging (spruce), cone_upright (fir, cedar), samaras (maple), hazelnuts (hazel), cone_ovoid (pine), beechnuts (beech), coconuts (palm); drawn in their own colours, not the leaf tint", 0, nullptr, leaf_archetype_names});
   v(p.size, param_info{"fruit_size", "Fruit size", "", 0.01f, 1, "Card side in metres (a cone fills about 85 % of it)", param_log});
   v(p.size_jitter, param_info{"fruit_size_jitter", "Fruit size variation", "", 0, 1, "Relative random variation of the fruit size"});
   v(p.pose, param_info{"fruit_pose", "Fruit pose", "", 0, 1, "hanging: from the tip, down (spruce cones, samaras, nuts); upright: standing on the shoot (fir and cedar cones)", 0, nullptr, fruit_pose_names});
+  v(p.site, param_info{"fruit_site", "Fruit site", "", 0, 1, "tips: on shoot tips (cones, samaras, nuts); axils: where a branch of the order range leaves its parent (a coconut palm's bunches among its frond bases)", 0, nullptr, fruit_site_names});
+  v(p.reach, param_info{"fruit_reach", "Axil reach", "", 0, 2, "axils: how far out along the branch from where it leaves its parent the fruit hangs, in metres (a palm's bunches clear its crownshaft)"});
   v(p.tilt, param_info{"fruit_tilt", "Fruit tilt", "", 0, 60, "Degrees each fruit leans at random from straight down (hanging) or up (upright)", param_degrees});
   v(p.crown_top, param_info{"fruit_crown_top", "Fruiting crown", "", 0.05f, 1, "Only shoot tips in this top share of the tree's height bear fruit (fir cones: the top of the crown)"});
   v(p.min_order, param_info{"fruit_min_order", "Fruit order threshold", "", 0, 8, "Only tips of branches of at least this order bear fruit"});
@@ -50,11 +60,12 @@ inline bool param_relevant(const fruit_params& p, const void* field, const param
   return field == &p.count || p.count > 0;
 }
 
-// Appends the fruit to `out` (leaf cards with their archetype set): `p.count` tips, chosen by a
-// seeded hash of each tip's node so the choice does not depend on the order of the nodes and a
+// Appends the fruit to `out` (leaf cards with their archetype set): `p.count` sites, chosen by a
+// seeded hash of each site's node so the choice does not depend on the order of the nodes and a
 // higher count keeps the fruit already placed. A tip is a node alive at the last step with no
-// living child; each fruit appears at the last step (the mature tree bears them) and is shed
-// with its node. Fruit below `ground` is dropped.
+// living child; an axil is the first node of a branch (its parent has a lower order), and its
+// fruit hangs `p.reach` metres out along the branch from the junction (at most to its tip). Each fruit appears at the last step (the mature tree bears
+// them) and is shed with its node. Fruit below `ground` is dropped.
 void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, float ground, std::vector<leaf>& out);
 
 }  // namespace sylva

@@ -123,6 +123,46 @@ TEST(Fruits, HangingFruitPointsDownUprightUpWithinTheTiltAndCardsCross) {
   }
 }
 
+TEST(Fruits, AxilFruitHangsWhereABranchLeavesItsParentOrReachesOutAlongIt) {
+  // A two-node branch (order 1) leaving the comb's trunk at y = 4, 0.5 m per internode along +x,
+  // besides the comb's one-node laterals.
+  tree_skeleton t = comb();
+  const int32_t b1 = t.add_node({0.5f, 4, 0}, 4 * 2 - 1, 0.02f, 4, 1);
+  t.add_node({1.0f, 4, 0}, b1, 0.02f, 5, 1);
+  ASSERT_EQ(t.position[size_t(4 * 2 - 1)], glm::vec3(0, 4, 0));
+  fruit_params p;
+  p.count = 100;
+  p.cards = 1;
+  p.site = fruit_site::axils;
+  p.min_order = 0;   // the trunk's own nodes are no axils: only branch starts count
+  std::vector<leaf> out;
+  place_fruits(t, p, 5, -10, out);
+  ASSERT_EQ(out.size(), size_t(11)) << "ten laterals and the new branch, once each";
+  for (const leaf& l : out) {
+    EXPECT_EQ(t.order[size_t(l.node)], 1);
+    EXPECT_EQ(l.position.x, 0.0f) << "reach 0: at the junction on the trunk";
+    EXPECT_EQ(l.position, t.position[size_t(t.parent[size_t(l.node)])]);
+  }
+  // Reach 0.8 m: the one-node laterals end at 1 m, so 0.8 m along them; the new branch's first
+  // internode is 0.5 m, so the walk goes on into its second.
+  p.reach = 0.8f;
+  out.clear();
+  place_fruits(t, p, 5, -10, out);
+  ASSERT_EQ(out.size(), size_t(11));
+  for (const leaf& l : out) EXPECT_NEAR(l.position.x, 0.8f, 1e-5f) << l.node;
+  // Past a branch's end the fruit stays at its tip.
+  p.reach = 5;
+  out.clear();
+  place_fruits(t, p, 5, -10, out);
+  for (const leaf& l : out) EXPECT_NEAR(l.position.x, 1.0f, 1e-5f) << l.node;
+  // The tips setting ignores reach: the ten laterals', the branch's and the trunk's tips.
+  p.site = fruit_site::tips;
+  out.clear();
+  place_fruits(t, p, 5, -10, out);
+  ASSERT_EQ(out.size(), size_t(12));
+  for (const leaf& l : out) EXPECT_EQ(l.position, t.position[size_t(l.node)]);
+}
+
 TEST(Fruits, FruitReachingBelowTheGroundIsDropped) {
   const tree_skeleton t = comb();   // the lowest lateral's tip is 1 m up
   fruit_params p;
