@@ -232,4 +232,31 @@ void draw_beechnuts(leaf_canvas& c, rng& g) {
   }
 }
 
+void draw_coconuts(leaf_canvas& c, rng& g) {
+  // Cocos nucifera: fruits ovoid, obscurely three-sided, 20-30 cm long, green ripening to yellow
+  // and brown, in bunches of five to twelve on a stout branched stalk that hangs from among the
+  // frond bases (Riffle & Craft 2003). Seven nuts close together on short branches of one
+  // peduncle: the stalks first, then the back nuts (darker) and the front ones over them.
+  const vec2 top(0.5f, 0.0f), hub(0.5f, 0.2f);
+  curve_stroke(c, [&](float t) { return bezier(top, vec2(0.47f, 0.1f), hub, t); }, 4, 0.024f, 0.02f, petiole_style);
+  struct nut { float x, y, deg, ripe, shade; };
+  const nut nuts[7] = {
+      {0.31f, 0.5f, 108, 0.15f, 0.7f}, {0.69f, 0.5f, 72, 0.55f, 0.7f}, {0.5f, 0.6f, 92, 0.3f, 0.78f},   // back
+      {0.37f, 0.7f, 100, 0.8f, 0.92f}, {0.64f, 0.72f, 80, 0.2f, 0.92f},                                  // lower pair
+      {0.3f, 0.36f, 125, 0.45f, 1.0f}, {0.7f, 0.36f, 55, 0.05f, 1.0f},                                   // front, high
+  };
+  vec2 centre[7];
+  float deg[7], len[7];
+  for (int k = 0; k < 7; ++k) {
+    deg[k] = nuts[k].deg + g.range(-6, 6);
+    len[k] = g.range(0.27f, 0.31f);
+    centre[k] = vec2(nuts[k].x + g.range(-0.012f, 0.012f), nuts[k].y + g.range(-0.012f, 0.012f));
+    stroke(c, hub, centre[k] - heading(deg[k]) * (0.45f * len[k]), 0.012f, 0.01f, petiole_style);
+  }
+  for (int k = 0; k < 7; ++k) {
+    const vec2 d = heading(deg[k]);
+    ellipse(c, centre[k], deg[k], len[k], 0.118f, nuts[k].ripe, nuts[k].shade);
+    ellipse(c, centre[k] - d * (0.47f * len[k]), deg[k], 0.05f, 0.05f, 1.0f, 0.5f * nuts[k].shade);   // the calyx's dry bracts
+  }
+}
 }  // namespace sylva::archetype

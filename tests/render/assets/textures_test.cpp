@@ -165,6 +165,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.10, 0.45},  // hazelnuts: three nuts in husks
       {0.10, 0.35},  // cone_ovoid: a short egg on a stalk
       {0.08, 0.35},  // beechnuts: two bristly cupules
+      {0.15, 0.50},  // coconuts: a bunch of big nuts
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
@@ -441,7 +442,7 @@ TEST(ArchetypeTextures, FruitCardsAreInTheirOwnColours) {
     EXPECT_GT(r, 0.6 * g) << leaf_archetype_names[i] << ": not a leaf's green";
     EXPECT_GT(g, 0.04) << leaf_archetype_names[i] << ": not black";
   }
-  EXPECT_EQ(fruits, 6);
+  EXPECT_EQ(fruits, 7);
   // The two cones differ in colour (a ripe spruce cone is brown, a fir or cedar cone grey-green).
   auto mean_rg = [](leaf_archetype a) {
     const image& c = leaf_archetype_textures(a, kSize).color;
