@@ -129,29 +129,32 @@ void draw_palm_frond(leaf_canvas& c, rng& g) {
 }
 
 // A hanging willow shoot (Salix babylonica: leaves lanceolate, about 8-12 by 1-2 cm, alternate,
-// finely toothed, drawn out into a long point): a thin shoot up the card's centre carrying nine
-// long narrow blades that leave it at a narrow angle and overlap, so the card keeps its opacity in
-// the texture's smaller mip levels where one blade a few texels wide would fade away; a seeded
-// sideways curve on each blade.
+// finely toothed, drawn out into a long point; Flora of China): a thin shoot up the card's centre
+// carrying eight blades, alternate, each on a short petiole and leaving the shoot at 25-35 degrees
+// toward its tip with a slight seeded curve, with sky between them so each reads as its own leaf
+// (round 17's reader: the old card's thirteen overlapping blades read as "feathery strips").
 void draw_lanceolate(leaf_canvas& c, rng& g) {
-  auto shoot = [](float t) { return vec2(0.5f + 0.025f * std::sin(2.0f * t), 0.78f * t); };
+  auto shoot = [](float t) { return vec2(0.5f + 0.02f * std::sin(2.0f * t), 0.7f * t); };
   blade_style st;
-  st.serration = 0.06f, st.teeth = 40, st.vein_angle = 60, st.veins = 14, st.dome = 0.14f;
-  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.62f)), 1.1f); };
-  const int leaves = 13;
+  st.serration = 0.05f, st.teeth = 36, st.vein_angle = 58, st.veins = 12, st.dome = 0.16f, st.midrib = 1.2f;
+  auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.55f)), 1.05f); };
+  curve_stroke(c, shoot, 6, 0.008f, 0.004f, twig_style);
+  const int leaves = 8;
   for (int i = 0; i < leaves; ++i) {
-    const float t = 0.08f + 0.84f * float(i) / float(leaves - 1);
+    const float t = 0.06f + 0.84f * float(i) / float(leaves - 1);
     const vec2 p = shoot(t);
     const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(7, 15);
+    const float ang = 90 + side * g.range(25, 35) * (1.1f - 0.4f * t);
     const vec2 d = heading(ang);
-    st.bend = side * g.range(0.0f, 0.05f);
-    const float len = fit(p, d, g.range(0.5f, 0.6f) * (1.0f - 0.35f * t), 0.01f);
-    blade(c, p, ang, len, len * 0.09f, leaf, st);
+    const vec2 q = p + d * 0.025f;
+    stroke(c, p, q, 0.003f, 0.0026f, petiole_style);
+    st.bend = side * g.range(0.0f, 0.04f);
+    const float len = fit(q, d, g.range(0.42f, 0.5f) * (1.0f - 0.25f * t), 0.01f);
+    blade(c, q - d * 0.004f, ang, len, len * 0.085f, leaf, st);
   }
-  curve_stroke(c, shoot, 6, 0.008f, 0.004f, twig_style);
   const vec2 tip = shoot(1.0f);
-  blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.3f), 0.022f, leaf, st);
+  st.bend = 0;
+  blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.32f), 0.026f, leaf, st);
 }
 
 // A twig carrying leaves up the card, alternate left and right, and one leaf at its tip: the
@@ -206,11 +209,16 @@ void draw_twig_cluster(leaf_canvas& c, rng& g) {
 // twig and held in one plane): five leaves on a twig that bends at each node.
 void draw_beech_spray(leaf_canvas& c, rng& g) {
   blade_style st;
-  st.serration = 0.025f, st.teeth = 12, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
+  st.serration = 0, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
   const spray_layout s{0.035f, 9.0f, 0.6f, 0.009f, 0.005f, 5, 0.24f, 0.72f, 52, 66, 0.02f, 0.02f, 0.0035f, 0.003f,
                        0.004f, 0.04f, 0.34f, 0.4f, 0.3f, 0.02f, 0.016f, 0.36f, 0.02f, 0.1f};
-  // Widest a little below the middle, tapering straight to an acute tip (a pow below 1 would round it off).
-  leaf_spray(c, g, s, st, [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.74f)), 0.9f); });
+  // Widest a little below the middle, tapering straight to an acute tip (a pow below 1 would round
+  // it off); no teeth (round 17's reader saw the old card's twelve shallow teeth as "jagged" and
+  // thought of hornbeam), only a low wave between the vein ends.
+  leaf_spray(c, g, s, st, [](float t, int) {
+    const float wave = 1 - 0.03f * (0.5f + 0.5f * std::cos(2 * pi * 8.0f * t));
+    return std::pow(std::sin(pi * std::pow(t, 0.74f)), 0.9f) * wave;
+  });
 }
 
 // A hazel shoot (Corylus avellana: leaves broad, nearly round, 6-12 cm, with a heart-shaped base,
