@@ -52,25 +52,47 @@ void bake_sky(leaf_grid& g, float window) {
       const float len = std::sqrt(float(dx * dx + 1 + dz * dz));
       const float w = 1.0f / len;   // cos of the angle to the zenith
       const float ds = g.cell * len;
+      // Row by row: a row's cells read one row of the layer above (shifted by dx), or none where
+      // that row is outside the box; the cells whose source falls off the box's x range read 0.
+      const size_t nx = size_t(g.nx);
+      const int xa = std::max(0, -dx), xb = std::min(g.nx, g.nx - dx);   // x + dx inside
       for (int y = g.ny; y-- > 0;)
-        for (int z = 0; z < g.nz; ++z)
-          for (int x = 0; x < g.nx; ++x) {
-            const size_t c = g.at(x, y, z);
-            const int ax = x + dx, ay = y + 1, az = z + dz;
-            prefix[c] = lad[c] + (g.inside(ax, ay, az) ? prefix[g.at(ax, ay, az)] : 0.0f);
+        for (int z = 0; z < g.nz; ++z) {
+          float* out = prefix.data() + g.at(0, y, z);
+          const float* own = lad.data() + g.at(0, y, z);
+          const bool above = y + 1 < g.ny && z + dz >= 0 && z + dz < g.nz;
+          if (!above || xa >= xb) {
+            for (size_t x = 0; x < nx; ++x) out[x] = own[x] + 0.0f;
+            continue;
           }
+          const float* from = prefix.data() + g.at(0, y + 1, z + dz) + dx;
+          for (int x = 0; x < xa; ++x) out[x] = own[x] + 0.0f;
+          for (int x = xa; x < xb; ++x) out[x] = own[x] + from[x];
+          for (int x = xb; x < g.nx; ++x) out[x] = own[x] + 0.0f;
+        }
       // Layers in parallel: each cell gets its directions' terms in the same order as on one thread.
+      // A row's depths first (beyond: the row steps layers up, 0 off the box), then its terms.
+      const int ba = std::max(0, -steps * dx), bb = std::min(g.nx, g.nx - steps * dx);   // x + steps·dx inside
       parallel_chunks(size_t(g.ny), 4, [&](size_t y0, size_t y1) {
+        std::vector<float> depth(nx);
         for (int y = int(y0); y < int(y1); ++y)
-          for (int z = 0; z < g.nz; ++z)
-            for (int x = 0; x < g.nx; ++x) {
-              const size_t c = g.at(x, y, z);
-              const int bx = x + steps * dx, by = y + steps, bz = z + steps * dz;
-              const float beyond = g.inside(bx, by, bz) ? prefix[g.at(bx, by, bz)] : 0.0f;
-              const float depth = std::max(prefix[c] - beyond - lad[c], 0.0f) * ds;   // the cell's own leaves do not shade it
-              // No foliage in the window (most cells round and above a crown): exp(∓0) is exactly 1.
-              sky[c] += depth == 0.0f ? w : w * std::exp(-0.5f * depth);
+          for (int z = 0; z < g.nz; ++z) {
+            const size_t c = g.at(0, y, z);
+            const float* pre = prefix.data() + c;
+            const float* own = lad.data() + c;
+            const int by = y + steps, bz = z + steps * dz;
+            const bool far = by < g.ny && bz >= 0 && bz < g.nz && ba < bb;
+            const float* beyond = far ? prefix.data() + g.at(0, by, bz) + steps * dx : nullptr;
+            // (the cell's own leaves do not shade it)
+            for (int x = 0; x < (far ? ba : g.nx); ++x) depth[size_t(x)] = std::max(pre[x] - 0.0f - own[x], 0.0f) * ds;
+            if (far) {
+              for (int x = ba; x < bb; ++x) depth[size_t(x)] = std::max(pre[x] - beyond[x] - own[x], 0.0f) * ds;
+              for (int x = bb; x < g.nx; ++x) depth[size_t(x)] = std::max(pre[x] - 0.0f - own[x], 0.0f) * ds;
             }
+            // No foliage in the window (most cells round and above a crown): exp(∓0) is exactly 1.
+            float* out = sky.data() + c;
+            for (size_t x = 0; x < nx; ++x) out[x] += depth[x] == 0.0f ? w : w * std::exp(-0.5f * depth[x]);
+          }
       });
       weights += w;
     }
