@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -63,6 +64,18 @@ class pool {
     }
     wake_.notify_all();
   }
+  // A batch other than `own` with a seat and jobs left, its seat taken (as a helper takes it), or
+  // null: a caller waiting for its own batch's last jobs helps with the others meanwhile.
+  std::shared_ptr<batch> take_other(const batch* own) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = queue_.begin(); it != queue_.end(); ++it) {
+      const std::shared_ptr<batch> b = *it;
+      if (b.get() == own || b->next.load() >= b->count) continue;
+      if (b->seats.fetch_sub(1) <= 1) queue_.erase(it);
+      return b;
+    }
+    return nullptr;
+  }
   void retire(const std::shared_ptr<batch>& b) {
     std::lock_guard<std::mutex> lock(mutex_);
     std::erase(queue_, b);
@@ -118,9 +131,15 @@ void parallel_jobs(size_t count, const std::function<void(size_t)>& job, int thr
   b->seats = int(std::min<size_t>(size_t(helpers), count - 1));
   if (b->seats > 0) p.post(b);
   b->work();
-  {
+  // While helpers finish this batch's last jobs, the calling thread takes jobs of other batches
+  // (a helper's nested ones: the leaves placed beside the bark), looking again every 50 µs.
+  while (b->done.load() != b->count) {
+    if (const std::shared_ptr<batch> other = p.take_other(b.get())) {
+      other->work();
+      continue;
+    }
     std::unique_lock<std::mutex> lock(b->mutex);
-    b->finished.wait(lock, [&] { return b->done.load() == b->count; });
+    b->finished.wait_for(lock, std::chrono::microseconds(50), [&] { return b->done.load() == b->count; });
   }
   if (b->seats > 0) p.retire(b);
   if (b->error) std::rethrow_exception(b->error);

@@ -19,6 +19,7 @@ int set_job_pool_limit(int threads);
 // all are done. Jobs are taken in order from a shared counter, so which thread runs a job varies:
 // a job must write only its own outputs for the result to be deterministic. The calling thread
 // always works too, so a call made while the helpers are busy (or from inside a job) still ends.
+// While helpers finish its last jobs, the calling thread runs jobs of other calls' batches.
 // The first exception a job throws is rethrown here once every started job has finished.
 void parallel_jobs(size_t count, const std::function<void(size_t)>& job, int threads = 0);
 
