@@ -55,8 +55,10 @@ void visit_params(P& p, V&& visitor) {
   v(p.cards, param_info{"fruit_cards", "Cards per fruit", "", 1, 3, "Crossed cards per fruit: 2 or 3 show it from every side, 1 is cheapest", param_advanced});
 }
 
-// The editor shows the fruit sliders only once some fruit is asked for.
+// The editor shows the fruit sliders only once some fruit is asked for, and the axil reach only
+// for fruit in the axils.
 inline bool param_relevant(const fruit_params& p, const void* field, const param_info&) {
+  if (field == &p.reach) return p.count > 0 && p.site == fruit_site::axils;   // tips ignore it
   return field == &p.count || p.count > 0;
 }
 
