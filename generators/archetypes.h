@@ -42,9 +42,10 @@ namespace sylva {
   X(smooth)   /* smooth with lenticel dashes and dark patches (birch) */      \
   X(peeling)  /* long peeling strips */                                       \
   X(ringed)   /* rings of leaf scars (palm) */                                \
-  X(mottled)  /* smooth, faintly mottled, no lenticels (beech, fir) */        \
+  X(mottled)  /* smooth, faintly mottled, resin spots, no lenticels (fir) */        \
   X(fissured) /* a network of shallow fissures between narrow ridges (ash, Cedrus) */ \
-  X(fibrous)  /* soft stringy fibres in long shreds (cypress, thuja) */
+  X(fibrous)  /* soft stringy fibres in long shreds (cypress, thuja) */         \
+  X(silver)   /* smooth silver-grey, creased, no spots (beech) */
 
 #define SYLVA_ARCHETYPE_ENUM(n) n,
 #define SYLVA_ARCHETYPE_NAME(n) #n,

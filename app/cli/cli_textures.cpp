@@ -84,6 +84,7 @@ const glm::vec3 bark_tints[] = {
     {0.46f, 0.46f, 0.44f},  // mottled: beech
     {0.40f, 0.40f, 0.38f},  // fissured: ash
     {0.42f, 0.32f, 0.26f},  // fibrous: cypress
+    {0.46f, 0.46f, 0.44f},  // silver: beech
 };
 static_assert(std::size(bark_tints) == size_t(bark_archetype_count));
 
@@ -134,7 +135,8 @@ const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        
                                    "cone_ovoid (pine)",   "beechnuts (beech)",  "coconuts (palm)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
-                                   "ringed (palm)",  "mottled (beech)", "fissured (ash)", "fibrous (cypress)"};
+                                   "ringed (palm)",  "mottled (fir)", "fissured (ash)", "fibrous (cypress)",
+                                   "silver (beech)"};
 static_assert(std::size(bark_labels) == size_t(bark_archetype_count));
 
 image contact_sheet(int size) {

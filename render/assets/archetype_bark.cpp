@@ -226,9 +226,11 @@ void bark_ringed(bark_field& f, uint64_t seed) {
     }
 }
 
-void bark_mottled(bark_field& f, uint64_t seed) {
-  // Fagus sylvatica (also young Abies): thin, smooth, silver-grey bark with no lenticel dashes;
-  // soft lighter and darker mottles, faint horizontal wrinkles, a few small dark spots.
+namespace {
+
+// Thin, smooth grey bark: soft lighter and darker mottles and faint horizontal wrinkles; `spots`
+// adds a few small dark spots (a young fir's resin blisters), `wrinkles` scales the wrinkles.
+void smooth_grey(bark_field& f, uint64_t seed, bool spots_on, float wrinkles) {
   const lattice mottle(4, 3, seed + 1), mottle2(9, 7, seed + 2), wrinkle(4, 60, seed + 3), fine(90, 90, seed + 4);
   const cells spots(9, 12, seed + 5, 0.4f);
   const vec3 light = srgb_color(236, 236, 232), shadow = srgb_color(196, 194, 188), spot_col = srgb_color(120, 116, 110);
@@ -240,17 +242,36 @@ void bark_mottled(bark_field& f, uint64_t seed) {
       const float w = wrinkle(u, v), fn = fine(u, v);
       // One possible spot per cell, round and small around the cell's point (jitter 0.4 keeps it
       // inside its cell).
-      const float fx = u * float(spots.cx), fy = v * float(spots.cy);
-      const int id = wrap(int(ffloor(fy)), spots.cy) * spots.cx + wrap(int(ffloor(fx)), spots.cx);
-      const vec2 cell_pt = spots.points[size_t(id)];
-      const float dx = fx - ffloor(fx) - cell_pt.x, dy = fy - ffloor(fy) - cell_pt.y;
-      const float spot = unit(seed * 313 + uint64_t(id)) < 0.1f ? 1 - smooth(0.01f, 0.05f, dx * dx + dy * dy) : 0.0f;
+      float spot = 0;
+      if (spots_on) {
+        const float fx = u * float(spots.cx), fy = v * float(spots.cy);
+        const int id = wrap(int(ffloor(fy)), spots.cy) * spots.cx + wrap(int(ffloor(fx)), spots.cx);
+        const vec2 cell_pt = spots.points[size_t(id)];
+        const float dx = fx - ffloor(fx) - cell_pt.x, dy = fy - ffloor(fy) - cell_pt.y;
+        spot = unit(seed * 313 + uint64_t(id)) < 0.1f ? 1 - smooth(0.01f, 0.05f, dx * dx + dy * dy) : 0.0f;
+      }
       const size_t k = size_t(y) * n + x;
-      f.height[k] = 0.3f * w + 0.22f * fn + 0.2f * m - 0.3f * spot;  // thin bark: soft, shallow relief
-      vec3 c = mix3(shadow, light, smooth(0.1f, 0.9f, m)) * (0.96f + 0.06f * w + 0.04f * fn);
+      f.height[k] = 0.3f * wrinkles * w + 0.22f * fn + 0.2f * m - 0.3f * spot;  // thin bark: soft, shallow relief
+      vec3 c = mix3(shadow, light, smooth(0.1f, 0.9f, m)) * (0.96f + 0.06f * wrinkles * w + 0.04f * fn);
       c = mix3(c, spot_col, 0.6f * spot);
       f.paint(k, c, 0.55f + 0.15f * (1 - m) + 0.1f * spot);
     }
+}
+
+}  // namespace
+
+void bark_mottled(bark_field& f, uint64_t seed) {
+  // Young Abies (and the beech until round 18): thin, smooth, silver-grey bark with no lenticel
+  // dashes; soft lighter and darker mottles, faint horizontal wrinkles, a few small dark spots
+  // (a fir's resin blisters).
+  smooth_grey(f, seed, true, 1.0f);
+}
+
+void bark_silver(bark_field& f, uint64_t seed) {
+  // Fagus sylvatica: smooth silver-grey "elephant skin" with no spots at all (round 18's reader
+  // took the mottled bark's dots for "a young ash or cherry"); the horizontal wrinkles, where the
+  // thin bark creases as the trunk widens, a little deeper than the fir's.
+  smooth_grey(f, seed + 0x5EED, false, 1.4f);
 }
 
 void bark_fissured(bark_field& f, uint64_t seed) {

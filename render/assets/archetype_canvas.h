@@ -370,6 +370,7 @@ void bark_ringed(bark_field& f, uint64_t seed);
 void bark_mottled(bark_field& f, uint64_t seed);
 void bark_fissured(bark_field& f, uint64_t seed);
 void bark_fibrous(bark_field& f, uint64_t seed);
+void bark_silver(bark_field& f, uint64_t seed);
 // Scales the heights by relief (height units per tile width) and makes the normal map.
 bark_texture_set finish_bark(bark_field& f, float relief);
 

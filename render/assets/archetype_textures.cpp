@@ -64,7 +64,7 @@ struct bark_entry {
 };
 const bark_entry bark_table[] = {
     {bark_furrowed, 14}, {bark_plated, 10}, {bark_smooth, 4}, {bark_peeling, 9},
-    {bark_ringed, 8},    {bark_mottled, 5}, {bark_fissured, 9}, {bark_fibrous, 9},
+    {bark_ringed, 8},    {bark_mottled, 5}, {bark_fissured, 9}, {bark_fibrous, 9}, {bark_silver, 5},
 };
 static_assert(std::size(bark_table) == size_t(bark_archetype_count), "one bark_table row per bark archetype");
 

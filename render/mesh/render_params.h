@@ -106,7 +106,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.ambient, param_info{"ambient", "Ambient", "", 0, 2, "Strength of the sky light on the tree and ground (1: the sky's own)"});
   v(p.exposure, param_info{"exposure", "Exposure", "", 0.05f, 8, "Exposure before tonemapping (times the automatic one when on)", param_log});
   v(p.auto_exposure, param_info{"auto_exposure", "Auto exposure", "", 0, 1, "Expose for the frame's mean log luminance, so noon and golden hour both read"});
-  v(p.bark, param_info{"bark_archetype", "Bark", "", 0, bark_archetype_count - 1, "Procedural bark: furrowed (oak), plated (pine), smooth with lenticels (birch), peeling strips, ringed leaf scars (palm), mottled smooth grey (beech, fir), fissured grey (ash, true cedar), fibrous shreds (cypress, thuja)", 0, "Materials", bark_archetype_names});
+  v(p.bark, param_info{"bark_archetype", "Bark", "", 0, bark_archetype_count - 1, "Procedural bark: furrowed (oak), plated (pine), smooth with lenticels (birch), peeling strips, ringed leaf scars (palm), mottled smooth grey with resin spots (fir), fissured grey (ash, true cedar), fibrous shreds (cypress, thuja), silver smooth creased grey (beech)", 0, "Materials", bark_archetype_names});
   v(p.bark_color, param_info{"bark_color", "Bark colour", "", 0, 1, "Bark tint (linear RGB)"});
   v(p.leaf_color, param_info{"leaf_color", "Leaf colour", "", 0, 1, "Leaf tint (linear RGB)"});
   v(p.ground, param_info{"ground", "Ground", "", 0, 1, "Draw the ground plane"});
