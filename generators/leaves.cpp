@@ -219,6 +219,11 @@ void keep_leaves_above_ground(std::vector<leaf>& leaves, float ground) {
   const auto lowest = card_lowest_y;
   std::erase_if(leaves, [&](leaf& l) {
     if (l.position.y < ground) return true;
+    // A card reaches at most 1.5 sizes from its petiole along axes a unit quaternion turns, and any
+    // quaternion q lengthens a unit axis to at most 1 + 3|q|²: a leaf twice 1 + 4|q|² sizes above
+    // the ground keeps its frame without turning the axes (most of a crown).
+    const float reach = std::abs(l.size) * (1.0f + 4.0f * glm::dot(l.orientation, l.orientation));
+    if (l.position.y - 2.0f * reach >= ground) return false;
     const glm::vec3 x = l.orientation * glm::vec3(1, 0, 0), y = l.orientation * glm::vec3(0, 1, 0);
     if (lowest(l, x, y) >= ground) return false;
     // Mirror the frame in the horizontal plane and flip the normal back to the sky, which keeps it
