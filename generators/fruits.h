@@ -66,8 +66,9 @@ inline bool param_relevant(const fruit_params& p, const void* field, const param
 // seeded hash of each site's node so the choice does not depend on the order of the nodes and a
 // higher count keeps the fruit already placed. A tip is a node alive at the last step with no
 // living child; an axil is the first node of a branch (its parent has a lower order), and its
-// fruit hangs `p.reach` metres out along the branch from the junction (at most to its tip). Each fruit appears at the last step (the mature tree bears
-// them) and is shed with its node. Fruit below `ground` is dropped.
+// fruit hangs `p.reach` metres out along the branch from the junction (at most to its tip). Each
+// fruit appears at the last step (the mature tree bears them) and is shed with its node. Fruit
+// below `ground` is dropped.
 void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, float ground, std::vector<leaf>& out);
 
 }  // namespace sylva

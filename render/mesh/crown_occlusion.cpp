@@ -65,9 +65,9 @@ void bake_sky(leaf_grid& g, float window) {
             for (size_t x = 0; x < nx; ++x) out[x] = own[x] + 0.0f;
             continue;
           }
-          const float* from = prefix.data() + g.at(0, y + 1, z + dz) + dx;
+          const float* from = prefix.data() + g.at(0, y + 1, z + dz);   // read at x + dx, inside for x in [xa, xb)
           for (int x = 0; x < xa; ++x) out[x] = own[x] + 0.0f;
-          for (int x = xa; x < xb; ++x) out[x] = own[x] + from[x];
+          for (int x = xa; x < xb; ++x) out[x] = own[x] + from[x + dx];
           for (int x = xb; x < g.nx; ++x) out[x] = own[x] + 0.0f;
         }
       // Layers in parallel: each cell gets its directions' terms in the same order as on one thread.
@@ -82,11 +82,11 @@ void bake_sky(leaf_grid& g, float window) {
             const float* own = lad.data() + c;
             const int by = y + steps, bz = z + steps * dz;
             const bool far = by < g.ny && bz >= 0 && bz < g.nz && ba < bb;
-            const float* beyond = far ? prefix.data() + g.at(0, by, bz) + steps * dx : nullptr;
+            const float* beyond = far ? prefix.data() + g.at(0, by, bz) : nullptr;   // read at x + steps·dx
             // (the cell's own leaves do not shade it)
             for (int x = 0; x < (far ? ba : g.nx); ++x) depth[size_t(x)] = std::max(pre[x] - 0.0f - own[x], 0.0f) * ds;
             if (far) {
-              for (int x = ba; x < bb; ++x) depth[size_t(x)] = std::max(pre[x] - beyond[x] - own[x], 0.0f) * ds;
+              for (int x = ba; x < bb; ++x) depth[size_t(x)] = std::max(pre[x] - beyond[x + steps * dx] - own[x], 0.0f) * ds;
               for (int x = bb; x < g.nx; ++x) depth[size_t(x)] = std::max(pre[x] - 0.0f - own[x], 0.0f) * ds;
             }
             // No foliage in the window (most cells round and above a crown): exp(∓0) is exactly 1.
