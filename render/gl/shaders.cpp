@@ -46,8 +46,9 @@ const char* const bark_vs = R"(#version 330 core
 layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv; layout(location = 3) in uint a_node; layout(location = 4) in float a_ao;
 uniform mat4 u_viewproj; uniform samplerBuffer u_radius;
-out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive; out float v_ao;
+out vec3 v_world; out vec3 v_normal; out vec2 v_uv; out float v_alive; out float v_ao; out float v_height;
 void main() {
+  v_height = a_position.y;   // above the ground, at rest: the bark tint's blend (render/mesh/bark_tint.h)
   // Per node: (where the wood pass had the node at the shown step minus where the mesh has it,
   // radius at the shown step minus the radius the vertex was built with, or -1e30 when not alive)
   vec4 r = texelFetch(u_radius, int(a_node));
@@ -62,8 +63,9 @@ void main() {
 )";
 
 const char* const bark_fs_body = R"(
-in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive; in float v_ao;
+in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive; in float v_ao; in float v_height;
 uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform sampler2D u_bark_rough; uniform vec3 u_bark_color;
+uniform vec3 u_bark_base_color; uniform float u_bark_base_height;
 uniform vec3 u_eye;
 out vec4 o_color;
 // Tangent frame from screen-space derivatives (Schüler 2006), so the mesh needs no tangents.
@@ -84,7 +86,9 @@ void main() {
   vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
   if (dot(n, n0) < 0.2) n = n0;
   // tinted_texture's formula (render/assets/textures.h): albedo = min(1, gain * tint * texel), texel linear.
-  vec3 albedo = min(vec3(1.0), TINT_GAIN * u_bark_color * texture(u_bark, v_uv).rgb);
+  // The tint by height: the base colour at the ground shading to the bark colour (bark_tint::at).
+  vec3 tint = u_bark_base_height > 0.0 ? mix(u_bark_base_color, u_bark_color, smoothstep(0.0, u_bark_base_height, v_height)) : u_bark_color;
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * tint * texture(u_bark, v_uv).rgb);
   float sh = shadow_at(v_world, n);
   float ndl = max(dot(n, u_sun_dir), 0.0);
   // A mild dielectric highlight (F0 = 0.04) from the roughness map: Blinn-Phong with the exponent

@@ -67,6 +67,8 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
 void apply_render_params(export_options& o, const render_params& rp) {
   o.bark = rp.bark;
   o.bark_color = rp.bark_color;
+  o.bark_base_color = rp.bark_base_color;
+  o.bark_base_height = rp.bark_base_height;
   o.season = season_leaf_look(rp);
   o.leaf_color = o.season.evergreen_color;
   o.alpha_cutoff = rp.alpha_cutoff;

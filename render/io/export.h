@@ -53,6 +53,10 @@ struct export_options {
   bark_archetype bark = bark_archetype::furrowed;
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};  // linear RGB tints, baked into the procedural textures'
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};  // PNGs by tinted_texture (the viewport's formula)
+  // Bark colour by height (render/mesh/bark_tint.h): with bark_base_height > 0 the texture takes the
+  // brighter tint and the bark's COLOR_0 the blend; OBJ and FBX keep the bark colour alone.
+  glm::vec3 bark_base_color{0.3f, 0.28f, 0.26f};
+  float bark_base_height = 0;
   float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
   float leaf_normal_blend = 0.6f;       // leaf normals bent toward the crown (render/mesh/leaf_shading.h)
   // The season (render/mesh/season.h): deciduous archetypes' materials take the middle of its colour

@@ -331,7 +331,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
                            const std::string& prefix, size_t& triangles, std::vector<int>& out, int skin = -1,
                            const lod_name* level = nullptr) {
   const bool one = mats.src.one_leaf_material();
-  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one, mats.src.leaf_normal_blend());
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one, mats.src.leaf_normal_blend(), mats.src.bark_colors());
   for (size_t k = 0; k < parts.size(); ++k) {
     const tree_part& part = parts[k];
     json tree = {{"name", prefix + (parts.size() > 1 ? "tree_" + std::to_string(k + 1) : "tree")}};

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/io/export.h"
+#include "render/mesh/bark_tint.h"
 #include "render/mesh/leaf_shading.h"
 #include "render/mesh/lod_cards.h"
 #include "render/assets/textures.h"
@@ -93,8 +95,9 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t);
 // at `step` are baked into quads (one geometry per leaf slot) unless `bake` is false, in which
 // case they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
 // normal_blend (render/mesh/leaf_shading.h).
+// The bark's COLOR_0 is its crown occlusion times tint.ratio(y) (render/mesh/bark_tint.h).
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
-                                   float normal_blend);
+                                   float normal_blend, const bark_tint& tint = {});
 
 void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mesh_params& p, int step);
 
@@ -198,6 +201,13 @@ class material_source {
     return std::string("leaves_") + leaf_archetype_names[std::clamp(slot, 0, leaf_archetype_count - 1)];
   }
   float alpha_cutoff() const { return std::clamp(o_.alpha_cutoff, 0.0f, 1.0f); }
+  // Bark colour by height (render/mesh/bark_tint.h): glTF carries the blend in the bark's COLOR_0
+  // (split_parts) and tints the texture with its brighter end; OBJ (no vertex colours) and FBX (whose
+  // importers do not multiply them in) call without_vertex_colors() first and keep the bark colour.
+  bark_tint bark_colors() const {
+    return {o_.bark_color, o_.bark_base_color, vertex_colors_ && std::isfinite(o_.bark_base_height) ? o_.bark_base_height : 0.0f};
+  }
+  void without_vertex_colors() { vertex_colors_ = false; }
   float leaf_normal_blend() const { return o_.leaf_normal_blend; }
 
   // The PNGs of a material, made on first use; nullptr after an encoding failure (see error).
@@ -206,7 +216,7 @@ class material_source {
     material_pngs m;
     if (user_bark_) {
       m.color = png_of(bark_color_);
-    } else if (auto p = procedural_pngs(true, int(o_.bark), size_, o_.texture_seed, o_.bark_color, error)) {
+    } else if (auto p = procedural_pngs(true, int(o_.bark), size_, o_.texture_seed, bark_colors().peak(), error)) {
       m = *p;
     }
     if (user_bark_normal_) m.normal = png_of(bark_normal_);
@@ -268,6 +278,7 @@ class material_source {
   std::string& warning_;
   bool user_bark_ = false, user_bark_normal_ = false, user_leaf_ = false;
   user_image bark_color_, bark_normal_, leaf_;
+  bool vertex_colors_ = true;
   std::optional<material_pngs> bark_;
   std::array<std::optional<material_pngs>, leaf_slots> leaves_;
   std::shared_ptr<const baked_card_textures> cards_;

@@ -56,6 +56,7 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   const std::string stem = stem_path(path), stem_name = png_stem.empty() ? file_name(stem) : png_stem;
   const int s = collect ? std::max(t.steps, 0) : o.step < 0 ? std::max(t.steps, 0) : std::min(o.step, std::max(t.steps, 0));
   material_source src(o, r.warning);
+  src.without_vertex_colors();
   step_view v;
   if (collect) v.skeleton = &t, v.mesh = &m;
   else view_at(v, t, m, o.mesh, s);

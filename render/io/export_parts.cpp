@@ -134,7 +134,7 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t) {
 // baked into quads (one geometry per leaf slot) unless `bake` is false, in which case they are
 // left to the caller.
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
-                                   float normal_blend) {
+                                   float normal_blend, const bark_tint& tint) {
   const std::vector<int32_t> tree_of = plant_of_nodes(t);
   int trees = 0;
   for (int32_t k : tree_of) trees = std::max(trees, k + 1);
@@ -173,7 +173,9 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       const float len = glm::length(tan);
       tan = len > 1e-12f ? tan / len : glm::vec3(1, 0, 0);
       g.tangent.push_back(glm::vec4(tan, 1.0f));
-      if (m.occlusion.size() == nv) g.color.push_back(glm::vec3(m.occlusion[v]));
+      const bool occluded = m.occlusion.size() == nv;
+      if (occluded || tint.blends())
+        g.color.push_back((occluded ? m.occlusion[v] : 1.0f) * (tint.blends() ? tint.ratio(m.position[v].y) : glm::vec3(1)));
       g.node.push_back(node);
     }
     g.index.push_back(local[v]);

@@ -49,6 +49,8 @@ struct render_params {
   bool auto_exposure = true;
   bark_archetype bark = bark_archetype::furrowed;   // procedural bark texture set
   glm::vec3 bark_color{0.45f, 0.34f, 0.25f};
+  glm::vec3 bark_base_color{0.3f, 0.28f, 0.26f};  // the bark at the ground, shading to bark_color
+  float bark_base_height = 0;                     // ... by this height (m); 0: one colour (render/mesh/bark_tint.h)
   glm::vec3 leaf_color{0.30f, 0.55f, 0.18f};
   bool ground = true;
   glm::vec3 ground_color{0.16f, 0.20f, 0.09f};
@@ -108,6 +110,8 @@ void visit_params(P& p, V&& visitor) {
   v(p.auto_exposure, param_info{"auto_exposure", "Auto exposure", "", 0, 1, "Expose for the frame's mean log luminance, so noon and golden hour both read"});
   v(p.bark, param_info{"bark_archetype", "Bark", "", 0, bark_archetype_count - 1, "Procedural bark: furrowed (oak), plated (pine), smooth with lenticels (birch), peeling strips, ringed leaf scars (palm), mottled smooth grey with resin spots (fir), fissured grey (ash, true cedar), fibrous shreds (cypress, thuja), silver smooth creased grey (beech)", 0, "Materials", bark_archetype_names});
   v(p.bark_color, param_info{"bark_color", "Bark colour", "", 0, 1, "Bark tint (linear RGB)"});
+  v(p.bark_base_height, param_info{"bark_base_height", "Base bark height", "", 0, 30, "The bark shades from the base colour at the ground to the bark colour by this height (metres), as a Scots pine's grey foot turns to orange bark up the stem (0: one colour)"});
+  v(p.bark_base_color, param_info{"bark_base_color", "Base bark colour", "", 0, 1, "Bark tint at the ground when the base bark height is above 0 (linear RGB)"});
   v(p.leaf_color, param_info{"leaf_color", "Leaf colour", "", 0, 1, "Leaf tint (linear RGB)"});
   v(p.ground, param_info{"ground", "Ground", "", 0, 1, "Draw the ground plane"});
   v(p.ground_color, param_info{"ground_color", "Ground colour", "", 0, 1, "Ground albedo (linear RGB)"});
