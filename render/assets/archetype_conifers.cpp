@@ -11,35 +11,57 @@ namespace sylva::archetype {
 // length and width follow: e.g. a 0.2 m pine card makes 0.26 card = 5 cm needles, 1.5 mm wide.
 
 void draw_needles(leaf_canvas& c, rng& g) {
-  // Pinus sylvestris shoot tip: pairs of fine, slightly twisted needles (a fascicle, its two
-  // needles parting a little) set spirally along the twig and angled forward, the youngest at the
-  // tip crowded into a brush. Thin enough that the sky shows between them.
-  auto twig = [](float t) { return vec2(0.5f + 0.015f * std::sin(3.0f * t), 0.66f * t); };
-  stroke_style needle{0.92f, 0.0f, 0.3f, 0.12f};
-  const int fascicles = 56;
+  // Pinus sylvestris shoot tip, drawn so the pairs read at 1-3 m (round 19's reader saw the old
+  // card's 56 tight pairs as "dense fir-like brush shoots, not needles in paired bundles"): the
+  // twig's older lower part is bare but for the brown scale leaves (the needles of a Scots pine
+  // live 2-4 years, so they crowd the last shoots); above them 22 fascicles, each two stiff,
+  // slightly twisted needles of 4-7 cm from one short sheath, parted 20-40 degrees into a V
+  // (paired, twisted and spreading: Mitchell 1974); the youngest, shorter ones stand
+  // forward round the terminal bud cluster, a brush only at the very tip.
+  auto twig = [](float t) { return vec2(0.5f + 0.012f * std::sin(3.0f * t), 0.62f * t); };
+  stroke_style needle{0.92f, 0.0f, 0.3f, 0.14f};
+  const stroke_style sheath{0.4f, 1.0f, 0.05f, 0};
+  for (int i = 0; i < 7; ++i) {  // scale leaves on the bare part
+    const float t = 0.03f + 0.045f * float(i);
+    const vec2 p = twig(t);
+    const float side = (i % 2) ? 1.0f : -1.0f;
+    stroke(c, p, p + heading(90 + side * 55) * 0.012f, 0.0038f, 0.0012f, sheath);
+  }
+  const int fascicles = 22;
   for (int i = 0; i < fascicles; ++i) {
-    const float t = 0.05f + 0.95f * float(i) / float(fascicles - 1);
+    const float t = 0.3f + 0.68f * float(i) / float(fascicles - 1);
     const vec2 p = twig(t);
     // The spiral seen from the side: the fascicle's azimuth sets how far it leans out of the twig.
     const float lean = std::sin(2.39996f * float(i));  // golden angle
-    const float spread = (62 - 34 * t) * (0.35f + 0.65f * std::abs(lean)) + g.range(-6, 6);
+    const float spread = (58 - 30 * t) * (0.45f + 0.55f * std::abs(lean)) + g.range(-5, 5);
     const float ang = 90 + (lean < 0 ? -spread : spread);
+    const float part = g.range(12, 20) * (0.55f + 0.45f * std::abs(lean));  // half the V's opening
+    const vec2 base = p + heading(ang) * 0.012f;
+    stroke(c, p, base, 0.0046f, 0.0036f, sheath);
     for (int k = 0; k < 2; ++k) {
-      const float a = ang + (k ? 1.0f : -1.0f) * g.range(3, 8);
-      const vec2 d = heading(a);
-      const float len = fit(p, d, g.range(0.22f, 0.3f) * (1 - 0.25f * t));
-      needle.shade = g.range(0.82f, 1.0f);
-      stroke(c, p, p + d * len, 0.0056f, 0.0009f, needle);
+      // A twisted needle: its course turns a little along its length (drawn as a gentle arc).
+      const float a0 = ang + (k ? 1.0f : -1.0f) * part;
+      const float len = g.range(0.25f, 0.33f) * (1 - 0.3f * t);
+      const float turn = g.range(-9, 9);
+      needle.shade = g.range(0.8f, 1.0f);
+      const vec2 m = base + heading(a0) * (0.5f * len);
+      const vec2 d2 = heading(a0 + turn);
+      const vec2 e = m + d2 * fit(m, d2, 0.5f * len);
+      stroke(c, base, m, 0.0062f, 0.0052f, needle);
+      stroke(c, m, e, 0.0052f, 0.0011f, needle);
     }
-    stroke(c, p - heading(ang) * 0.004f, p + heading(ang) * 0.01f, 0.0042f, 0.0032f, {0.45f, 1.0f, 0.05f, 0});  // sheath
   }
-  curve_stroke(c, twig, 5, 0.0085f, 0.0055f, twig_style);
-  // The terminal bud's brush of young needles.
+  curve_stroke(c, twig, 5, 0.0095f, 0.0065f, twig_style);
+  // The bud cluster: a terminal bud and its ring of lateral buds, with the youngest needles.
   const vec2 tip = twig(1.0f);
-  for (int k = 0; k < 12; ++k) {
-    const float a = 90 + g.range(-28, 28);
+  for (int k = 0; k < 8; ++k) {
+    const float a = 90 + g.range(-30, 30);
     const vec2 d = heading(a);
-    stroke(c, tip, tip + d * fit(tip, d, g.range(0.17f, 0.26f)), 0.0032f, 0.0007f, needle);
+    stroke(c, tip, tip + d * fit(tip, d, g.range(0.13f, 0.2f)), 0.005f, 0.001f, needle);
+  }
+  for (int k = -1; k <= 1; ++k) {
+    const vec2 d = heading(90 + 28.0f * float(k));
+    stroke(c, tip, tip + d * (k ? 0.026f : 0.036f), 0.0075f, 0.003f, sheath);
   }
 }
 

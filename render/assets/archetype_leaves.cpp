@@ -59,12 +59,12 @@ void darken_silhouette(leaf_canvas& c, float amount, float width_px, float dome)
     }
 }
 
-void draw_palmate(leaf_canvas& c, rng&) {
-  const vec2 centre{0.5f, 0.31f};
-  stroke(c, {0.5f, 0.0f}, centre + vec2(0, 0.01f), 0.0065f, 0.006f, petiole_style);
+// One Norway maple blade (Acer platanoides: five pointed lobes with a few large teeth, palmate
+// venation from the petiole's tip at centre); turn rotates it (0 = pointing up the card), size
+// scales it (1 = the palmate card's leaf).
+static void palmate_blade(leaf_canvas& c, vec2 centre, float turn, float size) {
   blade_style st;
   st.vein_angle = 50, st.veins = 6, st.serration = 0.0f, st.edge_dark = 0, st.midrib = 0, st.dome = 0;
-  // Acer platanoides: five pointed lobes with a few large teeth; palmate venation from the centre.
   auto lobe = [](float t, int) {
     const float body = std::pow(1 - t, 0.9f) * (0.5f + 0.5f * smooth(0.0f, 0.3f, t));
     // Two or three big pointed teeth on each side of the lobe's upper half.
@@ -77,12 +77,49 @@ void draw_palmate(leaf_canvas& c, rng&) {
   const float widths[5] = {0.16f, 0.27f, 0.29f, 0.27f, 0.16f};
   for (int k : {0, 4, 1, 3, 2}) {
     st.bend = k == 0 ? -0.05f : k == 4 ? 0.05f : 0.0f;
-    blade(c, centre, angles[k], fit(centre, heading(angles[k]), lengths[k]), widths[k], lobe, st);
+    const float a = angles[k] + turn;
+    blade(c, centre, a, fit(centre, heading(a), lengths[k] * size), widths[k] * size, lobe, st);
   }
   // The main veins all leave the petiole's tip, drawn over the joined lobes.
   const stroke_style vein{1.08f, 0.9f, 0.35f, 0};
-  for (int k = 0; k < 5; ++k)
-    stroke(c, centre, centre + heading(angles[k]) * (0.85f * fit(centre, heading(angles[k]), lengths[k])), 0.0032f, 0.001f, vein);
+  for (int k = 0; k < 5; ++k) {
+    const float a = angles[k] + turn;
+    stroke(c, centre, centre + heading(a) * (0.85f * fit(centre, heading(a), lengths[k] * size)), 0.0032f * std::sqrt(size),
+           0.001f, vein);
+  }
+}
+
+void draw_palmate(leaf_canvas& c, rng&) {
+  const vec2 centre{0.5f, 0.31f};
+  stroke(c, {0.5f, 0.0f}, centre + vec2(0, 0.01f), 0.0065f, 0.006f, petiole_style);
+  palmate_blade(c, centre, 0, 1);
+  darken_silhouette(c, 0.28f, 4, 0.012f);
+}
+
+// A young Norway maple's leading shoot (Acer platanoides: leaves opposite, in pairs set crosswise
+// on long petioles, 8-15 cm, so each pair stands clear of the next; the shoot ends in a fat
+// terminal bud between two smaller ones): two pairs and a young pair at the tip, drawn flat as a
+// pressed shoot so that the opposite arrangement, which sets maples apart from planes and
+// sweetgums (alternate), reads on the card.
+void draw_maple_spray(leaf_canvas& c, rng& g) {
+  auto twig = [](float t) { return vec2(0.5f + 0.01f * std::sin(4.0f * t), 0.66f * t); };
+  struct node { float t, ang, petiole, size; };
+  const node nodes[3] = {{0.2f, 62, 0.15f, 0.36f}, {0.62f, 48, 0.12f, 0.33f}, {0.97f, 24, 0.05f, 0.18f}};
+  for (const node& n : nodes) {
+    const vec2 p = twig(n.t);
+    for (int side : {-1, 1}) {
+      const float ang = 90 + float(side) * (n.ang + g.range(-4, 4));
+      const vec2 q = p + heading(ang) * n.petiole;
+      stroke(c, p, q, 0.0048f, 0.0038f, petiole_style);
+      // The blade turns a little back toward the shoot's tip from its petiole's line.
+      palmate_blade(c, q, ang - 90 - float(side) * g.range(8, 16), n.size * g.range(0.94f, 1.06f));
+    }
+  }
+  curve_stroke(c, twig, 6, 0.011f, 0.007f, twig_style);
+  const vec2 tip = twig(1.0f);
+  const stroke_style bud{0.5f, 1.0f, 0.1f, 0};
+  stroke(c, tip, tip + vec2(0, 0.03f), 0.009f, 0.004f, bud);
+  for (int side : {-1, 1}) stroke(c, tip, tip + heading(90 + float(side) * 30) * 0.018f, 0.006f, 0.003f, bud);
   darken_silhouette(c, 0.28f, 4, 0.012f);
 }
 

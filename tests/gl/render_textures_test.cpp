@@ -113,7 +113,9 @@ TEST_F(RenderTextures, NineLeafLayersOneDrawAndEachArchetypeShowsItsOwnCard) {
       n += leaf[k];
       if (leaf[k]) green += px[k * 4 + 1];
     }
-    EXPECT_GT(n, leaf.size() / 12) << leaf_archetype_names[a] << ": the card hardly shows";
+    // The pine card's 22 open pairs of needles cover about 7 % of it (render/assets/archetype_conifers.cpp).
+    const size_t least = leaf.size() / (leaf_archetype(a) == leaf_archetype::needles ? 20 : 12);
+    EXPECT_GT(n, least) << leaf_archetype_names[a] << ": the card hardly shows";
     EXPECT_GT(green / double(std::max<size_t>(n, 1)), 60.0) << leaf_archetype_names[a] << ": lit leaf texels are dark";
     masks.push_back(std::move(leaf));
   }

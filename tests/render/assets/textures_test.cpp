@@ -149,7 +149,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.30, 0.75},  // lobed
       {0.30, 0.75},  // palmate
       {0.15, 0.60},  // pinnate: leaflets and the gaps between them
-      {0.08, 0.45},  // needles: fine needles, sky between them
+      {0.06, 0.45},  // needles: 22 open V-shaped pairs, much sky between them
       {0.12, 0.50},  // flat spray
       {0.15, 0.60},  // scale spray
       {0.04, 0.30},  // palm frond: three narrow leaflets
@@ -166,6 +166,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.10, 0.35},  // cone_ovoid: a short egg on a stalk
       {0.08, 0.35},  // beechnuts: two bristly cupules
       {0.15, 0.50},  // coconuts: a bunch of big nuts
+      {0.15, 0.60},  // maple spray: three opposite pairs on a shoot, sky between the pairs
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
