@@ -13,9 +13,11 @@
 
 namespace sylva {
 
-enum class envelope_shape : int { box = 0, sphere, ellipsoid, hemisphere, cylinder, cone, slab, mesh };
+// flame: a spindle widest a quarter of the way up, rounded below and drawn out to a point at the
+// top (Lombardy poplar, Italian cypress; space_colonization_envelope.cpp, flame_radius).
+enum class envelope_shape : int { box = 0, sphere, ellipsoid, hemisphere, cylinder, cone, slab, mesh, flame };
 inline constexpr const char* envelope_shape_names[] = {"box",      "sphere", "ellipsoid", "hemisphere", "cylinder",
-                                                       "cone",     "slab",   "mesh",      nullptr};
+                                                       "cone",     "slab",   "mesh",      "flame",      nullptr};
 
 struct space_colonization_params {
   // Envelope: where the attraction points lie.
@@ -63,7 +65,7 @@ struct space_colonization_params {
 template <params_of<space_colonization_params> P, class V>
 void visit_params(P& p, V&& visitor) {
   auto v = declare_class(visitor, param_regrow);   // the generator reads them: a change regrows
-  v(p.envelope, param_info{"envelope", "Envelope", "", 0, 7, "Shape the attraction points fill uniformly; mesh: a closed OBJ file", param_on_release, "Envelope", envelope_shape_names});
+  v(p.envelope, param_info{"envelope", "Envelope", "", 0, 8, "Shape the attraction points fill uniformly; mesh: a closed OBJ file; flame: widest a quarter of the way up, tapering to a point (Lombardy poplar)", param_on_release, "Envelope", envelope_shape_names});
   v(p.points, param_info{"points", "Attraction points", "N", 0, 2000000, "Number of attraction points sampled in the envelope (seeded)", param_log | param_on_release});
   v(p.size, param_info{"size", "Size", "", 0.01f, 1000, "Bounding box of the envelope in metres (x, y up, z); a sphere uses x as its diameter, a slab x and y", param_on_release});
   v(p.offset, param_info{"offset", "Offset", "", -1000, 1000, "Centre of the envelope's bounding box in metres; the root stands at the origin", param_on_release});

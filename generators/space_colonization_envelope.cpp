@@ -155,6 +155,19 @@ bool inside_mesh(const envelope_mesh_data& m, const glm::vec3& q) {
   return hits & 1;
 }
 
+// The flame's radius (share of the half-width) at t = 0 (bottom) .. 1 (top): a quarter ellipse up
+// to its widest at t = 0.25, then (1 - u)^0.85 over the remaining height u, a slightly convex
+// taper to the point.
+float flame_radius(float t) {
+  constexpr float widest = 0.25f;
+  if (t < 0.0f || t > 1.0f) return 0.0f;
+  if (t < widest) {
+    const float d = (widest - t) / widest;
+    return std::sqrt(std::max(0.0f, 1.0f - d * d));
+  }
+  return std::pow(1.0f - (t - widest) / (1.0f - widest), 0.85f);
+}
+
 // Inside test in the envelope's normalised box [-1,1]^3.
 bool inside_shape(envelope_shape s, const glm::vec3& q, const envelope_mesh_data* m) {
   switch (s) {
@@ -172,6 +185,10 @@ bool inside_shape(envelope_shape s, const glm::vec3& q, const envelope_mesh_data
       return q.x * q.x + q.z * q.z <= f * f;
     }
     case envelope_shape::mesh: return m && inside_mesh(*m, q);
+    case envelope_shape::flame: {
+      const float r = flame_radius((q.y + 1.0f) * 0.5f);
+      return q.x * q.x + q.z * q.z <= r * r;
+    }
   }
   return false;
 }
@@ -227,6 +244,15 @@ std::vector<glm::vec3> outline_shape(envelope_shape s, const envelope_mesh_data*
       add_arc(o, -Y, X, Z, 0, 2 * pi, 48);
       for (glm::vec3 d : {X, -X, Z, -Z}) o.push_back(d - Y), o.push_back(Y);
       break;
+    case envelope_shape::flame: {   // the widest ring and two profiles
+      add_arc(o, -0.5f * Y, X, Z, 0, 2 * pi, 48);
+      for (glm::vec3 d : {X, -X, Z, -Z})
+        for (int i = 0; i < 24; ++i) {
+          const float t0 = float(i) / 24, t1 = float(i + 1) / 24;
+          o.push_back(d * flame_radius(t0) + Y * (2 * t0 - 1)), o.push_back(d * flame_radius(t1) + Y * (2 * t1 - 1));
+        }
+      break;
+    }
     case envelope_shape::mesh:
       if (m)
         for (size_t k = 0; k < m->edges.size() && k < 50000; ++k)
