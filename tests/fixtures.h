@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "generators/lsystem.h"
+#include "render/io/export.h"
 #include "render/io/preset.h"
 
 namespace sylva_test {
@@ -19,6 +21,27 @@ inline sylva::preset shipped_preset(const std::string& name, std::vector<std::st
   EXPECT_TRUE(r.ok) << name << ": " << r.error;
   if (warnings) *warnings = r.warnings;
   return p;
+}
+
+// The export tests' tree: Honda's tree a (lsystem_params' defaults) after `derivations` steps,
+// meshed with 6 radial segments, and export options that re-mesh it alike, with textures of
+// texture_size pixels.
+struct honda_export {
+  sylva::tree_skeleton t;
+  sylva::tree_mesh m;
+  sylva::export_options o;
+};
+inline honda_export honda_for_export(int derivations, int texture_size) {
+  sylva::lsystem_params lp;
+  lp.derivations = derivations;
+  honda_export h;
+  h.t = sylva::grow_honda(lp, {});
+  sylva::mesh_params p;
+  p.radial_segments = 6;
+  h.m = sylva::mesh_tree(h.t, p);
+  h.o.mesh = p;
+  h.o.texture_size = texture_size;
+  return h;
 }
 
 }  // namespace sylva_test

@@ -6,9 +6,9 @@
 
 #include <tiny_gltf.h>
 
-#include "generators/lsystem.h"
 #include "render/io/export.h"
 #include "render/mesh/bark_tint.h"
+#include "tests/fixtures.h"
 #include "tests/scratch_dir.h"
 
 using namespace sylva;
@@ -81,15 +81,10 @@ TEST(BarkTint, BlendsFromTheBaseColourAtTheGroundToTheBarkColourAtItsHeight) {
 // the texture's brighter tint.
 TEST(BarkTint, GlbBarkColourIsTheOcclusionTimesTheBlendAtEachVertexHeight) {
   scratch dir;
-  lsystem_params lp;
-  lp.derivations = 7;
-  const tree_skeleton t = grow_honda(lp, {});
-  mesh_params p;
-  p.radial_segments = 6;
-  const tree_mesh m = mesh_tree(t, p);
-  export_options o;
-  o.mesh = p;
-  o.texture_size = 32;
+  sylva_test::honda_export h = sylva_test::honda_for_export(7, 32);
+  const tree_skeleton& t = h.t;
+  const tree_mesh& m = h.m;
+  export_options& o = h.o;
   o.bark_color = {0.55f, 0.3f, 0.17f};
   o.bark_base_color = {0.3f, 0.28f, 0.26f};
   ASSERT_EQ(export_tree(t, m, {"lsystem", 1}, dir / "one.glb", o).error, "");

@@ -9,6 +9,7 @@
 
 #include "generators/lsystem.h"
 #include "render/io/export.h"
+#include "tests/fixtures.h"
 #include "tests/run_sylva.h"
 
 using namespace sylva;
@@ -33,15 +34,10 @@ TEST(ExportFormats, TheTableFindsEachRowInAnyCaseAndNothingElse) {
 TEST(ExportFormats, EveryFileFormatInTheTableIsWritten) {
   const fs::path dir = fs::temp_directory_path() / ("sylva_formats_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  lsystem_params lp;
-  lp.derivations = 4;
-  const tree_skeleton t = grow_honda(lp, {});
-  mesh_params p;
-  p.radial_segments = 6;
-  const tree_mesh m = mesh_tree(t, p);
-  export_options o;
-  o.mesh = p;
-  o.texture_size = 64;
+  const sylva_test::honda_export h = sylva_test::honda_for_export(4, 64);
+  const tree_skeleton& t = h.t;
+  const tree_mesh& m = h.m;
+  const export_options& o = h.o;
   for (const export_format& f : export_format_table) {
     if (f.render) continue;
     const std::string path = (dir / (std::string("tree") + f.ext)).string();
