@@ -34,7 +34,7 @@ namespace sylva {
   X(cone_ovoid)   /* pine: an ovoid cone of rhombic scale shields (fruit card) */ \
   X(beechnuts)    /* beech: bristly cupules opening round their nuts (fruit card) */ \
   X(coconuts)     /* palm: a bunch of coconuts on a stout branched stalk (fruit card) */ \
-  X(maple_spray)  /* young maple: opposite pairs of palmate leaves on a shoot (cluster card) */
+  X(maple_spray)  /* maple: opposite pairs of palmate leaves on a shoot (cluster card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <array>
-#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -205,7 +204,7 @@ class material_source {
   // (split_parts) and tints the texture with its brighter end; OBJ (no vertex colours) and FBX (whose
   // importers do not multiply them in) call without_vertex_colors() first and keep the bark colour.
   bark_tint bark_colors() const {
-    return {o_.bark_color, o_.bark_base_color, vertex_colors_ && std::isfinite(o_.bark_base_height) ? o_.bark_base_height : 0.0f};
+    return {o_.bark_color, o_.bark_base_color, vertex_colors_ ? o_.bark_base_height : 0.0f};   // NaN: blends() is false
   }
   void without_vertex_colors() { vertex_colors_ = false; }
   float leaf_normal_blend() const { return o_.leaf_normal_blend; }

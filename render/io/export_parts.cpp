@@ -153,6 +153,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
     }
   }
   std::vector<uint32_t> local(nv, UINT32_MAX);
+  const bool occluded = m.occlusion.size() == nv, blend = tint.blends();   // the bark's COLOR_0
   const int seg = std::max(m.radial_segments, 1), stride = seg + 1;
   for (size_t k = 0; k < m.index.size(); ++k) {
     const uint32_t v = m.index[k];
@@ -173,9 +174,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       const float len = glm::length(tan);
       tan = len > 1e-12f ? tan / len : glm::vec3(1, 0, 0);
       g.tangent.push_back(glm::vec4(tan, 1.0f));
-      const bool occluded = m.occlusion.size() == nv;
-      if (occluded || tint.blends())
-        g.color.push_back((occluded ? m.occlusion[v] : 1.0f) * (tint.blends() ? tint.ratio(m.position[v].y) : glm::vec3(1)));
+      if (occluded || blend) g.color.push_back((occluded ? m.occlusion[v] : 1.0f) * (blend ? tint.ratio(m.position[v].y) : glm::vec3(1)));
       g.node.push_back(node);
     }
     g.index.push_back(local[v]);
