@@ -88,12 +88,6 @@ void expect_growth_is_the_single_threaded_one(const char* name, size_t min_nodes
 }
 }  // namespace
 
-TEST(JobPool, ParallelSelfOrganizingGrowthIsTheSingleThreadedGrowth) {
-  for (const char* name : {"self_organizing_default", "self_organizing_seed000_planar", "self_organizing_seed001_fig2",
-                           "species_maple_cards"})
-    expect_growth_is_the_single_threaded_one(name, 500);
-}
-
 // The guiding-vector graph's edges are found for every vertex at once on the pool (after a few
 // built one by one, which keep theirs): each vertex gets the edges yao8_edges finds alone, and the
 // grown tree is the single thread's, bit for bit.
