@@ -15,6 +15,7 @@
 #include "generators/job_pool.h"
 #include "generators/timing.h"
 #include "generators/vec_util.h"
+#include "render/mesh/position_hash.h"
 
 namespace sylva {
 namespace {
@@ -68,65 +69,6 @@ glm::vec3 cr_velocity(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
 glm::vec3 chord_velocity(const glm::vec3& p0, const glm::vec3& p1) {
   return (p1 - p0) / std::max(std::sqrt(glm::length(p1 - p0)), 1e-6f);
 }
-
-// A hash of a node's position bits and a salt: noise that is deterministic from the skeleton (its
-// seed) and follows a node whatever its index (skeleton_at_step renumbers nodes).
-uint64_t position_hash(const glm::vec3& p, uint64_t salt) {
-  uint32_t b[3];
-  std::memcpy(b, &p, sizeof b);
-  rng r(salt ^ (uint64_t(b[0]) << 32 | b[1]) ^ (uint64_t(b[2]) * 0xD1B54A32D192ED03ull));
-  return r.next();
-}
-
-}  // namespace
-
-// Gnarl: each internode turns about a random axis across it by up to `gnarl` degrees, scaled by
-// its age (0 for this step's shoots, 1 for the seedling's wood) and by its order (1 + order/2, at
-// most 2.5: side branches wander more than the trunk). Zero vectors when gnarl is 0.
-std::vector<glm::vec3> gnarl_rotations(const tree_skeleton& t, const mesh_params& p) {
-  const size_t n = t.size();
-  std::vector<glm::vec3> rot(n, glm::vec3(0));
-  const float g = std::isfinite(p.gnarl) ? glm::radians(std::clamp(p.gnarl, 0.0f, 90.0f)) : 0.0f;
-  if (!(g > 0) || t.parent.size() != n || t.born.size() != n || t.order.size() != n) return rot;
-  const float steps = float(std::max(t.steps, 1));
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t par = t.parent[i];
-    if (par < 0 || size_t(par) >= n) continue;
-    const glm::vec3 d = t.position[i] - t.position[par];
-    const float len = glm::length(d);
-    const float age = std::clamp(float(t.steps - int(t.born[i])) / steps, 0.0f, 1.0f);
-    const float scale = age * std::min(1.0f + 0.5f * float(t.order[i]), 2.5f);
-    if (!(len > 1e-9f) || !std::isfinite(len) || scale <= 0) continue;
-    rng r(position_hash(t.position[i], 0x676e61726cull));
-    const float angle = g * scale * r.uniform(-1.0f, 1.0f), phi = r.uniform(0.0f, 6.2831853f);
-    const glm::vec3 a = any_perpendicular(d / len), b = glm::cross(d / len, a);
-    rot[i] = (a * std::cos(phi) + b * std::sin(phi)) * angle;
-  }
-  return rot;
-}
-
-// Where gnarl moves each node: its internode turned, its parent's offset carried down the tree.
-std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<glm::vec3>& rot) {
-  std::vector<glm::vec3> disp(t.size(), glm::vec3(0));
-  for (size_t i = 0; i < t.size() && i < rot.size(); ++i) {
-    const int32_t par = t.parent[i];
-    if (par < 0) continue;
-    const glm::vec3 d = t.position[i] - t.position[par];
-    disp[i] = disp[par] + rotate_by(d, rot[i]) - d;
-  }
-  return disp;
-}
-
-// A point hung on node k (a leaf) moves with k's internode: turned about the parent like it.
-glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& rot, const std::vector<glm::vec3>& disp,
-                        size_t k, const glm::vec3& at) {
-  const int32_t par = t.parent[k];
-  if (par < 0) return at + disp[k];
-  const glm::vec3 d = at - t.position[par];
-  return t.position[par] + disp[par] + rotate_by(d, rot[k]);
-}
-
-namespace {
 
 // The bark: the frame, budget, rings and index stages of mesh_tree (their times in st); rot and
 // disp are the gnarl, which the leaves follow too.
