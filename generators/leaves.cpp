@@ -16,6 +16,17 @@
 namespace sylva {
 namespace {
 
+// The rotation whose columns are the orthonormal x, y, z, as a unit quaternion (Shoemake 1985): from
+// the trace where the rotation turns less than about 150° (w ≥ 1/4, so the division by w loses
+// nothing), glm::quat_cast otherwise. quat_cast alone branches on the largest of the four
+// components, which leaves at random azimuths mispredict: this is most of a leaf's placement.
+glm::quat basis_quat(const glm::vec3& x, const glm::vec3& y, const glm::vec3& z) {
+  const float trace = x.x + y.y + z.z;
+  if (!(trace > -0.75f)) return glm::normalize(glm::quat_cast(glm::mat3(x, y, z)));
+  const float w = 0.5f * std::sqrt(1 + trace), k = 0.25f / w;
+  return glm::normalize(glm::quat(w, (y.z - z.y) * k, (z.x - x.z) * k, (x.y - y.x) * k));
+}
+
 // Leaf frame (skeleton.h: blade along +Y, normal +Z) from the blade direction b and a wanted
 // normal direction w; w need not be perpendicular to b.
 glm::quat blade_frame(const glm::vec3& b, glm::vec3 w, const glm::vec3& fallback) {
@@ -28,7 +39,7 @@ glm::quat blade_frame(const glm::vec3& b, glm::vec3 w, const glm::vec3& fallback
   }
   glm::vec3 n = w / len;
   if (n.y < 0) n = -n;   // the upper face is the one toward the sky
-  return glm::normalize(glm::quat_cast(glm::mat3(glm::cross(b, n), b, n)));
+  return basis_quat(glm::cross(b, n), b, n);
 }
 
 uint16_t retention_end(uint16_t born, int retention, uint16_t died) {
