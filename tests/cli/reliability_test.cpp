@@ -82,7 +82,9 @@ TEST(Utf8, SetRefusesBadBytesAndSaveNeverThrows) {
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(valid_utf8(q.name));
   EXPECT_EQ(q.name, "bad \xEF\xBF\xBD");
-  EXPECT_EQ(save_preset_file(p, (scratch_dir("utf8") / "p.json").string()), "");
+  const fs::path dir = scratch_dir("utf8");
+  EXPECT_EQ(save_preset_file(p, (dir / "p.json").string()), "");
+  fs::remove_all(dir);
 }
 
 TEST(Utf8, LoaderRejectsBadBytesWithAClearError) {
