@@ -184,7 +184,9 @@ std::string write_sets(const std::string& dir, int size) {
 }  // namespace
 
 int run_textures_cli(int argc, char** argv) {
-  CLI::App app{"Archetype textures: the 9 leaf cards and 5 barks species choose from", "sylva textures"};
+  const std::string about = "Archetype textures: the " + std::to_string(leaf_archetype_count) + " leaf cards and " +
+                            std::to_string(bark_archetype_count) + " barks species choose from";
+  CLI::App app{about, "sylva textures"};
   std::string sheet, dir;
   int size = 512, repeat = 9, threads = 2;
   bool bench = false;
