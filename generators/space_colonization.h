@@ -100,6 +100,15 @@ void visit_params(P& p, V&& visitor) {
   v(p.spiral_rounds, param_info{"spiral_rounds", "Spiral rounds", "", 0, 8, "Turns of the spiral along one terminal segment"});
 }
 
+// The editor shows the slab's thickness only for the slab envelope, the mesh's path only for the
+// mesh envelope, and the dents' depth only once there are dents: the other envelopes ignore them.
+inline bool param_relevant(const space_colonization_params& p, const void* field, const param_info&) {
+  if (field == &p.slab_thickness) return p.envelope == envelope_shape::slab;
+  if (field == &p.envelope_mesh) return p.envelope == envelope_shape::mesh;
+  if (field == &p.envelope_dent_depth) return p.envelope_dents > 0;
+  return true;
+}
+
 // Attraction points sampled uniformly inside the envelope, and its outline as line pairs.
 struct envelope_sample {
   std::vector<glm::vec3> points;

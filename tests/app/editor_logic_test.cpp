@@ -38,8 +38,18 @@ TEST(EditorLogic, LsystemTextModeHidesHondaSliders) {
 
 TEST(EditorLogic, OtherGeneratorsShowEverything) {
   EXPECT_TRUE(hidden_keys(self_organizing_params{}).empty());
-  EXPECT_TRUE(hidden_keys(space_colonization_params{}).empty());
   EXPECT_TRUE(hidden_keys(guiding_vectors_params{}).empty());
+}
+
+// Space colonization shows an envelope's own settings only with that envelope.
+TEST(EditorLogic, SpaceColonizationShowsOnlyTheEnvelopesOwnSettings) {
+  space_colonization_params p;   // an ellipsoid without dents
+  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth"}));
+  p.envelope = envelope_shape::slab;
+  p.envelope_dents = 8;
+  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"envelope_mesh"}));
+  p.envelope = envelope_shape::mesh;
+  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness"}));
 }
 
 TEST(EditorLogic, GuidingVectorScheduleIsOneTable) {
