@@ -243,6 +243,16 @@ glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous,
   return dl > 1e-5f ? d / dl : n;
 }
 
+glm::vec3 limit_turn(const glm::vec3& from, const glm::vec3& to, float max_angle) {
+  const float c = std::clamp(glm::dot(from, to), -1.0f, 1.0f);
+  if (!(std::acos(c) > max_angle)) return to;   // within the limit (or NaN: left alone)
+  glm::vec3 side = to - c * from;                 // the turn's direction, across `from`
+  const float sl = glm::length(side);
+  if (!(sl > 1e-6f)) side = any_perpendicular(from);   // straight back: any side
+  else side /= sl;
+  return std::cos(max_angle) * from + std::sin(max_angle) * side;
+}
+
 // Everything the crown loop reads at the top of step k, after its stop checks and before its
 // keyframes and cuts (generators/resume.h). The points are not in it: they are sampled again from
 // the unchanged base params and seed. acc, acc_count and stuck are zero at the top of a step.
@@ -495,7 +505,11 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       if (!stop.empty() || !room()) continue;
       const int32_t par = t.parent[size_t(v)];
       const glm::vec3 prev = par >= 0 ? glm::normalize(t.position[size_t(v)] - t.position[size_t(par)]) : up;
-      const glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, p.tropism_weight);
+      glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, p.tropism_weight);
+      // An apex continuing its axis turns at most max_turn off its last segment: turned further,
+      // it is turned back towards the segment in the plane of the two (a shoot that keeps chasing
+      // points beside it would otherwise curl round into a loop). Laterals branch off freely.
+      if (apex && par >= 0 && p.max_turn < 180.0f) dir = limit_turn(prev, dir, glm::radians(std::max(p.max_turn, 1.0f)));
       last_count[size_t(v)] = acc_count[size_t(v)];
       if (apex && p.fork_length > 0 && axis_since_fork(v) + D >= p.fork_length) {
         fork_apex(v, dir, step);

@@ -45,6 +45,7 @@ struct space_colonization_params {
   float fork_length = 0.0f;    // metres an axis grows before its apex forks sympodially (0: never)
   float fork_angle = 50.0f;    // degrees between the two shoots of a fork
   float crook = 0.0f;          // degrees of seeded turn off course for each shoot of a fork
+  float max_turn = 180.0f;     // degrees an axis' apex may turn off its last segment per segment (180: any)
   // Widths: pipe model (seed 003's "Da Vinci" rule).
   float pipe_exponent = 2.0f;
   float min_width = 0.01f;
@@ -86,6 +87,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.fork_length, param_info{"fork_length", "Fork length", "", 0, 20, "Sympodial forking: once an axis has grown this far (metres) since its last fork, its apex stops and two shoots a fork angle apart take over, as in oak limbs (0: monopodial axes)", param_on_release});
   v(p.fork_angle, param_info{"fork_angle", "Fork angle", "", 0, 150, "Angle between the two shoots that take over at a sympodial fork", param_degrees | param_on_release});
   v(p.crook, param_info{"crook", "Crook", "", 0, 60, "Each shoot of a fork turns off its course by up to this seeded angle, so limbs zig-zag at their forks (crooked oak limbs)", param_degrees | param_on_release});
+  v(p.max_turn, param_info{"max_turn", "Apex turn limit", "", 1, 180, "Most an axis' apex turns off its last segment in one segment; a low limit keeps a shoot that chases points round it from curling into a loop (180: no limit, as Runions 2007)", param_degrees | param_on_release});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (seed 003's Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
   v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
@@ -130,6 +132,9 @@ std::string check_envelope_obj(std::string_view text, const std::vector<glm::vec
 std::vector<int32_t> find_influencing_nodes(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& nodes,
                                             float d_i);
 
+// `to` turned back towards `from` (both unit) so that it is at most max_angle radians off it, in the
+// plane of the two; `to` itself when it is already within the limit.
+glm::vec3 limit_turn(const glm::vec3& from, const glm::vec3& to, float max_angle);
 // Growth direction from the sum of unit pulls; a zero sum (opposite points) keeps `previous`.
 glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous, const glm::vec3& tropism,
                            float weight);

@@ -394,3 +394,49 @@ TEST(SpaceColonization, EnvelopeDentsCutBaysAndKeepThePointCount) {
   EXPECT_GE(shallow_dented, 8) << "dents leave directions whose points stop short of the rim";
   EXPECT_GE(*std::max_element(b.begin(), b.end()), 0.97f) << "undented directions still reach the rim";
 }
+
+namespace {
+
+// The largest turn, in degrees, from a node's internode to its first child's (the apex that grew
+// on from it; later children are laterals).
+float largest_continuation_turn(const tree_skeleton& t) {
+  std::vector<int32_t> first(t.size(), -1);
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t.parent[i] >= 0 && first[size_t(t.parent[i])] < 0) first[size_t(t.parent[i])] = int32_t(i);
+  float worst = 0;
+  for (size_t v = 0; v < t.size(); ++v) {
+    const int32_t par = t.parent[v], c = first[v];
+    if (par < 0 || c < 0) continue;
+    const glm::vec3 a = glm::normalize(t.position[v] - t.position[size_t(par)]);
+    const glm::vec3 b = glm::normalize(t.position[size_t(c)] - t.position[v]);
+    worst = std::max(worst, glm::degrees(std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f))));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(SpaceColonization, LimitTurnKeepsTheTurnWithinTheLimit) {
+  const glm::vec3 up(0, 1, 0), side = glm::normalize(glm::vec3(1, 0.2f, 0)), back(0, -1, 0);
+  EXPECT_EQ(limit_turn(up, glm::normalize(glm::vec3(0.1f, 1, 0)), glm::radians(20.0f)), glm::normalize(glm::vec3(0.1f, 1, 0)));
+  for (const glm::vec3& to : {side, back}) {
+    const glm::vec3 d = limit_turn(up, to, glm::radians(20.0f));
+    EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::degrees(std::acos(glm::dot(d, up))), 20.0f, 0.01f);
+  }
+  EXPECT_GT(limit_turn(up, side, glm::radians(20.0f)).x, 0.3f);   // towards `to`, in the plane of the two
+}
+
+// An apex turns at most max_turn per segment; without the limit the same cloud turns some apex far
+// more (so the check can fail), and laterals still branch off at their own angles.
+TEST(SpaceColonization, MaxTurnBoundsEveryApexTurn) {
+  space_colonization_params p = small_params();
+  const std::vector<glm::vec3> cloud = small_cloud();
+  const tree_skeleton free = grow_colonization_from_points(p, cloud, {});
+  EXPECT_GT(largest_continuation_turn(free), 30.0f);
+  p.max_turn = 20;
+  const tree_skeleton held = grow_colonization_from_points(p, cloud, {});
+  EXPECT_EQ(validate_skeleton(held), "");
+  EXPECT_GT(held.size(), free.size() / 2);
+  EXPECT_LE(largest_continuation_turn(held), 20.05f);
+}
