@@ -171,27 +171,32 @@ void draw_palm_frond(leaf_canvas& c, rng& g) {
 // toward its tip with a slight seeded curve, with sky between them so each reads as its own leaf
 // (round 17's reader: the old card's thirteen overlapping blades read as "feathery strips").
 void draw_lanceolate(leaf_canvas& c, rng& g) {
-  auto shoot = [](float t) { return vec2(0.5f + 0.02f * std::sin(2.0f * t), 0.7f * t); };
+  // A weeping willow's hanging shoot (Salix babylonica: leaves narrow-lanceolate, 8-15 cm, long-
+  // pointed, finely toothed, alternate and crowded along a slender pendulous shoot). Round 22-23's
+  // readers saw the old card's eight leaves, set at 25-35 degrees in a regular chevron, as "fern
+  // fronds": the leaves now lie close along the shoot (8-22 degrees), at uneven spacing and lengths,
+  // each curving its own way, so a strand reads as a loose tassel of leaves, not a pinnate frond.
+  auto shoot = [](float t) { return vec2(0.5f + 0.03f * std::sin(2.6f * t), 0.74f * t); };
   blade_style st;
   st.serration = 0.05f, st.teeth = 36, st.vein_angle = 58, st.veins = 12, st.dome = 0.16f, st.midrib = 1.2f;
   auto leaf = [](float t, int) { return std::pow(std::sin(pi * std::pow(t, 0.55f)), 1.05f); };
-  curve_stroke(c, shoot, 6, 0.008f, 0.004f, twig_style);
-  const int leaves = 8;
+  curve_stroke(c, shoot, 6, 0.007f, 0.0035f, twig_style);
+  const int leaves = 13;
   for (int i = 0; i < leaves; ++i) {
-    const float t = 0.06f + 0.84f * float(i) / float(leaves - 1);
+    const float t = std::clamp(0.05f + 0.86f * (float(i) + g.range(-0.35f, 0.35f)) / float(leaves - 1), 0.03f, 0.93f);
     const vec2 p = shoot(t);
     const float side = (i % 2) ? 1.0f : -1.0f;
-    const float ang = 90 + side * g.range(25, 35) * (1.1f - 0.4f * t);
+    const float ang = 90 + side * g.range(8, 22) * (1.1f - 0.4f * t);
     const vec2 d = heading(ang);
-    const vec2 q = p + d * 0.025f;
-    stroke(c, p, q, 0.003f, 0.0026f, petiole_style);
-    st.bend = side * g.range(0.0f, 0.04f);
-    const float len = fit(q, d, g.range(0.42f, 0.5f) * (1.0f - 0.25f * t), 0.01f);
-    blade(c, q - d * 0.004f, ang, len, len * 0.085f, leaf, st);
+    const vec2 q = p + d * 0.018f;
+    stroke(c, p, q, 0.0028f, 0.0024f, petiole_style);
+    st.bend = side * g.range(-0.03f, 0.07f);
+    const float len = fit(q, d, g.range(0.3f, 0.5f) * (1.0f - 0.3f * t), 0.01f);
+    blade(c, q - d * 0.004f, ang, len, len * g.range(0.07f, 0.09f), leaf, st);
   }
   const vec2 tip = shoot(1.0f);
   st.bend = 0;
-  blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.32f), 0.026f, leaf, st);
+  blade(c, tip - vec2(0, 0.01f), 90, fit(tip, {0, 1}, 0.26f), 0.022f, leaf, st);
 }
 
 // A twig carrying leaves up the card, alternate left and right, and one leaf at its tip: the
