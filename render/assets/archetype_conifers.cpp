@@ -136,15 +136,19 @@ void draw_needle_tufts(leaf_canvas& c, rng& g) {
 void scale_chain(leaf_canvas& c, vec2 a, vec2 b, float width) {
   const float len = glm::length(b - a);
   const vec2 dir = (b - a) / len;
-  const float ang = degrees_of(dir), step = width * 0.75f;
+  // Scale leaves lie pressed to the shoot, each overlapping the next (Cupressus sempervirens: scales
+  // 0.5-1 mm, closely appressed, in four ranks), so a branchlet reads as a scalloped green cord.
+  // Round 22-23's readers saw the old chain, scales 2.1 widths long splayed 22 degrees out, as
+  // "small broad leaves, not scale-leaf sprays": they are now short, splayed 9 degrees and overlap.
+  const float ang = degrees_of(dir), step = width * 0.5f;
   blade_style st;
-  st.veins = 1, st.midrib = 0.6f, st.edge_dark = 0.4f;
+  st.veins = 1, st.midrib = 0.3f, st.edge_dark = 0.45f;
   int k = 0;
   for (float s = 0; s < len; s += step, ++k) {
     const float side = (k % 2) ? 1.0f : -1.0f;
-    const vec2 p = a + dir * s + vec2(-dir.y, dir.x) * (side * 0.2f * width);
+    const vec2 p = a + dir * s + vec2(-dir.y, dir.x) * (side * 0.12f * width);
     const float w = width * (1 - 0.35f * s / len);
-    blade(c, p, ang + side * 22, 2.1f * w, 0.5f * w, [](float t, int) { return std::sin(pi * std::pow(t, 0.6f)); }, st);
+    blade(c, p, ang + side * 9, 1.35f * w, 0.5f * w, [](float t, int) { return std::sin(pi * std::pow(t, 0.45f)); }, st);
   }
 }
 
@@ -164,11 +168,11 @@ void draw_scale_spray(leaf_canvas& c, rng& g) {
       const vec2 o = p + d * (s * len);
       const float sub_side = (j % 2) ? 1.0f : -1.0f;
       const vec2 e = heading(degrees_of(d) + sub_side * 40);
-      scale_chain(c, o, o + e * fit(o, e, 0.12f * (1 - 0.5f * s), 0.02f), 0.022f);
+      scale_chain(c, o, o + e * fit(o, e, 0.12f * (1 - 0.5f * s), 0.02f), 0.03f);
     }
-    scale_chain(c, p, q, 0.028f);
+    scale_chain(c, p, q, 0.036f);
   }
-  for (int i = 0; i < 8; ++i) scale_chain(c, axis(float(i) / 8), axis(float(i + 1) / 8), 0.032f);
+  for (int i = 0; i < 8; ++i) scale_chain(c, axis(float(i) / 8), axis(float(i + 1) / 8), 0.04f);
 }
 
 }  // namespace sylva::archetype
