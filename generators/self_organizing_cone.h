@@ -23,10 +23,12 @@ struct perception_cone {
 // perception_distance and voxel_size in internode lengths, voxel_metres the voxel's edge.
 perception_cone make_perception_cone(float perception_distance, float voxel_size, float voxel_metres);
 
-// The search for the least-shadowed voxel, in two parts. scan_cone reads the grid only (the environment stays as it was at the step's start)
-// and lists the choices the search made, in order: each new best (ties = 1) and each tie met
-// (ties = its count so far). pick_optimal replays the list on the shared RNG, bud by bud in the
-// sequential order, drawing exactly the numbers a one-pass search draws.
+// The search for the least-shadowed voxel, in two parts: scan_cone reads the grid only (the
+// environment stays as it was at the step's start) and lists the choices the search made, in
+// order: each new best (ties = 1) and each tie met (ties = its count so far); pick_optimal replays
+// the list on the shared RNG, drawing exactly the numbers a one-pass search draws. (The split let
+// a step's cones be scanned in parallel; that cost more than it saved on two cores, and the
+// growth now calls the two back to back, bud by bud.)
 struct cone_choice {
   int ties;
   glm::vec3 dir;

@@ -245,7 +245,7 @@ glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous,
 
 glm::vec3 limit_turn(const glm::vec3& from, const glm::vec3& to, float max_angle) {
   const float c = std::clamp(glm::dot(from, to), -1.0f, 1.0f);
-  if (!(std::acos(c) > max_angle)) return to;   // within the limit (or NaN: left alone)
+  if (!(c < std::cos(max_angle))) return to;   // within the limit (or NaN: left alone)
   glm::vec3 side = to - c * from;                 // the turn's direction, across `from`
   const float sl = glm::length(side);
   if (!(sl > 1e-6f)) side = any_perpendicular(from);   // straight back: any side
