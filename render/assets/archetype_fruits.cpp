@@ -259,4 +259,37 @@ void draw_coconuts(leaf_canvas& c, rng& g) {
     ellipse(c, centre[k] - d * (0.47f * len[k]), deg[k], 0.05f, 0.05f, 1.0f, 0.5f * nuts[k].shade);   // the calyx's dry bracts
   }
 }
+
+void draw_ash_keys(leaf_canvas& c, rng& g) {
+  // Fraxinus excelsior: keys (single samaras) 2.5-4.5 cm long and 5-8 mm wide, a narrow oblong
+  // wing, blunt or notched at its end, beyond the slender seed at its base; hanging in dense bunches
+  // of a dozen to thirty on a branched stalk, and kept on the tree into the winter (Rushforth 1999).
+  // Four branches of the stalk leave it one after another, each with four or five keys on short
+  // pedicels along it; the card hangs, so the keys hang in a loose tassel.
+  const vec2 top(0.5f, 0.0f), hub(0.5f, 0.2f);
+  curve_stroke(c, [&](float t) { return bezier(top, vec2(0.48f, 0.1f), hub, t); }, 3, 0.008f, 0.007f, petiole_style);
+  blade_style wing;
+  wing.veins = 7, wing.vein_angle = 5, wing.midrib = 0.35f, wing.edge_dark = 0.3f, wing.dome = 0.04f;
+  const float fans[4] = {-30, 26, -9, 8};   // the outer branches first: the inner ones hang over them
+  const float from[4] = {0.0f, 0.02f, 0.05f, 0.08f};
+  for (int b = 0; b < 4; ++b) {
+    const float bdeg = 90 + fans[b] + g.range(-4, 4);
+    const vec2 bd = heading(bdeg);
+    const vec2 start = hub + vec2(0, from[b]);
+    const float blen = g.range(0.16f, 0.22f);
+    stroke(c, start, start + bd * blen, 0.005f, 0.004f, petiole_style);
+    const int keys = b < 2 ? 4 : 5;
+    for (int k = 0; k < keys; ++k) {
+      const vec2 at = start + bd * (blen * (0.3f + 0.7f * float(k) / float(keys - 1)));
+      const float deg = 90 + 0.8f * fans[b] + g.range(-14, 14);
+      const vec2 d = heading(deg);
+      const vec2 base = at + d * 0.025f;
+      stroke(c, at, base, 0.0035f, 0.003f, petiole_style);
+      const float len = fit(base, d, g.range(0.34f, 0.42f), 0.02f);
+      wing.bend = g.range(-0.08f, 0.08f);   // keys are a little twisted
+      blade(c, base, deg, len, 0.028f, [](float t, int) { return std::pow(std::sin(pi * t), 0.35f) * (0.45f + 0.55f * smooth(0.1f, 0.55f, t)); }, wing);
+      ellipse(c, base + d * (0.17f * len), deg, 0.3f * len, 0.013f, 0.7f, 0.95f);   // the seed
+    }
+  }
+}
 }  // namespace sylva::archetype
