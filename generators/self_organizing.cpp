@@ -14,6 +14,7 @@
 #include "generators/resume.h"
 #include "generators/self_organizing_cone.h"
 #include "generators/self_organizing_grid.h"
+#include "generators/self_organizing_markers.h"
 #include "generators/vec_util.h"
 
 namespace sylva {
@@ -27,66 +28,6 @@ glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float l2 = glm::dot(v, v);
   return l2 > 1e-12f && std::isfinite(l2) ? v / std::sqrt(l2) : fallback;
 }
-
-// Space-colonization markers in a hashed uniform grid (cell = perception distance).
-struct marker_state {
-  std::vector<glm::vec3> pos;
-  std::vector<uint8_t> alive;
-  std::vector<int32_t> best_bud;     // per marker, this step: closest perceiving bud (2·node + lat)
-  std::vector<float> best_d2;
-  float cell = 1;
-  std::vector<uint64_t> cell_key;    // sorted cell keys, with [cell_start[k], cell_start[k+1]) markers
-  std::vector<uint32_t> cell_start;
-  std::vector<uint32_t> order;       // marker indices grouped by cell
-
-  static uint64_t key(const glm::ivec3& c) {
-    return (uint64_t(uint32_t(c.x + (1 << 20)) & 0x1FFFFF) << 42) |
-           (uint64_t(uint32_t(c.y + (1 << 20)) & 0x1FFFFF) << 21) | uint64_t(uint32_t(c.z + (1 << 20)) & 0x1FFFFF);
-  }
-  glm::ivec3 cell_of(const glm::vec3& p) const {
-    const glm::vec3 f = glm::clamp(glm::floor(p / cell), glm::vec3(-1e6f), glm::vec3(1e6f));
-    return glm::ivec3(f);
-  }
-  void build() {
-    std::vector<std::pair<uint64_t, uint32_t>> kv(pos.size());
-    for (size_t i = 0; i < pos.size(); ++i) kv[i] = {key(cell_of(pos[i])), uint32_t(i)};
-    std::sort(kv.begin(), kv.end());
-    order.resize(kv.size());
-    cell_key.clear();
-    cell_start.clear();
-    for (size_t i = 0; i < kv.size(); ++i) {
-      if (i == 0 || kv[i].first != kv[i - 1].first) {
-        cell_key.push_back(kv[i].first);
-        cell_start.push_back(uint32_t(i));
-      }
-      order[i] = kv[i].second;
-    }
-    cell_start.push_back(uint32_t(kv.size()));
-    alive.assign(pos.size(), 1);
-    best_bud.assign(pos.size(), -1);
-    best_d2.assign(pos.size(), 0);
-  }
-  // Calls f(marker) for the live markers (all when dead_too) within distance d of p.
-  template <class F>
-  void visit_near(const glm::vec3& p, float d, F&& f, bool dead_too = false) const {
-    const glm::ivec3 lo = cell_of(p - d), hi = cell_of(p + d);
-    const float d2 = d * d;
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const uint64_t k = key({x, y, z});
-          const auto it = std::lower_bound(cell_key.begin(), cell_key.end(), k);
-          if (it == cell_key.end() || *it != k) continue;
-          const size_t c = size_t(it - cell_key.begin());
-          for (uint32_t j = cell_start[c]; j < cell_start[c + 1]; ++j) {
-            const uint32_t m = order[j];
-            if (!alive[m] && !dead_too) continue;
-            const glm::vec3 dv = pos[m] - p;
-            if (glm::dot(dv, dv) <= d2) f(m, dv);
-          }
-        }
-  }
-};
 
 // What the step loop carries from one step to the next besides the tree, the RNG and the working
 // params: a resumed growth (generators/resume.h) restores exactly this.
