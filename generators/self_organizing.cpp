@@ -37,11 +37,13 @@ struct so_vars {
   // Per node (generator state, not part of the skeleton).
   std::vector<glm::vec3> side;       // unit, perpendicular to the internode: where the lateral bud points
   std::vector<int32_t> main, lat;    // child index, bud_here or no_bud
-  std::vector<float> q;              // 2 per node: bud light Q, then bud resource v (apical, lateral)
+  std::vector<int32_t> lat2;         // opposite phyllotaxis only: the lateral bud on the far side
+  size_t nb = 2;                     // buds a node: 3 when the growth may use opposite phyllotaxis
+  std::vector<float> q;              // nb per node: bud light Q, then bud resource v (apical, lateral, far lateral)
   std::vector<float> flow;           // basipetal Q flow, then acropetal resource v
   std::vector<float> tips;           // living tips supported (pipe model: (r/r₀)^n)
   std::vector<int32_t> buds;         // living buds supported
-  std::vector<glm::vec3> opt;        // markers only, 2 per node: direction towards the bud's markers
+  std::vector<glm::vec3> opt;        // markers only, nb per node: direction towards the bud's markers
   std::vector<glm::ivec3> voxel;     // shadow only: each node's voxel, found once (nodes never move)
   float cos_theta = 0;               // perception cone (keyframes change it)
 };
@@ -77,8 +79,8 @@ struct so_state : so_vars {
     side.push_back(s);
     main.push_back(bud_here);
     lat.push_back(bud_here);
-    q.push_back(0);
-    q.push_back(0);
+    if (nb == 3) lat2.push_back(p.phyllotaxis == so_phyllotaxis::opposite ? bud_here : no_bud);
+    q.insert(q.end(), nb, 0.0f);
     flow.push_back(0);
     tips.push_back(1);
     buds.push_back(0);
@@ -89,10 +91,15 @@ struct so_state : so_vars {
     const int32_t par = t.parent[i];
     return par < 0 ? glm::vec3(0, 1, 0) : safe_normalize(t.position[i] - t.position[par], glm::vec3(0, 1, 0));
   }
-  glm::vec3 lateral_direction(int32_t i) const {
+  // The lateral bud's default direction; far = the opposite phyllotaxis' second lateral, across the axis.
+  glm::vec3 lateral_direction(int32_t i, bool far = false) const {
     const float b = glm::radians(p.branch_angle);
-    return safe_normalize(std::cos(b) * heading(i) + std::sin(b) * side[i], heading(i));
+    return safe_normalize(std::cos(b) * heading(i) + std::sin(b) * (far ? -side[i] : side[i]), heading(i));
   }
+  // Bud k of node i: 0 the apical bud, 1 the lateral, 2 the far lateral (child, bud_here or no_bud).
+  // k = 2 exists only when nb is 3.
+  int32_t& bud(size_t i, int k) { return k == 0 ? main[i] : k == 1 ? lat[i] : lat2[i]; }
+  int32_t far(size_t i) const { return nb == 3 ? lat2[i] : no_bud; }
 
   // Bud light l from the environment, then seed 001 eq. 1: Q = l^((T−T₀)^σ).
   void compute_bud_light(int step) {
@@ -100,7 +107,7 @@ struct so_state : so_vars {
     const bool shadow = p.environment == so_environment::shadow;
     if (!shadow) compute_marker_light();
     for (size_t i = 0; i < n; ++i) {
-      if (t.died[i] != never_died || (main[i] != bud_here && lat[i] != bud_here)) continue;
+      if (t.died[i] != never_died || (main[i] != bud_here && lat[i] != bud_here && far(i) != bud_here)) continue;
       const float age = float(step - t.born[i]);  // ≥ 1: buds are first seen the step after they form
       const float e = p.sigma == 0 ? 1.0f : whole_pow(age_pow, age, p.sigma);
       if (shadow) {
@@ -110,15 +117,20 @@ struct so_state : so_vars {
         light = e == 1.0f ? light : std::pow(light, e);
         // Seed 001 §3.1 counts a node's light once if it has either bud (per_node: shared by its
         // buds); Sylva's default lets each live bud count it, as Palubicki 2009 gives each bud a Q.
-        const bool both = main[i] == bud_here && lat[i] == bud_here;
-        if (both && p.light_count == so_light_count::per_node) light *= 0.5f;
-        q[2 * i] = main[i] == bud_here ? light : 0.0f;
-        q[2 * i + 1] = lat[i] == bud_here ? light : 0.0f;
+        const int live = (main[i] == bud_here) + (lat[i] == bud_here) + (far(i) == bud_here);
+        if (live == 2 && p.light_count == so_light_count::per_node) light *= 0.5f;
+        if (live == 3 && p.light_count == so_light_count::per_node) light /= 3.0f;
+        q[nb * i] = main[i] == bud_here ? light : 0.0f;
+        q[nb * i + 1] = lat[i] == bud_here ? light : 0.0f;
+        if (nb == 3) q[nb * i + 2] = lat2[i] == bud_here ? light : 0.0f;
       } else {
-        q[2 * i] = q[2 * i] > 0 ? 1.0f : 0.0f;  // 0^e = 0 and 1^e = 1: σ changes nothing here
-        q[2 * i + 1] = q[2 * i + 1] > 0 ? 1.0f : 0.0f;
-        if (p.light_count == so_light_count::per_node && q[2 * i] > 0 && q[2 * i + 1] > 0)
-          q[2 * i] = q[2 * i + 1] = 0.5f;
+        int lit = 0;
+        for (int k = 0; k < int(nb); ++k) {
+          q[nb * i + k] = q[nb * i + k] > 0 ? 1.0f : 0.0f;  // 0^e = 0 and 1^e = 1: σ changes nothing here
+          lit += q[nb * i + k] > 0;
+        }
+        if (p.light_count == so_light_count::per_node && lit > 1)
+          for (int k = 0; k < int(nb); ++k) q[nb * i + k] = q[nb * i + k] > 0 ? 1.0f / float(lit) : 0.0f;
       }
     }
   }
@@ -127,15 +139,15 @@ struct so_state : so_vars {
   // a bud with markers has Q = 1 and its optimal direction is the sum of unit vectors to them.
   void compute_marker_light() {
     const size_t n = t.size();
-    opt.assign(2 * n, glm::vec3(0));
+    opt.assign(nb * n, glm::vec3(0));
     std::fill(q.begin(), q.end(), 0.0f);
     std::vector<uint32_t> touched;
     for (size_t i = 0; i < n; ++i) {
       if (t.died[i] != never_died) continue;
-      for (int k = 0; k < 2; ++k) {
-        if ((k == 0 ? main[i] : lat[i]) != bud_here) continue;
-        const glm::vec3 def = k == 0 ? heading(int32_t(i)) : lateral_direction(int32_t(i));
-        const int32_t bud = int32_t(2 * i + k);
+      for (int k = 0; k < int(nb); ++k) {
+        if (this->bud(i, k) != bud_here) continue;
+        const glm::vec3 def = k == 0 ? heading(int32_t(i)) : lateral_direction(int32_t(i), k == 2);
+        const int32_t bud = int32_t(nb * i + k);
         markers.visit_near(t.position[i], reach, [&](uint32_t m, const glm::vec3& dv) {
           const float d2 = glm::dot(dv, dv);
           if (glm::dot(dv, def) < cos_theta * std::sqrt(d2)) return;
@@ -148,7 +160,7 @@ struct so_state : so_vars {
     }
     for (uint32_t m : touched) {
       const int32_t bud = markers.best_bud[m];
-      const size_t i = size_t(bud) / 2;
+      const size_t i = size_t(bud) / nb;
       opt[bud] += safe_normalize(markers.pos[m] - t.position[i], glm::vec3(0));
       q[bud] = 1;
       markers.best_bud[m] = -1;
@@ -176,12 +188,17 @@ struct so_state : so_vars {
   // One node of the basipetal pass, from its children's values.
   void sweep_node(size_t i, float bm, float be_over_n) {
     if (t.died[i] != never_died) { flow[i] = 0; buds[i] = 0; return; }
-    const int32_t m = main[i], la = lat[i];
-    const float qm = m >= 0 ? flow[m] : m == bud_here ? q[2 * i] : 0.0f;
-    const float ql = la >= 0 ? flow[la] : la == bud_here ? q[2 * i + 1] : 0.0f;
-    const float tp = (m >= 0 ? tips[m] : 0.0f) + (la >= 0 ? tips[la] : 0.0f);
-    tips[i] = tp > 0 ? tp : 1.0f;
+    const int32_t m = main[i], la = lat[i], lb = far(i);
+    const float qm = m >= 0 ? flow[m] : m == bud_here ? q[nb * i] : 0.0f;
+    float ql = la >= 0 ? flow[la] : la == bud_here ? q[nb * i + 1] : 0.0f;
+    float tp = (m >= 0 ? tips[m] : 0.0f) + (la >= 0 ? tips[la] : 0.0f);
     buds[i] = (m >= 0 ? buds[m] : m == bud_here) + (la >= 0 ? buds[la] : la == bud_here);
+    if (lb != no_bud) {   // (skipped without one, so spiral and planar trees keep their bits)
+      ql += lb >= 0 ? flow[lb] : q[nb * i + 2];
+      tp += lb >= 0 ? tips[lb] : 0.0f;
+      buds[i] += lb >= 0 ? buds[lb] : 1;
+    }
+    tips[i] = tp > 0 ? tp : 1.0f;
     // Seed 001 eq. 2 (Měch & Prusinkiewicz 1996): upkeep BM·(r/r₀)^BE, where the pipe model
     // gives (r/r₀)^n = number of tips, so (r/r₀)^BE = tips^(BE/n).
     const float upkeep = bm > 0 ? bm * whole_pow(tips_pow, tips[i], be_over_n) : 0.0f;
@@ -222,6 +239,7 @@ struct so_state : so_vars {
       const int32_t par = t.parent[i];
       if (main[par] == int32_t(i)) main[par] = no_bud;
       if (lat[par] == int32_t(i)) lat[par] = no_bud;
+      if (nb == 3 && lat2[par] == int32_t(i)) lat2[par] = no_bud;
     }
     if (gone.empty()) return false;
     if (p.environment == so_environment::shadow) {   // their shadow goes, in the same order
@@ -243,6 +261,7 @@ struct so_state : so_vars {
       const int32_t par = t.parent[i];
       if (main[par] == i) main[par] = no_bud;
       if (lat[par] == i) lat[par] = no_bud;
+      if (nb == 3 && lat2[par] == i) lat2[par] = no_bud;
       if (p.environment == so_environment::shadow)
         add_shadow_pyramid(grid, voxel[i], p.shadow_a, p.shadow_b, p.q_max, -1);
     }
@@ -259,13 +278,24 @@ struct so_state : so_vars {
     if (p.allocation == so_allocation::borchert_honda) {
       for (size_t i = 0; i < t.size(); ++i) {
         if (t.died[i] != never_died) continue;
-        const int32_t m = main[i], la = lat[i];
-        const float qm = m >= 0 ? flow[m] : m == bud_here ? q[2 * i] : 0.0f;
-        const float ql = la >= 0 ? flow[la] : la == bud_here ? q[2 * i + 1] : 0.0f;
-        float vm, vl;
-        split_borchert_honda(flow[i], qm, ql, p.lambda, vm, vl);
-        if (m >= 0) flow[m] = vm; else q[2 * i] = m == bud_here ? vm : 0.0f;
-        if (la >= 0) flow[la] = vl; else q[2 * i + 1] = la == bud_here ? vl : 0.0f;
+        const int32_t m = main[i], la = lat[i], lb = far(i);
+        const float qm = m >= 0 ? flow[m] : m == bud_here ? q[nb * i] : 0.0f;
+        const float ql = la >= 0 ? flow[la] : la == bud_here ? q[nb * i + 1] : 0.0f;
+        const float qb = lb >= 0 ? flow[lb] : lb == bud_here ? q[nb * i + 2] : 0.0f;
+        float vm, vl, vb = 0;
+        if (lb == no_bud) {
+          split_borchert_honda(flow[i], qm, ql, p.lambda, vm, vl);
+        } else {
+          // Two laterals share the lateral side of eqs. 4-5, each in proportion to its own Q.
+          split_borchert_honda(flow[i], qm, ql + qb, p.lambda, vm, vl);
+          const float both = std::max(ql, 0.0f) + std::max(qb, 0.0f);
+          const float to_b = both > 0 ? std::max(qb, 0.0f) / both : 0.5f;
+          vb = vl * to_b;
+          vl -= vb;
+        }
+        if (m >= 0) flow[m] = vm; else q[nb * i] = m == bud_here ? vm : 0.0f;
+        if (la >= 0) flow[la] = vl; else q[nb * i + 1] = la == bud_here ? vl : 0.0f;
+        if (lb >= 0) flow[lb] = vb; else if (nb == 3) q[nb * i + 2] = lb == bud_here ? vb : 0.0f;
       }
       return;
     }
@@ -274,7 +304,7 @@ struct so_state : so_vars {
     // so an axis' resource is known when its base comes up.
     // Seed 000 sorts an axis' nodes by the *average* environmental input of the buds each supports,
     // then weights eq. 1 by its summed Q; priority_rank = summed sorts by the summed Q instead.
-    struct cand { float q; float rank; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(2i+k)−1
+    struct cand { float q; float rank; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(3i+k)−1
     const bool by_average = p.priority_rank == so_priority_rank::average;
     std::vector<cand> c;
     std::vector<float> qs, vs;
@@ -282,20 +312,23 @@ struct so_state : so_vars {
     for (size_t b = 0; b < t.size(); ++b) {
       if (t.died[b] != never_died) continue;
       const int32_t par = t.parent[b];
-      if (par >= 0 && lat[par] != int32_t(b)) continue;
+      if (par >= 0 && lat[par] != int32_t(b) && far(size_t(par)) != int32_t(b)) continue;
       c.clear();
       int32_t j = int32_t(b);
       bool has_terminal = false;
       for (;;) {
-        if (lat[j] >= 0) {
-          const float sum = std::max(flow[lat[j]], 0.0f);
-          c.push_back({sum, by_average ? sum / float(std::max(buds[lat[j]], 1)) : sum, lat[j]});
-        } else if (lat[j] == bud_here) {
-          c.push_back({q[2 * j + 1], q[2 * j + 1], -(2 * j + 1) - 1});
+        for (int k = 1; k < int(nb); ++k) {
+          const int32_t la = bud(size_t(j), k);
+          if (la >= 0) {
+            const float sum = std::max(flow[la], 0.0f);
+            c.push_back({sum, by_average ? sum / float(std::max(buds[la], 1)) : sum, la});
+          } else if (la == bud_here) {
+            c.push_back({q[nb * size_t(j) + size_t(k)], q[nb * size_t(j) + size_t(k)], -int32_t(nb * size_t(j) + size_t(k)) - 1});
+          }
         }
         if (main[j] >= 0) { j = main[j]; continue; }
         if (main[j] == bud_here) {
-          c.push_back({q[2 * j], q[2 * j], -(2 * j) - 1});
+          c.push_back({q[nb * size_t(j)], q[nb * size_t(j)], -int32_t(nb * size_t(j)) - 1});
           has_terminal = true;
         }
         break;
@@ -359,7 +392,7 @@ size_t snapshot_bytes(const tree_skeleton& t, const so_vars& v) {
          vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(t.leaves) + vec_bytes(v.grid.keys) +
          vec_bytes(v.grid.chunk_of) + vec_bytes(v.grid.cells) + vec_bytes(v.grid.chunk_pos) + vec_bytes(v.grid.scratch) +
          vec_bytes(m.pos) + vec_bytes(m.alive) + vec_bytes(m.best_bud) + vec_bytes(m.best_d2) + vec_bytes(m.cell_key) +
-         vec_bytes(m.cell_start) + vec_bytes(m.order) + vec_bytes(v.side) + vec_bytes(v.main) + vec_bytes(v.lat) +
+         vec_bytes(m.cell_start) + vec_bytes(m.order) + vec_bytes(v.side) + vec_bytes(v.main) + vec_bytes(v.lat) + vec_bytes(v.lat2) +
          vec_bytes(v.q) + vec_bytes(v.flow) + vec_bytes(v.tips) + vec_bytes(v.buds) + vec_bytes(v.opt) + vec_bytes(v.voxel);
 }
 
@@ -393,6 +426,13 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   st.cone = make_perception_cone(p.perception_distance, p.voxel_size, st.grid.voxel_size);
 
   float div = glm::radians(p.divergence);
+  // Opposite phyllotaxis needs a third bud a node; a growth that never uses it keeps two (8 bytes a
+  // node less), and a snapshot kept with two cannot resume one that now needs three.
+  bool opposite = p.phyllotaxis == so_phyllotaxis::opposite;
+  if (o.keyframes)
+    for (const keyframe& k : *o.keyframes)
+      opposite = opposite || (k.key == "phyllotaxis" && int(k.value.x) == int(so_phyllotaxis::opposite));
+  const size_t buds_per_node = opposite ? 3 : 2;
   int step = 0;
   int first = 1;
   bool resumed = false;
@@ -400,7 +440,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   growth_resume* const resume = o.resume;
   std::vector<std::shared_ptr<const so_snapshot>>* const snaps = resume ? &resume->self_organizing : nullptr;
   if (resume && resume->from_step >= 1 && resume->from_step <= steps && size_t(resume->from_step) < snaps->size() &&
-      (*snaps)[size_t(resume->from_step)]) {
+      (*snaps)[size_t(resume->from_step)] && (*snaps)[size_t(resume->from_step)]->v.nb == buds_per_node) {
     const so_snapshot& s = *(*snaps)[size_t(resume->from_step)];
     t = s.t;
     r = s.r;
@@ -416,6 +456,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   }
   const bool shadow = p.environment == so_environment::shadow;   // keyframes cannot change it
   if (!resumed) {
+  st.nb = buds_per_node;
   std::string warning;
   const std::vector<glm::vec3> roots_at = place_trees(p, r, warning);
   if (!warning.empty()) rep.message = warning;
@@ -425,6 +466,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     const float a = r.uniform(0.0f, 6.2831853f);
     roots.push_back(st.add_node(at, -1, 0, 0, glm::vec3(std::cos(a), 0, std::sin(a))));
     st.lat.back() = no_bud;  // the seedling has only its apical bud
+    if (st.nb == 3) st.lat2.back() = no_bud;
   }
   t.tree_count = int(roots.size());
   if (p.environment == so_environment::shadow) {
@@ -460,7 +502,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   std::vector<glm::ivec3> grown_voxels;
   struct shoot {
     int32_t node;
-    int k;                     // 0: the main bud, 1: the lateral
+    int k;                     // 0: the main bud, 1: the lateral, 2: the far lateral (opposite phyllotaxis)
     shoot_plan plan;
   };
   std::vector<shoot> shoots;
@@ -514,9 +556,9 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     shoots.clear();
     for (size_t i = 0; i < n_before; ++i) {
       if (t.died[i] != never_died) continue;
-      for (int k = 0; k < 2; ++k) {
-        if ((k == 0 ? st.main[i] : st.lat[i]) != bud_here) continue;
-        const shoot_plan plan = plan_shoot(st.q[2 * i + k], p.internode_length);
+      for (int k = 0; k < int(st.nb); ++k) {
+        if (st.bud(i, k) != bud_here) continue;
+        const shoot_plan plan = plan_shoot(st.q[st.nb * i + size_t(k)], p.internode_length);
         if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan});
       }
     }
@@ -527,10 +569,10 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
       {
         const shoot_plan plan = shoots[j].plan;
         int32_t prev = int32_t(i);
-        const glm::vec3 def = k == 0 ? st.heading(int32_t(i)) : st.lateral_direction(int32_t(i));
+        const glm::vec3 def = k == 0 ? st.heading(int32_t(i)) : st.lateral_direction(int32_t(i), k == 2);
         glm::vec3 ref = k == 0 ? st.side[i] : st.heading(int32_t(i));
-        const uint8_t ord = uint8_t(std::min(int(t.order[i]) + k, 255));
-        const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[2 * i + k], def);
+        const uint8_t ord = uint8_t(std::min(int(t.order[i]) + (k > 0), 255));
+        const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[st.nb * i + size_t(k)], def);
         // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
         glm::vec3 optimal = marker_dir;
@@ -553,7 +595,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
             s = glm::angleAxis(div, dir) * s;
           }
           const int32_t node = st.add_node(from + dir * plan.length, prev, uint16_t(T), ord, s);
-          if (prev == int32_t(i)) (k == 0 ? st.main : st.lat)[i] = node;
+          if (prev == int32_t(i)) st.bud(i, k) = node;
           else st.main[prev] = node;
           grown.push_back(node);
           prev = node;
@@ -599,7 +641,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     debug->node_fate.assign(t.size(), 1);
     for (size_t i = 0; i < t.size(); ++i) {
       if (t.died[i] != never_died) debug->node_fate[i] = 2;
-      else if (st.main[i] != bud_here && st.lat[i] != bud_here) debug->node_fate[i] = 0;
+      else if (st.main[i] != bud_here && st.lat[i] != bud_here && st.far(i) != bud_here) debug->node_fate[i] = 0;
       if (t.parent[i] >= 0 && t.born[i] == t.steps && debug->node_fate[t.parent[i]] == 1) debug->node_fate[t.parent[i]] = 0;
     }
     debug->node_flow = last_flow;

@@ -12,8 +12,11 @@ enum class so_environment : int { shadow = 0, markers = 1 };
 inline constexpr const char* so_environment_names[] = {"shadow_propagation", "space_colonization", nullptr};
 enum class so_allocation : int { borchert_honda = 0, priority = 1 };
 inline constexpr const char* so_allocation_names[] = {"borchert_honda", "priority", nullptr};
-enum class so_phyllotaxis : int { spiral = 0, planar = 1 };
-inline constexpr const char* so_phyllotaxis_names[] = {"spiral", "planar", nullptr};
+// spiral: one lateral bud per node, each turned by φ from the last; planar: seed 000's ±β in one
+// plane; opposite: two lateral buds per node on opposite sides, each pair turned by φ from the last
+// (φ = 90°: decussate, as in maples, ashes and horse chestnuts).
+enum class so_phyllotaxis : int { spiral = 0, planar = 1, opposite = 2 };
+inline constexpr const char* so_phyllotaxis_names[] = {"spiral", "planar", "opposite", nullptr};
 enum class so_placement : int { grid = 0, random = 1, explicit_positions = 2 };
 inline constexpr const char* so_placement_names[] = {"grid", "random", "explicit", nullptr};
 // Priority model: how an axis ranks its buds and lateral branches (seed 000 sorts by the average).
@@ -114,8 +117,8 @@ void visit_params(P& p, V&& visitor) {
   v(p.w_tropism, param_info{"w_tropism", "Tropism weight", "τ", 0, 4, "Weight of the tropism vector: τ as seed 001 names it (η in Palubicki et al. 2009)"});
   v(p.tropism, param_info{"tropism", "Tropism", "g", -1, 1, "Tropism vector: (0,-1,0) bends towards gravity, (0,1,0) towards the light above"});
   v(p.branch_angle, param_info{"branch_angle", "Branching angle", "β", 0, 120, "Angle between an axis and its lateral buds", param_degrees});
-  v(p.divergence, param_info{"divergence", "Divergence", "φ", 0, 360, "Phyllotactic angle between successive lateral buds", param_degrees});
-  v(p.phyllotaxis, param_info{"phyllotaxis", "Phyllotaxis", "", 0, 1, "spiral: lateral buds turn by φ; planar: seed 000's ±β in one plane (flat trees)", 0, nullptr, so_phyllotaxis_names});
+  v(p.divergence, param_info{"divergence", "Divergence", "φ", 0, 360, "Phyllotactic angle between successive lateral buds (opposite phyllotaxis: between successive pairs)", param_degrees});
+  v(p.phyllotaxis, param_info{"phyllotaxis", "Phyllotaxis", "", 0, 2, "spiral: one lateral bud per node, turned by φ from the last; planar: seed 000's ±β in one plane (flat trees); opposite: a pair of lateral buds on opposite sides of each node, each pair turned by φ from the last (φ = 90°: decussate, as in maples and ashes)", 0, nullptr, so_phyllotaxis_names});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1.5f, 4, "Pipe model r^n = Σ r_i^n", 0, "Radii"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of a branch tip in metres", param_log});
   v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});

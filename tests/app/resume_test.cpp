@@ -163,6 +163,37 @@ TEST(Resume, SelfOrganizingMarkersResumedEqualsAFullRegrow) {
   check_edit_sequence(so_spec(true, false), "divergence", 4, 12);
 }
 
+// Keying opposite phyllotaxis into a spiral growth needs a third bud a node from the first step:
+// the spiral growth's snapshots (two buds a node) cannot resume it, so it regrows; once recorded
+// with three, a later edit resumes and still equals a full regrow.
+TEST(Resume, KeyingOppositePhyllotaxisRegrowsThenResumes) {
+  const tree_spec first = so_spec(false, false);
+  growth_resume r;
+  grow_resumable(first, {}, tree_spec{}, r);
+  tree_spec opposite = first;
+  opposite.keyframes.push_back({10, "phyllotaxis", glm::vec3(float(int(so_phyllotaxis::opposite)), 0, 0)});
+  const tree_skeleton regrown = grow_resumable(opposite, {}, first, r);
+  EXPECT_EQ(r.resumed_at, 0);
+  const tree_skeleton full = grow(opposite, {});
+  expect_identical(regrown, full);
+  size_t pairs = 0;   // nodes with two laterals: only from step 10 on
+  std::vector<int> laterals(full.size(), 0);
+  for (size_t c = 0; c < full.size(); ++c)
+    if (full.parent[c] >= 0 && full.order[c] == full.order[size_t(full.parent[c])] + 1) ++laterals[size_t(full.parent[c])];
+  for (size_t i = 0; i < full.size(); ++i)
+    if (laterals[i] == 2) {
+      ++pairs;
+      EXPECT_GE(full.born[i], 10) << i;
+    }
+  EXPECT_GT(pairs, 0u);
+  tree_spec later = opposite;
+  later.keyframes.push_back({12, "alpha", glm::vec3(2.5f, 0, 0)});
+  const tree_skeleton resumed = grow_resumable(later, {}, opposite, r);
+  EXPECT_GE(r.resumed_at, 10);   // a kept snapshot of the three-bud growth (at a keyframe's step)
+  EXPECT_LE(r.resumed_at, 12);
+  expect_identical(resumed, grow(later, {}));
+}
+
 // Space colonization resumes from a crown step (the trunk's steps are not recorded): a cut at step
 // 18 on a branch of step 16, a keyframe of the segment length D at step 22.
 tree_spec sc_spec(bool wood) {

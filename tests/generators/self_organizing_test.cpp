@@ -259,3 +259,64 @@ TEST(ShadowGrid, PyramidsInOneBatchAreOneAfterAnother) {
   EXPECT_TRUE(capped.full);
   EXPECT_EQ(capped.chunk_count(), 5u);
 }
+
+// Opposite phyllotaxis: each node carries two lateral buds on opposite sides, each pair turned by
+// φ from the last. With only the default directions steering, a node's two laterals leave exactly
+// opposite each other, and the pairs of a node and of the next node on its axis are crossed
+// (φ = 90°, decussate); a spiral tree never has two laterals on one node.
+TEST(SelfOrganizingTree, OppositePhyllotaxisGrowsCrossedPairsOfLaterals) {
+  auto laterals_of = [](const tree_skeleton& t) {
+    std::vector<std::vector<int32_t>> lat(t.size());
+    for (size_t c = 0; c < t.size(); ++c) {
+      const int32_t par = t.parent[c];
+      if (par >= 0 && t.order[c] == t.order[par] + 1) lat[size_t(par)].push_back(int32_t(c));
+    }
+    return lat;
+  };
+  // The first internode's direction off the parent's axis.
+  auto across = [](const tree_skeleton& t, int32_t par, int32_t c) {
+    const glm::vec3 axis = glm::normalize(t.position[size_t(par)] - t.position[size_t(t.parent[size_t(par)])]);
+    const glm::vec3 d = t.position[size_t(c)] - t.position[size_t(par)];
+    return glm::normalize(d - glm::dot(d, axis) * axis);
+  };
+  self_organizing_params p = small_params();
+  p.w_optimal = 0;
+  p.w_tropism = 0;
+  p.divergence = 90;
+  {
+    const tree_skeleton t = grow_self_organizing(p, {});
+    for (const auto& l : laterals_of(t)) EXPECT_LE(l.size(), 1u) << "spiral: one lateral bud per node";
+  }
+  p.phyllotaxis = so_phyllotaxis::opposite;
+  const tree_skeleton t = grow_self_organizing(p, {});
+  EXPECT_EQ(validate_skeleton(t), "");
+  const auto lat = laterals_of(t);
+  size_t pairs = 0, crossed = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    ASSERT_LE(lat[i].size(), 2u);
+    if (lat[i].size() != 2 || t.parent[i] < 0) continue;
+    ++pairs;
+    EXPECT_LT(glm::dot(across(t, int32_t(i), lat[i][0]), across(t, int32_t(i), lat[i][1])), -0.999f) << i;
+    for (size_t c = i + 1; c < t.size(); ++c)   // the next node of the same axis, with its own pair
+      if (t.parent[c] == int32_t(i) && t.order[c] == t.order[i] && lat[c].size() == 2) {
+        EXPECT_LT(std::abs(glm::dot(across(t, int32_t(i), lat[i][0]), across(t, int32_t(c), lat[c][0]))), 0.02f) << i;
+        ++crossed;
+      }
+  }
+  EXPECT_GT(pairs, 20u);
+  EXPECT_GT(crossed, 5u);
+  // Both environments, both allocation models and the per-node light count grow pairs too.
+  for (int env = 0; env < 2; ++env)
+    for (int alloc = 0; alloc < 2; ++alloc) {
+      self_organizing_params q = small_params();
+      q.phyllotaxis = so_phyllotaxis::opposite;
+      q.environment = so_environment(env);
+      q.allocation = so_allocation(alloc);
+      q.light_count = alloc ? so_light_count::per_node : so_light_count::per_bud;
+      q.marker_count = 3000, q.envelope_radius = 1, q.envelope_top = 2, q.perception_distance = 4;
+      const tree_skeleton u = grow_self_organizing(q, {});
+      EXPECT_EQ(validate_skeleton(u), "") << env << alloc;
+      const auto l = laterals_of(u);
+      EXPECT_GT(std::count_if(l.begin(), l.end(), [](const auto& v) { return v.size() == 2; }), 3) << env << alloc;
+    }
+}
