@@ -128,6 +128,16 @@ void draw_cone_upright(leaf_canvas& c, rng& g) {
   draw_cone(c, g, s);
 }
 
+void draw_cone_barrel(leaf_canvas& c, rng& g) {
+  // Cedrus libani: erect, barrel-shaped, 8-12 cm long and 5-6 cm wide, with a flat or slightly
+  // sunken top, broad smooth scales pressed close and no bracts showing (Farjon 2010): squatter and
+  // blunter than a fir's cone, which is why the cedar has its own card.
+  cone_shape s;
+  s.length = 0.6f, s.width = 0.21f, s.widest = 0.5f, s.sides = 0.18f, s.stalk = 0.05f;
+  s.rows = 10, s.around = 7, s.lip = 0.12f;
+  draw_cone(c, g, s);
+}
+
 void draw_cone_ovoid(leaf_canvas& c, rng& g) {
   // Pinus sylvestris: ovoid-conic, 3-7 cm, grey-brown when ripe, each scale ending in a flat
   // rhombic shield with a small central boss; pointing back down the shoot on a short stalk
