@@ -23,17 +23,20 @@ namespace {
 const char* bark_vs = R"(#version 330 core
 layout(location = 0) in vec3 a_position; layout(location = 1) in vec3 a_normal; layout(location = 2) in vec2 a_uv;
 uniform mat4 u_viewproj;
-out vec3 v_normal; out vec2 v_uv;
-void main() { v_normal = a_normal; v_uv = a_uv; gl_Position = u_viewproj * vec4(a_position, 1.0); }
+out vec3 v_normal; out vec2 v_uv; out float v_height;
+void main() { v_normal = a_normal; v_uv = a_uv; v_height = a_position.y; gl_Position = u_viewproj * vec4(a_position, 1.0); }
 )";
 
 const char* bark_fs = R"(#version 330 core
-in vec3 v_normal; in vec2 v_uv;
+in vec3 v_normal; in vec2 v_uv; in float v_height;
 uniform sampler2D u_bark; uniform vec3 u_tint;
+uniform vec3 u_bark_base_color; uniform float u_bark_base_height;
 layout(location = 0) out vec4 o_color; layout(location = 1) out vec4 o_normal;
 void main() {
-  // The viewport's tint (render/assets/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
-  vec3 albedo = min(vec3(1.0), u_tint * texture(u_bark, v_uv).rgb);
+  // The viewport's tint (render/assets/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB;
+  // the tint shades from the base colour at the ground as the viewport's does (render/mesh/bark_tint.h).
+  vec3 tint = u_bark_base_height > 0.0 ? mix(u_bark_base_color, u_tint, smoothstep(0.0, u_bark_base_height, v_height)) : u_tint;
+  vec3 albedo = min(vec3(1.0), tint * texture(u_bark, v_uv).rgb);
   o_color = vec4(pow(albedo, vec3(1.0 / 2.2)), 1.0);
   o_normal = vec4(normalize(v_normal) * 0.5 + 0.5, 1.0);
 }
@@ -222,6 +225,8 @@ bool impostor_step(impostor_build& b, renderer_gpu& r) {
       set_uniform(b.bark, "u_viewproj", vp);
       set_uniform(b.bark, "u_bark", 0);
       set_uniform(b.bark, "u_tint", b.rp.bark_color);
+      set_uniform(b.bark, "u_bark_base_color", b.rp.bark_base_color);
+      set_uniform(b.bark, "u_bark_base_height", std::isfinite(b.rp.bark_base_height) ? b.rp.bark_base_height : 0.0f);
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
       glBindVertexArray(b.own_mesh ? b.bark_vao.id : r.bark_vao.id);

@@ -221,6 +221,38 @@ TEST_F(LodRender, ImpostorAtlasHasEveryViewWithAlphaAndNormals) {
   EXPECT_EQ(color.substr(1, 3), "PNG");
 }
 
+// The atlas bakes the bark as the viewport tints it: from the base colour at the ground to the bark
+// colour by bark_base_height. Red at the ground and blue above: the trunk's foot is red in the
+// atlas with the blend, blue without it.
+TEST_F(LodRender, ImpostorAtlasShadesTheBarkFromItsBaseColour) {
+  auto [p, t, m] = show_preset("species_oak");
+  render_params rp = p.render;
+  rp.bark_color = {0.05f, 0.05f, 1.0f};
+  rp.bark_base_color = {1.0f, 0.05f, 0.05f};
+  auto foot = [&](float base_height) {   // mean red - blue of the lowest opaque rows of view 0
+    rp.bark_base_height = base_height;
+    const impostor_atlas a = render_impostor(r, rp, 8, 128);
+    EXPECT_EQ(a.error, "");
+    double red_minus_blue = 0;
+    int rows = 0, texels = 0;
+    for (int y = 127; y >= 0 && rows < 3; --y) {
+      int here = 0;
+      for (int x = 0; x < 128; ++x) {
+        const size_t i = (size_t(y) * size_t(a.width) + size_t(x)) * 4;
+        if (a.color[i + 3] < 128) continue;
+        red_minus_blue += double(a.color[i]) - double(a.color[i + 2]);
+        ++here;
+      }
+      texels += here;
+      rows += here > 0;
+    }
+    EXPECT_GT(texels, 0);
+    return texels ? red_minus_blue / texels : 0.0;
+  };
+  EXPECT_GT(foot(3.0f), 40.0);
+  EXPECT_LT(foot(0.0f), -40.0);
+}
+
 // The viewport's impostor (render/gl/impostor.h): one camera-facing card showing the atlas view
 // nearest the camera, drawn by the leaf pipeline, against LOD0 where it takes over from LOD3.
 TEST_F(LodRender, ImpostorCardKeepsLod0SilhouetteWhereItTakesOver) {
