@@ -65,7 +65,12 @@ struct so_state : so_vars {
 
   so_state(const self_organizing_params& pp, tree_skeleton& tt, rng& rr) : p(pp), t(tt), r(rr) {}
 
+  // The memo's hit inline (once per node and step in the sweep), the rest out of line.
   static float whole_pow(std::vector<float>& memo, float k, float e) {
+    if (k >= 0 && k < float(memo.size()) && float(size_t(k)) == k) return memo[size_t(k)];
+    return whole_pow_fill(memo, k, e);
+  }
+  [[gnu::noinline]] static float whole_pow_fill(std::vector<float>& memo, float k, float e) {
     constexpr size_t limit = size_t(1) << 22;
     if (!(k >= 0 && k < float(limit)) || float(size_t(k)) != k) return std::pow(k, e);
     const size_t i = size_t(k);
