@@ -28,7 +28,7 @@ namespace sylva {
   X(hazel_spray)  /* hazel: round, heart-based, doubly toothed leaves on a shoot (cluster card) */ \
   X(poplar_spray) /* black poplar: deltoid leaves on long petioles (cluster card) */ \
   X(cone_hanging) /* spruce: a pendent cylindrical seed cone (fruit card, generators/fruits.h) */ \
-  X(cone_upright) /* fir, cedar: an upright barrel-shaped seed cone (fruit card) */ \
+  X(cone_upright) /* fir: an upright barrel-shaped seed cone, bract tips showing (fruit card) */ \
   X(samaras)      /* maple: a hanging cluster of paired winged fruits (fruit card) */ \
   X(hazelnuts)    /* hazel: nuts in leafy, toothed husks (fruit card) */ \
   X(cone_ovoid)   /* pine: an ovoid cone of rhombic scale shields (fruit card) */ \
