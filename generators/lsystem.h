@@ -64,7 +64,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.width_scale, param_info{"width_scale", "Width scale", "", 0.05f, 5, "Multiplies every branch radius"});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
   v(p.source, param_info{"source", "L-system", "", 0, 0, "The L-system text (text mode)", param_multiline, "L-system text"});
-  v(p.leaf_size, param_info{"turtle_leaf_size", "Leaf size", "", 0.005f, 1, "Blade length in metres of a leaf placed by L (L(s) gives s model units instead)", param_log});
+  v(p.leaf_size, param_info{"turtle_leaf_size", "Leaf size", "", 0.005f, 1, "Blade length in metres of a leaf placed by L (L(s) gives s model units instead)", param_log | param_own_leaves});
   v(p.widths, param_info{"widths", "Widths", "", 0, 1, "turtle: widths from !(w) and #width; pipe: the pipe model r^n = Σ r_i^n from thin tips (Shinozaki 1964)", 0, nullptr, lsystem_widths_names});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model exponent (pipe widths): 2 keeps the cross-section area, larger gives thinner trunks"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of the youngest segments in metres (pipe widths)", param_log});

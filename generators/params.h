@@ -24,6 +24,9 @@ enum param_flags : unsigned {
   param_regrow = 1u << 7,        // the generator grows the tree again, then it is meshed and drawn
   param_remesh = 1u << 8,        // the kept skeleton is meshed again; nothing regrows
   param_render = 1u << 9,        // only drawing changes (uniforms, textures, LODs): no regrow, no re-mesh
+  // The generator's own leaf rule (space colonization's spiral, the L-system's L): used only when
+  // the mesh's leaf mode is "generator", so the editor hides it otherwise.
+  param_own_leaves = 1u << 10,
 };
 
 // The classes in the order of their cost: an edit of several parameters needs the largest.

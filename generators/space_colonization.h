@@ -92,14 +92,14 @@ void visit_params(P& p, V&& visitor) {
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
   v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
   v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
-  v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment (used when the leaf mode is generator)", 0, "Own leaves (leaf mode: generator)"});
-  v(p.leaves_max, param_info{"leaves_max", "Leaves per segment (max)", "", 0, 64, "Most leaves on a terminal segment; 0 for a bare tree"});
-  v(p.leaf_size_min, param_info{"leaf_size_min", "Leaf size (min)", "", 0.001f, 2, "Smallest leaf blade length in metres", param_log});
-  v(p.leaf_size_max, param_info{"leaf_size_max", "Leaf size (max)", "", 0.001f, 2, "Largest leaf blade length in metres", param_log});
-  v(p.spiral_a, param_info{"spiral_a", "Spiral a", "a", 0, 1, "Logarithmic spiral r = a·e^(kθ): distance of the first leaf from the axis, metres"});
-  v(p.spiral_k, param_info{"spiral_k", "Spiral k", "k", -1, 1, "Logarithmic spiral r = a·e^(kθ): growth rate per radian"});
-  v(p.spiral_e, param_info{"spiral_e", "Spiral base", "e", 1, 10, "Base of the spiral's exponential (Euler's number by default)"});
-  v(p.spiral_rounds, param_info{"spiral_rounds", "Spiral rounds", "", 0, 8, "Turns of the spiral along one terminal segment"});
+  v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment (used when the leaf mode is generator)", param_own_leaves, "Own leaves (leaf mode: generator)"});
+  v(p.leaves_max, param_info{"leaves_max", "Leaves per segment (max)", "", 0, 64, "Most leaves on a terminal segment; 0 for a bare tree", param_own_leaves});
+  v(p.leaf_size_min, param_info{"leaf_size_min", "Leaf size (min)", "", 0.001f, 2, "Smallest leaf blade length in metres", param_log | param_own_leaves});
+  v(p.leaf_size_max, param_info{"leaf_size_max", "Leaf size (max)", "", 0.001f, 2, "Largest leaf blade length in metres", param_log | param_own_leaves});
+  v(p.spiral_a, param_info{"spiral_a", "Spiral a", "a", 0, 1, "Logarithmic spiral r = a·e^(kθ): distance of the first leaf from the axis, metres", param_own_leaves});
+  v(p.spiral_k, param_info{"spiral_k", "Spiral k", "k", -1, 1, "Logarithmic spiral r = a·e^(kθ): growth rate per radian", param_own_leaves});
+  v(p.spiral_e, param_info{"spiral_e", "Spiral base", "e", 1, 10, "Base of the spiral's exponential (Euler's number by default)", param_own_leaves});
+  v(p.spiral_rounds, param_info{"spiral_rounds", "Spiral rounds", "", 0, 8, "Turns of the spiral along one terminal segment", param_own_leaves});
 }
 
 // The editor shows the slab's thickness only for the slab envelope, the mesh's path only for the

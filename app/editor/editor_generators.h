@@ -13,6 +13,13 @@
 
 namespace sylva {
 
+// What the parameter panel shows: what param_relevant keeps within the struct, and the generator's
+// own leaf rule (param_own_leaves) only when the mesh's leaf mode is generator.
+template <class P>
+bool editor_shows(const P& p, const void* field, const param_info& info, bool generator_leaves) {
+  return param_relevant(p, field, info) && (generator_leaves || !(info.flags & param_own_leaves));
+}
+
 // ---------------------------------------------------------------- per-step tables (display-free)
 
 // The std::vector<float> parameters of one params struct are per-step schedules (guiding vectors'

@@ -247,7 +247,7 @@ const char* param_source() {
 // Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
 template <class P>
 void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr,
-                 const std::vector<const char*>* groups = nullptr) {
+                 const std::vector<const char*>* groups = nullptr, bool generator_leaves = true) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
@@ -260,7 +260,7 @@ void draw_params(P& p, const char* section, editor_state& e, const tree_spec* ke
   d.keyed_spec = keyed;
   d.keyed_step = e.step;
   visit_params(p, [&](auto& value, const param_info& info) {
-    d.relevant = param_relevant(std::as_const(p), &value, info);
+    d.relevant = editor_shows(std::as_const(p), &value, info, generator_leaves);
     d(value, info);
   });
   e.hold_post |= d.hold;
@@ -299,13 +299,14 @@ void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
     // step and an edit keys the new value there (app/editor/editor_keyframes.h).
     draw_from_step_switch(e.keys, spec, e.step);
   }
+  const bool generator_leaves = e.cur().doc.mesh.leaves.mode == leaf_mode::generator;
   if (e.keys.from_step && e.step >= 1) {
     const generator_params before = params_at_step(spec, e.step);
     generator_params shown = before;
-    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, shown);
+    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec, nullptr, generator_leaves); }, shown);
     if (!(shown == before)) key_error = key_edits(spec, before, shown, e.step);
   } else {
-    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec); }, spec.params);
+    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec, nullptr, generator_leaves); }, spec.params);
   }
   if (!searching) draw_generator_panel(e.generator_panels, spec, e.cur().shown.get());
 }

@@ -52,6 +52,30 @@ TEST(EditorLogic, SpaceColonizationShowsOnlyTheEnvelopesOwnSettings) {
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness"}));
 }
 
+// The generator's own leaf rule shows only when the mesh places the generator's leaves: under
+// the shoots model space colonization's spiral settings and the L-system's L size change nothing.
+TEST(EditorLogic, OwnLeafSettingsShowOnlyWithTheGeneratorsLeaves) {
+  auto hidden = [](const auto& p, bool generator_leaves) {
+    std::vector<std::string> out;
+    visit_params(p, [&](const auto& value, const param_info& info) {
+      if (!editor_shows(p, &value, info, generator_leaves)) out.emplace_back(info.key);
+    });
+    return out;
+  };
+  const space_colonization_params sc;
+  EXPECT_EQ(hidden(sc, true), hidden_keys(sc));
+  EXPECT_EQ(hidden(sc, false), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "leaves_min",
+                                                         "leaves_max", "leaf_size_min", "leaf_size_max", "spiral_a", "spiral_k",
+                                                         "spiral_e", "spiral_rounds"}));
+  lsystem_params ls;
+  ls.mode = lsystem_mode::text;
+  EXPECT_EQ(hidden(ls, true), hidden_keys(ls));
+  std::vector<std::string> text_hidden = hidden_keys(ls);
+  text_hidden.insert(text_hidden.begin() + 11, "turtle_leaf_size");
+  EXPECT_EQ(hidden(ls, false), text_hidden);
+  EXPECT_TRUE(hidden(self_organizing_params{}, false).empty());   // it has no leaf rule of its own
+}
+
 TEST(EditorLogic, GuidingVectorScheduleIsOneTable) {
   guiding_vectors_params p;   // t = -3,-3,1,1,1; endpoints 3,16,40,90,160; hops 1,5,4,3,2
   std::vector<step_column> cols = collect_step_columns(p);
