@@ -123,8 +123,7 @@ struct so_state : so_vars {
         // Seed 001 §3.1 counts a node's light once if it has either bud (per_node: shared by its
         // buds); Sylva's default lets each live bud count it, as Palubicki 2009 gives each bud a Q.
         const int live = (main[i] == bud_here) + (lat[i] == bud_here) + (far(i) == bud_here);
-        if (live == 2 && p.light_count == so_light_count::per_node) light *= 0.5f;
-        if (live == 3 && p.light_count == so_light_count::per_node) light /= 3.0f;
+        if (live > 1 && p.light_count == so_light_count::per_node) light /= float(live);
         q[nb * i] = main[i] == bud_here ? light : 0.0f;
         q[nb * i + 1] = lat[i] == bud_here ? light : 0.0f;
         if (nb == 3) q[nb * i + 2] = lat2[i] == bud_here ? light : 0.0f;
@@ -309,7 +308,7 @@ struct so_state : so_vars {
     // so an axis' resource is known when its base comes up.
     // Seed 000 sorts an axis' nodes by the *average* environmental input of the buds each supports,
     // then weights eq. 1 by its summed Q; priority_rank = summed sorts by the summed Q instead.
-    struct cand { float q; float rank; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(3i+k)−1
+    struct cand { float q; float rank; int32_t target; };  // target ≥ 0: lateral child; < 0: bud −(nb·i+k)−1
     const bool by_average = p.priority_rank == so_priority_rank::average;
     std::vector<cand> c;
     std::vector<float> qs, vs;

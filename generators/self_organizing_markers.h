@@ -16,7 +16,7 @@ namespace sylva {
 struct marker_state {
   std::vector<glm::vec3> pos;
   std::vector<uint8_t> alive;
-  std::vector<int32_t> best_bud;     // per marker, this step: closest perceiving bud (3·node + k: k = 0 the main bud, 1 and 2 the laterals)
+  std::vector<int32_t> best_bud;     // per marker, this step: closest perceiving bud (nb·node + k: k = 0 the main bud, 1 and 2 the laterals)
   std::vector<float> best_d2;
   float cell = 1;
   std::vector<uint64_t> cell_key;    // sorted cell keys, with [cell_start[k], cell_start[k+1]) markers
