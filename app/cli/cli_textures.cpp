@@ -76,6 +76,7 @@ const glm::vec3 leaf_tints[] = {
     {0.26f, 0.50f, 0.12f},  // maple spray: maple cluster cards
     {1, 1, 1},              // ash_keys
     {1, 1, 1},              // cone_barrel
+    {0.30f, 0.54f, 0.13f},  // fan: ginkgo sapling
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -105,7 +106,7 @@ const glyph font[] = {
     {'s', {0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E}}, {'t', {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06}},
     {'u', {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D}}, {'v', {0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04}},
     {'w', {0x00, 0x00, 0x11, 0x11, 0x15, 0x15, 0x0A}}, {'y', {0x00, 0x11, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
-    {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}}, {'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
+    {'z', {0x00, 0x00, 0x1F, 0x02, 0x04, 0x08, 0x1F}}, {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}}, {'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
     {')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}},
 };
 
@@ -136,7 +137,8 @@ const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        
                                    "hazel_spray (hazel)", "poplar_spray (poplar)", "cone_hanging (spruce)",
                                    "cone_upright (fir)",  "samaras (maple)",    "hazelnuts (hazel)",
                                    "cone_ovoid (pine)",   "beechnuts (beech)",  "coconuts (palm)",
-                                   "maple_spray (maple cards)", "ash_keys (ash)", "cone_barrel (cedar)"};
+                                   "maple_spray (maple)", "ash_keys (ash)", "cone_barrel (cedar)",
+                                   "fan (ginkgo)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (fir)", "fissured (ash)", "fibrous (cypress)",

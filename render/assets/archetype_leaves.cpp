@@ -123,6 +123,47 @@ void draw_maple_spray(leaf_canvas& c, rng& g) {
   darken_silhouette(c, 0.28f, 4, 0.012f);
 }
 
+// Ginkgo biloba: a fan-shaped blade on a long petiole (blades 5-8 cm wide, petioles 3-10 cm;
+// Flora of China 4: 8), a wedge at the base widening to a wavy outer edge, which on a young tree's
+// long shoots is cleft at the middle into two lobes ("biloba"). No midrib: the veins fork again and
+// again and run parallel out to the edge. Drawn in polar terms about the petiole's tip.
+void draw_fan(leaf_canvas& c, rng& g) {
+  const vec2 tip{0.5f, 0.40f};
+  stroke(c, {0.5f, 0.0f}, tip + vec2(0, 0.012f), 0.0062f, 0.0052f, petiole_style);
+  const float reach = 0.54f, half_angle = 68.0f * pi / 180.0f;
+  const float cleft = g.range(0.36f, 0.42f), wave_phase = g.range(0.0f, 6.28f);
+  const float px = c.px, vein_w = std::max(0.9f * px, 0.0024f);
+  raster(c, tip, heading(90), reach, reach, 0, [&](float a, float b) {
+    sample s;
+    const float r = std::sqrt(a * a + b * b);
+    if (r < 1e-4f) return s;
+    const float th = std::atan2(b, a), u = std::abs(th) / half_angle;
+    if (u >= 1.2f) return s;
+    // Outer edge: rounded shoulders toward the sides, a narrow V-shaped cleft at the middle and a
+    // shallow irregular wave along it.
+    const float v = std::abs(th) * 180.0f / pi;
+    float edge_r = reach * (1 - 0.24f * u * u * u);
+    edge_r *= 1 - cleft * std::pow(std::max(0.0f, 1 - v / 7.0f), 1.4f);
+    edge_r *= 1 + 0.022f * std::sin(th * 9.0f + wave_phase) + 0.012f * std::sin(th * 23.0f + 2 * wave_phase);
+    const float side = (half_angle - std::abs(th)) * r;  // distance to the wedge's straight side
+    const float edge = std::min(edge_r - r, side);
+    s.cover = clamp01(edge / px + 0.5f);
+    if (s.cover <= 0) return s;
+    // Forking parallel veins: the count doubles outward, so their spacing stays about even.
+    const float forks = r < 0.09f ? 6.0f : r < 0.18f ? 12.0f : r < 0.33f ? 24.0f : 48.0f;
+    const float q = (th / half_angle * 0.5f + 0.5f) * forks;
+    const float dv = std::abs(q - fround(q)) * (2 * half_angle / forks) * r;  // old veins go on past a fork
+    const float vein = std::max(0.0f, 1 - dv / vein_w) * smooth(0.01f, 0.04f, r) * clamp01(edge / (3 * px));
+    const float edge_fade = clamp01(edge / (4 * px));
+    s.height = 0.035f * (1 - u * u) * (r / reach) * (1 - r / reach) - 0.5f * px * vein;
+    s.shade = (1 + 0.07f * vein) * (0.8f + 0.2f * edge_fade);
+    s.warm = 0.45f * vein;
+    s.thin = 0.92f - 0.3f * vein;
+    return s;
+  });
+  darken_silhouette(c, 0.22f, 3, 0.008f);
+}
+
 void draw_pinnate(leaf_canvas& c, rng& g) {
   auto rachis = [](float t) { return vec2(0.5f + 0.015f * std::sin(2.5f * t), 0.78f * t); };
   curve_stroke(c, rachis, 6, 0.0075f, 0.0042f, petiole_style);
