@@ -126,16 +126,15 @@ void draw_maple_spray(leaf_canvas& c, rng& g) {
 // Ginkgo biloba: a fan-shaped blade on a long petiole (blades 5-8 cm wide, petioles 3-10 cm;
 // Flora of China 4: 8), a wedge at the base widening to a wavy outer edge, which on a young tree's
 // long shoots is cleft at the middle into two lobes ("biloba"). No midrib: the veins fork again and
-// again and run parallel out to the edge. Drawn in polar terms about the petiole's tip.
-void draw_fan(leaf_canvas& c, rng& g) {
-  const vec2 tip{0.5f, 0.40f};
-  stroke(c, {0.5f, 0.0f}, tip + vec2(0, 0.012f), 0.0062f, 0.0052f, petiole_style);
-  const float reach = 0.54f, half_angle = 68.0f * pi / 180.0f;
+// again and run parallel out to the edge. Drawn in polar terms about the petiole's tip; turn
+// rotates it (0 = pointing up the card), size scales it (1 = the fan card's blade).
+static void fan_blade(leaf_canvas& c, rng& g, vec2 tip, float turn, float size) {
+  const float reach = 0.54f * size, half_angle = 68.0f * pi / 180.0f;
   const float cleft = g.range(0.36f, 0.42f), wave_phase = g.range(0.0f, 6.28f);
-  const float px = c.px, vein_w = std::max(0.9f * px, 0.0024f);
-  raster(c, tip, heading(90), reach, reach, 0, [&](float a, float b) {
+  const float px = c.px, vein_w = std::max(0.9f * px, 0.0024f * std::sqrt(size));
+  raster(c, tip, heading(90 + turn), reach, reach, 0, [&](float a, float b) {
     sample s;
-    const float r = std::sqrt(a * a + b * b);
+    const float r = std::sqrt(a * a + b * b), rn = r / size;   // rn: in the fan card's units
     if (r < 1e-4f) return s;
     const float th = std::atan2(b, a), u = std::abs(th) / half_angle;
     if (u >= 1.2f) return s;
@@ -150,17 +149,45 @@ void draw_fan(leaf_canvas& c, rng& g) {
     s.cover = clamp01(edge / px + 0.5f);
     if (s.cover <= 0) return s;
     // Forking parallel veins: the count doubles outward, so their spacing stays about even.
-    const float forks = r < 0.09f ? 6.0f : r < 0.18f ? 12.0f : r < 0.33f ? 24.0f : 48.0f;
+    const float forks = rn < 0.09f ? 6.0f : rn < 0.18f ? 12.0f : rn < 0.33f ? 24.0f : 48.0f;
     const float q = (th / half_angle * 0.5f + 0.5f) * forks;
     const float dv = std::abs(q - fround(q)) * (2 * half_angle / forks) * r;  // old veins go on past a fork
-    const float vein = std::max(0.0f, 1 - dv / vein_w) * smooth(0.01f, 0.04f, r) * clamp01(edge / (3 * px));
+    const float vein = std::max(0.0f, 1 - dv / vein_w) * smooth(0.01f, 0.04f, rn) * clamp01(edge / (3 * px));
     const float edge_fade = clamp01(edge / (4 * px));
-    s.height = 0.035f * (1 - u * u) * (r / reach) * (1 - r / reach) - 0.5f * px * vein;
+    s.height = 0.035f * size * (1 - u * u) * (r / reach) * (1 - r / reach) - 0.5f * px * vein;
     s.shade = (1 + 0.07f * vein) * (0.8f + 0.2f * edge_fade);
     s.warm = 0.45f * vein;
     s.thin = 0.92f - 0.3f * vein;
     return s;
   });
+}
+
+void draw_fan(leaf_canvas& c, rng& g) {
+  const vec2 tip{0.5f, 0.40f};
+  stroke(c, {0.5f, 0.0f}, tip + vec2(0, 0.012f), 0.0062f, 0.0052f, petiole_style);
+  fan_blade(c, g, tip, 0, 1);
+  darken_silhouette(c, 0.22f, 3, 0.008f);
+}
+
+// A ginkgo spur shoot (short shoot): a stubby, ringed knob on the older wood with a rosette of
+// five fans on long petiole from its tip (Ginkgo biloba bears most leaves so, three to five to a
+// spur; Flora of China 4: 8). Spur leaves are less deeply cleft than a long shoot's; drawn flat,
+// the petioles splayed over 125°, each blade overlapping the next a little.
+void draw_ginkgo_spur(leaf_canvas& c, rng& g) {
+  const vec2 base{0.5f, 0.0f}, knob{0.5f, 0.09f};
+  const stroke_style spur{0.5f, 1.0f, 0.1f, 0};
+  stroke(c, base, knob, 0.024f, 0.02f, spur);
+  for (int k = 0; k < 3; ++k) {   // the knob's leaf-scar rings: darker bands across it
+    const float y = 0.025f + 0.025f * float(k);
+    stroke(c, {0.478f, y}, {0.522f, y}, 0.0035f, 0.0035f, stroke_style{0.35f, 1.0f, 0.1f, 0});
+  }
+  const float angles[5] = {-62, -31, 0, 31, 62}, lengths[5] = {0.19f, 0.25f, 0.28f, 0.25f, 0.19f};
+  for (int k : {0, 4, 1, 3, 2}) {
+    const float ang = angles[k] + g.range(-6, 6);
+    const vec2 tip = knob + heading(90 + ang) * lengths[k];
+    stroke(c, knob, tip, 0.0042f, 0.0034f, petiole_style);
+    fan_blade(c, g, tip, ang * 0.9f, 0.6f * g.range(0.92f, 1.04f));
+  }
   darken_silhouette(c, 0.22f, 3, 0.008f);
 }
 
