@@ -36,9 +36,7 @@ namespace sylva {
   X(coconuts)     /* palm: a bunch of coconuts on a stout branched stalk (fruit card) */ \
   X(maple_spray)  /* maple: opposite pairs of palmate leaves on a shoot (cluster card) */ \
   X(ash_keys)     /* ash: a hanging bunch of single-winged keys (fruit card) */ \
-  X(cone_barrel)  /* true cedar (Cedrus): a squat upright barrel, flat-topped (fruit card) */ \
-  X(fan)          /* ginkgo: a fan-shaped blade, notched at the middle, with forking parallel veins */ \
-  X(ginkgo_spur)  /* ginkgo: a spur shoot with a rosette of five fan leaves (cluster card) */
+  X(cone_barrel)  /* true cedar (Cedrus): a squat upright barrel, flat-topped (fruit card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -38,7 +38,7 @@ export const SPECIES_NAMES = {
   ash: ['ash', 'fraxinus'],
   birch: ['birch', 'betula'],
   poplar: ['poplar', 'populus'],
-  sapling: ['sapling', 'ginkgo', 'maidenhair'], // a young ginkgo: its species or what it is
+  sapling: ['sapling', 'maple', 'acer'], // a young maple: its species or what it is
   bush: ['bush', 'shrub', 'hazel', 'corylus'], // species_bush is a hazel (docs/SPECIES.md)
   pine: ['pine', 'pinus'],
   spruce: ['spruce', 'picea'],
