@@ -214,6 +214,7 @@ struct spray_layout {
   float len_lo, len_hi;              // blade length, and half-width as a share of it
   float width;
   float tip_petiole, tip_base, tip_len, tip_trim, tip_width;  // the tip leaf
+  float bud = 0;                     // > 0: no tip leaf; the twig ends in a pointed bud this long
 };
 
 struct no_extra {
@@ -224,9 +225,21 @@ struct no_extra {
 // hazel's basal lobes) lies under the blade.
 template <class Profile, class Extra = no_extra>
 void leaf_spray(leaf_canvas& c, rng& g, const spray_layout& s, blade_style st, Profile leaf, Extra extra = {}) {
-  auto twig = [&](float t) { return vec2(0.5f + s.wobble * std::sin(s.freq * t), s.height * t); };
+  // A shoot that ends in a bud zigzags: it kinks at each node, away from the leaf there, so it
+  // does not run straight like a compound leaf's rachis (Fagus, Corylus); others wave gently.
+  auto node_t = [&](int i) { return s.t0 + s.t_span * float(i) / float(s.leaves - 1); };
+  auto twig = [&](float t) {
+    if (s.bud <= 0) return vec2(0.5f + s.wobble * std::sin(s.freq * t), s.height * t);
+    float x0 = 0.5f, t_prev = 0;
+    for (int i = 0; i < s.leaves; ++i) {
+      const float ti = node_t(i), xi = 0.5f + ((i % 2) ? -s.wobble : s.wobble);
+      if (t <= ti) return vec2(x0 + (xi - x0) * (t - t_prev) / (ti - t_prev), s.height * t);
+      x0 = xi, t_prev = ti;
+    }
+    return vec2(x0 + (0.5f - x0) * (t - t_prev) / std::max(1 - t_prev, 1e-3f), s.height * t);
+  };
   for (int i = 0; i < s.leaves; ++i) {
-    const float t = s.t0 + s.t_span * float(i) / float(s.leaves - 1);
+    const float t = node_t(i);
     const vec2 p = twig(t);
     const float side = (i % 2) ? 1.0f : -1.0f;
     const float ang = 90 + side * g.range(s.ang_lo, s.ang_hi) * (1.1f - 0.3f * t);
@@ -238,8 +251,17 @@ void leaf_spray(leaf_canvas& c, rng& g, const spray_layout& s, blade_style st, P
     extra(q - d * s.sink, ang, len, len * s.width);
     blade(c, q - d * s.sink, ang, len, len * s.width, leaf, st);
   }
-  curve_stroke(c, twig, 6, s.twig_w0, s.twig_w1, twig_style);
+  curve_stroke(c, twig, s.bud > 0 ? 4 * (s.leaves + 1) : 6, s.twig_w0, s.twig_w1, twig_style);
   const vec2 tip = twig(1.0f);
+  if (s.bud > 0) {
+    // A shoot ends in its winter bud, not in a leaf: a tip leaf in line with the twig, flanked by
+    // leaves left and right, is how a pinnate compound leaf ends, and readers took the sprays for
+    // one (round 29: hazel, "rows that look like pinnate leaflets"; round 31: beech named as ash).
+    const stroke_style bud{0.45f, 1.0f, 0.1f, 0};
+    const vec2 d = glm::normalize(twig(1.0f) - twig(0.97f));
+    stroke(c, tip - d * 0.005f, tip + d * s.bud, 1.3f * s.twig_w1, 0.0015f, bud);
+    return;
+  }
   st.bend = 0;
   stroke(c, tip, tip + vec2(0, s.tip_petiole), s.petiole_w0, s.petiole_w1, petiole_style);
   const float tip_len = fit(tip, {0, 1}, s.tip_len) - s.tip_trim;
@@ -261,8 +283,9 @@ void draw_twig_cluster(leaf_canvas& c, rng& g) {
 void draw_beech_spray(leaf_canvas& c, rng& g) {
   blade_style st;
   st.serration = 0, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
-  const spray_layout s{0.035f, 9.0f, 0.6f, 0.009f, 0.005f, 5, 0.24f, 0.72f, 52, 66, 0.02f, 0.02f, 0.0035f, 0.003f,
-                       0.004f, 0.04f, 0.34f, 0.4f, 0.3f, 0.02f, 0.016f, 0.36f, 0.02f, 0.1f};
+  // Six side leaves and the long, slender, pointed bud beech shoots end in (no tip leaf).
+  const spray_layout s{0.035f, 9.0f, 0.74f, 0.009f, 0.005f, 6, 0.18f, 0.72f, 52, 66, 0.02f, 0.02f, 0.0035f, 0.003f,
+                       0.004f, 0.04f, 0.32f, 0.38f, 0.3f, 0, 0, 0, 0, 0, 0.07f};
   // Widest a little below the middle, tapering straight to an acute tip (a pow below 1 would round
   // it off); no teeth (round 17's reader saw the old card's twelve shallow teeth as "jagged" and
   // thought of hornbeam), only a low wave between the vein ends.
@@ -281,8 +304,9 @@ void draw_beech_spray(leaf_canvas& c, rng& g) {
 void draw_hazel_spray(leaf_canvas& c, rng& g) {
   blade_style st;
   st.serration = 0.07f, st.teeth = 46, st.vein_angle = 44, st.veins = 7, st.dome = 0.14f;
-  const spray_layout s{0.03f, 7.0f, 0.5f, 0.011f, 0.006f, 4, 0.26f, 0.7f, 50, 62, 0.03f, 0.03f, 0.004f, 0.0035f,
-                       0.0f, 0.03f, 0.38f, 0.44f, 0.43f, 0.03f, 0.02f, 0.44f, 0.02f, 0.19f};
+  // Five side leaves and a small blunt bud at the shoot's end (no tip leaf).
+  const spray_layout s{0.03f, 7.0f, 0.62f, 0.011f, 0.006f, 5, 0.2f, 0.74f, 50, 62, 0.03f, 0.03f, 0.004f, 0.0035f,
+                       0.0f, 0.03f, 0.36f, 0.42f, 0.43f, 0, 0, 0, 0, 0, 0.03f};
   auto hazel = [](float t, int) {
     // A round blade that ends in an abrupt short point (cuspidate), with the larger teeth of the
     // double serration over the fine ones.
