@@ -36,7 +36,8 @@ namespace sylva {
   X(coconuts)     /* palm: a bunch of coconuts on a stout branched stalk (fruit card) */ \
   X(maple_spray)  /* maple: opposite pairs of palmate leaves on a shoot (cluster card) */ \
   X(ash_keys)     /* ash: a hanging bunch of single-winged keys (fruit card) */ \
-  X(cone_barrel)  /* true cedar (Cedrus): a squat upright barrel, flat-topped (fruit card) */
+  X(cone_barrel)  /* true cedar (Cedrus): a squat upright barrel, flat-topped (fruit card) */ \
+  X(acorns)       /* pedunculate oak: acorns in scaly cups on a long stalk (fruit card) */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -76,6 +76,7 @@ const glm::vec3 leaf_tints[] = {
     {0.26f, 0.50f, 0.12f},  // maple spray: maple cluster cards
     {1, 1, 1},              // ash_keys
     {1, 1, 1},              // cone_barrel
+    {1, 1, 1},              // acorns
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -136,7 +137,8 @@ const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        
                                    "hazel_spray (hazel)", "poplar_spray (poplar)", "cone_hanging (spruce)",
                                    "cone_upright (fir)",  "samaras (maple)",    "hazelnuts (hazel)",
                                    "cone_ovoid (pine)",   "beechnuts (beech)",  "coconuts (palm)",
-                                   "maple_spray (maple)", "ash_keys (ash)", "cone_barrel (cedar)"};
+                                   "maple_spray (maple)", "ash_keys (ash)", "cone_barrel (cedar)",
+                                   "acorns (oak)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (fir)", "fissured (ash)", "fibrous (cypress)",

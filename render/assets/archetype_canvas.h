@@ -338,6 +338,7 @@ void draw_beechnuts(leaf_canvas& c, rng& g);
 void draw_coconuts(leaf_canvas& c, rng& g);
 void draw_ash_keys(leaf_canvas& c, rng& g);
 void draw_cone_barrel(leaf_canvas& c, rng& g);
+void draw_acorns(leaf_canvas& c, rng& g);
 
 // ================================================================ bark
 // Tile coordinates u (around the branch) and v (along it, image rows), both periodic in [0, 1).

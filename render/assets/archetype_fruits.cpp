@@ -302,4 +302,33 @@ void draw_ash_keys(leaf_canvas& c, rng& g) {
     }
   }
 }
+// Quercus robur: acorns 1.5-2.5 cm, ovoid-oblong with a short point, a third of each held in a
+// shallow cup of close-pressed scales, one to three (to five) together on a long slender stalk, the
+// peduncle, 3-8 cm: the "pedunculate" oak, as against the sessile oak's stalkless acorns (Rushforth
+// 1999). Here three: one partway along the stalk and two at its end, pointing out.
+void draw_acorns(leaf_canvas& c, rng& g) {
+  auto stalk = [](float t) { return vec2(0.5f + 0.025f * std::sin(2.5f * t), 0.46f * t); };
+  curve_stroke(c, stalk, 5, 0.0095f, 0.0075f, petiole_style);
+  struct acorn { float t, deg, len; };
+  const acorn nuts[3] = {{0.62f, 90 + 52, 0.24f}, {1.0f, 90 - 30, 0.27f}, {1.0f, 90 + 14, 0.26f}};
+  const stroke_style scale_row{0.62f, 0.0f, 0.05f, 0};
+  for (const acorn& a : nuts) {
+    const float deg = a.deg + g.range(-5, 5), len = a.len * g.range(0.94f, 1.05f);
+    const vec2 d = heading(deg), n(-d.y, d.x);
+    const vec2 base = stalk(a.t) + d * 0.025f;
+    stroke(c, stalk(a.t), base, 0.007f, 0.0065f, petiole_style);
+    // The cup and its scale rows first, then the nut over the cup's upper half: the nut's narrow
+    // base sits in the bowl, which shows round it.
+    ellipse(c, base + d * 0.06f, deg, 0.15f, 0.1f, 0.0f, 0.9f);
+    for (int k = 0; k < 3; ++k) {
+      const vec2 m = base + d * (0.012f + 0.022f * float(k));
+      const float w = 0.055f + 0.016f * float(k);
+      stroke(c, m - n * w, m + n * w, 0.0028f, 0.0028f, scale_row);
+    }
+    ellipse(c, base + d * (0.06f + 0.5f * len), deg, len, 0.082f, 1.0f, 1.0f);
+    const vec2 apex = base + d * (0.06f + len);
+    stroke(c, apex - d * 0.012f, apex + d * 0.012f, 0.005f, 0.0015f, scale_row);
+  }
+}
+
 }  // namespace sylva::archetype

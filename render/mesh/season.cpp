@@ -18,7 +18,7 @@ bool archetype_is_fruit(leaf_archetype a) {
   return a == leaf_archetype::cone_hanging || a == leaf_archetype::cone_upright || a == leaf_archetype::samaras ||
          a == leaf_archetype::hazelnuts || a == leaf_archetype::cone_ovoid ||
          a == leaf_archetype::beechnuts || a == leaf_archetype::coconuts || a == leaf_archetype::ash_keys ||
-         a == leaf_archetype::cone_barrel;
+         a == leaf_archetype::cone_barrel || a == leaf_archetype::acorns;
 }
 
 uint32_t fruit_archetype_mask() {

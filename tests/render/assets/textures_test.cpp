@@ -169,6 +169,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.15, 0.60},  // maple spray: three opposite pairs on a shoot, sky between the pairs
       {0.08, 0.40},  // ash keys: a bunch of narrow keys, sky between them
       {0.12, 0.35},  // cone_barrel: a squat barrel on a short stalk
+      {0.06, 0.30},  // acorns: three acorns on a long stalk
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
@@ -445,7 +446,7 @@ TEST(ArchetypeTextures, FruitCardsAreInTheirOwnColours) {
     EXPECT_GT(r, 0.6 * g) << leaf_archetype_names[i] << ": not a leaf's green";
     EXPECT_GT(g, 0.04) << leaf_archetype_names[i] << ": not black";
   }
-  EXPECT_EQ(fruits, 9);
+  EXPECT_EQ(fruits, 10);
   // The two cones differ in colour (a ripe spruce cone is brown, a fir or cedar cone grey-green).
   auto mean_rg = [](leaf_archetype a) {
     const image& c = leaf_archetype_textures(a, kSize).color;
