@@ -2,6 +2,7 @@
 // validator, and one OBJ per level written all or nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -177,13 +178,22 @@ TEST(LodExport, WinterDropsBroadleavesAndTheirBakedCardsOnEveryLevel) {
     for (std::string line; std::getline(s, line);) n += line.rfind("f ", 0) == 0;
     return n;
   };
-  // Every oak leaf is a broadleaf, so winter leaves only the bark: each level's triangles less two
-  // per leaf (or card), on every level's file, not only LOD0's.
-  EXPECT_EQ(faces("tree.obj"), h.c.triangles[0] - 2 * h.m.leaves.size());
+  // The oak's leaves are broadleaves and go in winter; its acorns are fruit cards and stay. So each
+  // level's file holds its bark (the level's triangle count less two per card) and its acorns, each
+  // written two-sided (two faces, four triangles: render/io/export_parts.cpp), on every level's
+  // file, not only LOD0's.
+  auto fruits = [](const tree_mesh& m) {
+    return size_t(std::count_if(m.leaves.begin(), m.leaves.end(),
+                                [](const leaf_instance& l) { return archetype_is_fruit(leaf_archetype(l.texture)); }));
+  };
+  ASSERT_GT(fruits(h.m), size_t(0)) << "the oak carries acorns";
+  ASSERT_LT(fruits(h.m), h.m.leaves.size());
+  EXPECT_EQ(faces("tree.obj"), h.c.triangles[0] - 2 * h.m.leaves.size() + 4 * fruits(h.m));
   for (int k = 1; k < lod_levels; ++k) {
     const tree_mesh& l = h.c.level[size_t(k) - 1];
-    ASSERT_GT(l.leaves.size(), size_t(0));
-    EXPECT_EQ(faces("tree_lod" + std::to_string(k) + ".obj"), h.c.triangles[size_t(k)] - 2 * l.leaves.size()) << "LOD" << k;
+    ASSERT_GT(l.leaves.size(), fruits(l));
+    EXPECT_EQ(faces("tree_lod" + std::to_string(k) + ".obj"), h.c.triangles[size_t(k)] - 2 * l.leaves.size() + 4 * fruits(l))
+        << "LOD" << k;
   }
 }
 
