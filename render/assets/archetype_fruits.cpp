@@ -1,6 +1,6 @@
-// Cone and fruit cards (generators/fruits.h places them): hanging spruce cones, upright fir and
-// cedar cones, maple samaras and hazelnuts in their husks. Unlike the leaf cards they are drawn in
-// their own colours (the leaf_look's two colours are final, not a pale base for the leaf tint):
+// Cone and fruit cards (generators/fruits.h places them; the list is generators/archetypes.h's):
+// cones, samaras, keys, nuts, acorns and coconuts. Unlike the leaf cards they are drawn in their own
+// colours (the leaf_look's two colours are final, not a pale base for the leaf tint):
 // render/mesh/season.h archetype_is_fruit keeps the tint off them.
 //
 // Card coordinates as for the leaves (render/assets/archetype_canvas.h): the stalk enters at
@@ -302,6 +302,7 @@ void draw_ash_keys(leaf_canvas& c, rng& g) {
     }
   }
 }
+
 // Quercus robur: acorns 1.5-2.5 cm, ovoid-oblong with a short point, a third of each held in a
 // shallow cup of close-pressed scales, one to three (to five) together on a long slender stalk, the
 // peduncle, 3-8 cm: the "pedunculate" oak, as against the sessile oak's stalkless acorns (Rushforth

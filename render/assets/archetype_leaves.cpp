@@ -225,8 +225,9 @@ struct no_extra {
 // hazel's basal lobes) lies under the blade.
 template <class Profile, class Extra = no_extra>
 void leaf_spray(leaf_canvas& c, rng& g, const spray_layout& s, blade_style st, Profile leaf, Extra extra = {}) {
-  // A shoot that ends in a bud zigzags: it kinks at each node, away from the leaf there, so it
-  // does not run straight like a compound leaf's rachis (Fagus, Corylus); others wave gently.
+  // A shoot that ends in a bud zigzags: it turns at each node, the bend's outer corner on the
+  // side of the leaf there, so it does not run straight like a compound leaf's rachis (Fagus,
+  // Corylus); the other sprays' twigs wave gently.
   auto node_t = [&](int i) { return s.t0 + s.t_span * float(i) / float(s.leaves - 1); };
   auto twig = [&](float t) {
     if (s.bud <= 0) return vec2(0.5f + s.wobble * std::sin(s.freq * t), s.height * t);
