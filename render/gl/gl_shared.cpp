@@ -11,7 +11,7 @@ using namespace glsl;
 
 std::shared_ptr<gl_shared> make_gl_shared() {
   auto s = std::make_shared<gl_shared>();
-  const std::string bark_fs = lit_source(bark_fs_body), leaf_fs = lit_source(leaf_fs_body),
+  const std::string bark_fs = lit_source((std::string(bark_tint_glsl) + bark_fs_body).c_str()), leaf_fs = lit_source(leaf_fs_body),
                     ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
                     occ_fs = sky_source(occlusion_fs_body);
   const std::string bark_vs_wind = with_wind_glsl(bark_vs), leaf_vs_wind = with_wind_glsl(leaf_vs);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -13,6 +14,8 @@
 
 #include "generators/timing.h"
 #include "render/assets/textures.h"
+#include "render/gl/renderer_resources.h"
+#include "render/gl/shaders.h"
 
 namespace sylva {
 
@@ -27,16 +30,14 @@ out vec3 v_normal; out vec2 v_uv; out float v_height;
 void main() { v_normal = a_normal; v_uv = a_uv; v_height = a_position.y; gl_Position = u_viewproj * vec4(a_position, 1.0); }
 )";
 
-const char* bark_fs = R"(#version 330 core
+// After the version line and glsl::bark_tint_glsl (render/gl/shaders.h): the viewport's tint by height.
+const char* bark_fs_body = R"(
 in vec3 v_normal; in vec2 v_uv; in float v_height;
-uniform sampler2D u_bark; uniform vec3 u_tint;
-uniform vec3 u_bark_base_color; uniform float u_bark_base_height;
+uniform sampler2D u_bark;
 layout(location = 0) out vec4 o_color; layout(location = 1) out vec4 o_normal;
 void main() {
-  // The viewport's tint (render/assets/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB;
-  // the tint shades from the base colour at the ground as the viewport's does (render/mesh/bark_tint.h).
-  vec3 tint = u_bark_base_height > 0.0 ? mix(u_bark_base_color, u_tint, smoothstep(0.0, u_bark_base_height, v_height)) : u_tint;
-  vec3 albedo = min(vec3(1.0), tint * texture(u_bark, v_uv).rgb);
+  // The viewport's tint (render/assets/textures.h, gain 1): texel (linear, sRGB texture) times tint, then sRGB.
+  vec3 albedo = min(vec3(1.0), bark_tint(v_height) * texture(u_bark, v_uv).rgb);
   o_color = vec4(pow(albedo, vec3(1.0 / 2.2)), 1.0);
   o_normal = vec4(normalize(v_normal) * 0.5 + 0.5, 1.0);
 }
@@ -143,7 +144,10 @@ std::string impostor_begin(impostor_build& b, renderer_gpu& r, const render_para
   if (!has_tree) return fail("no tree to render");
   // The atlas's programs: compiled by the context's first atlas, kept with its other programs.
   gl_shared& s = *r.shared;
-  if (!s.impostor_bark.id) s.impostor_bark = compile_program("impostor bark", bark_vs, bark_fs);
+  if (!s.impostor_bark.id) {
+    const std::string bark_fs = std::string("#version 330 core\n") + glsl::bark_tint_glsl + bark_fs_body;
+    s.impostor_bark = compile_program("impostor bark", bark_vs, bark_fs.c_str());
+  }
   if (!s.impostor_leaf.id) s.impostor_leaf = compile_program("impostor leaf", leaf_vs, leaf_fs);
   b.bark = s.impostor_bark;
   b.leaf = s.impostor_leaf;
@@ -224,9 +228,7 @@ bool impostor_step(impostor_build& b, renderer_gpu& r) {
       glUseProgram(b.bark.id);
       set_uniform(b.bark, "u_viewproj", vp);
       set_uniform(b.bark, "u_bark", 0);
-      set_uniform(b.bark, "u_tint", b.rp.bark_color);
-      set_uniform(b.bark, "u_bark_base_color", b.rp.bark_base_color);
-      set_uniform(b.bark, "u_bark_base_height", std::isfinite(b.rp.bark_base_height) ? b.rp.bark_base_height : 0.0f);
+      set_bark_tint_uniforms(b.bark, b.rp);
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, r.bark_tex.id);
       glBindVertexArray(b.own_mesh ? b.bark_vao.id : r.bark_vao.id);

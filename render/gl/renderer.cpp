@@ -325,9 +325,7 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
       set_uniform(r.shared->bark, "u_bark_normal", 4);
       set_uniform(r.shared->bark, "u_bark_rough", 7);
       set_uniform(r.shared->bark, "u_eye", eye);
-      set_uniform(r.shared->bark, "u_bark_color", rp.bark_color);
-      set_uniform(r.shared->bark, "u_bark_base_color", rp.bark_base_color);
-      set_uniform(r.shared->bark, "u_bark_base_height", std::isfinite(rp.bark_base_height) ? rp.bark_base_height : 0.0f);
+      set_bark_tint_uniforms(r.shared->bark, rp);
       set_wind_uniforms(r, r.shared->bark, f.wind);
       draw_bark(r);
       glDisable(GL_CULL_FACE);

@@ -398,4 +398,10 @@ void resize_shadow(renderer_gpu& r, int size) {
 }
 
 // Orthographic sun frustum fitted to the tree's bounds (DESIGN §8 pass 1).
+void set_bark_tint_uniforms(const gl_program& p, const render_params& rp) {
+  set_uniform(p, "u_bark_color", rp.bark_color);
+  set_uniform(p, "u_bark_base_color", rp.bark_base_color);
+  set_uniform(p, "u_bark_base_height", std::isfinite(rp.bark_base_height) ? rp.bark_base_height : 0.0f);
+}
+
 }  // namespace sylva

@@ -17,6 +17,8 @@ void release_tree_textures(renderer_gpu& r);
 // Loads the user's bark and leaf PNGs when their paths change (a file that cannot be used is
 // reported and the procedural texture stays); re-uploads the archetypes as needed.
 void update_user_textures(renderer_gpu& r, const render_params& rp);
+// The uniforms of glsl::bark_tint_glsl (the bark's tint by height) on program p, which is in use.
+void set_bark_tint_uniforms(const gl_program& p, const render_params& rp);
 
 // Render targets: a colour texture, a framebuffer of colour + depth, a depth texture (with
 // comparison for the shadow map); the frame's targets at a size and sample count; the shadow map.

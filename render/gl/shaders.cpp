@@ -62,10 +62,19 @@ void main() {
 }
 )";
 
+// The bark's tint by height, shared by the viewport's bark and the impostor atlas's: the base colour
+// at the ground shading to the bark colour (render/mesh/bark_tint.h, bark_tint::at). The uniforms
+// are set by set_bark_tint_uniforms (render/gl/renderer_resources.h).
+const char* const bark_tint_glsl = R"(
+uniform vec3 u_bark_color; uniform vec3 u_bark_base_color; uniform float u_bark_base_height;
+vec3 bark_tint(float y) {
+  return u_bark_base_height > 0.0 ? mix(u_bark_base_color, u_bark_color, smoothstep(0.0, u_bark_base_height, y)) : u_bark_color;
+}
+)";
+
 const char* const bark_fs_body = R"(
 in vec3 v_world; in vec3 v_normal; in vec2 v_uv; in float v_alive; in float v_ao; in float v_height;
-uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform sampler2D u_bark_rough; uniform vec3 u_bark_color;
-uniform vec3 u_bark_base_color; uniform float u_bark_base_height;
+uniform sampler2D u_bark; uniform sampler2D u_bark_normal; uniform sampler2D u_bark_rough;
 uniform vec3 u_eye;
 out vec4 o_color;
 // Tangent frame from screen-space derivatives (Schüler 2006), so the mesh needs no tangents.
@@ -86,9 +95,7 @@ void main() {
   vec3 n = normalize(cotangent_frame(n0, v_world, v_uv) * m);
   if (dot(n, n0) < 0.2) n = n0;
   // tinted_texture's formula (render/assets/textures.h): albedo = min(1, gain * tint * texel), texel linear.
-  // The tint by height: the base colour at the ground shading to the bark colour (bark_tint::at).
-  vec3 tint = u_bark_base_height > 0.0 ? mix(u_bark_base_color, u_bark_color, smoothstep(0.0, u_bark_base_height, v_height)) : u_bark_color;
-  vec3 albedo = min(vec3(1.0), TINT_GAIN * tint * texture(u_bark, v_uv).rgb);
+  vec3 albedo = min(vec3(1.0), TINT_GAIN * bark_tint(v_height) * texture(u_bark, v_uv).rgb);
   float sh = shadow_at(v_world, n);
   float ndl = max(dot(n, u_sun_dir), 0.0);
   // A mild dielectric highlight (F0 = 0.04) from the roughness map: Blinn-Phong with the exponent

@@ -8,6 +8,7 @@ namespace sylva::glsl {
 
 extern const char* const lighting_glsl;
 extern const char* const bark_vs;
+extern const char* const bark_tint_glsl;
 extern const char* const bark_fs_body;
 extern const char* const depth_fs;
 extern const char* const leaf_vs;
