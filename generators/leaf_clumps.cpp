@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 
 namespace sylva {
@@ -57,7 +58,8 @@ std::vector<float> clump_density(const tree_skeleton& t, const std::vector<float
   // masses' rms radii.
   std::vector<int32_t> tree(n, -1);
   std::vector<glm::vec3> sum(n, glm::vec3(0)), tree_sum(n, glm::vec3(0));
-  std::vector<float> w_mass(n, 0), w_tree(n, 0), sq(n, 0);
+  std::vector<float> w_mass(n, 0), w_tree(n, 0);
+  std::vector<glm::vec3> sq(n, glm::vec3(0));
   for (size_t i = 0; i < n; ++i) {
     const int32_t par = t.parent[i];
     tree[i] = par < 0 ? int32_t(i) : tree[par];
@@ -77,15 +79,21 @@ std::vector<float> clump_density(const tree_skeleton& t, const std::vector<float
   for (size_t i = 0; i < n; ++i) {
     if (t.parent[i] < 0 || !(weight[i] > 0) || mass[i] < 0) continue;
     const glm::vec3 e = mid(i) - sum[mass[i]];
-    sq[mass[i]] += weight[i] * glm::dot(e, e);
+    sq[mass[i]] += weight[i] * e * e;
   }
   const float variation = std::isfinite(s.variation) ? std::clamp(s.variation, 0.0f, 1.0f) : 0.0f;
-  std::vector<float> radius(n, 0), vary(n, 1);
+  std::vector<glm::vec3> radius(n, glm::vec3(1));
+  std::vector<float> vary(n, 1);
   std::vector<glm::vec3> outward(n, glm::vec3(0));
   for (size_t i = 0; i < n; ++i) {
     if (!(w_mass[i] > 0)) continue;
-    // A ball of radius R has rms radius R sqrt(3/5); a floor keeps a lone twig's mass from being a point.
-    radius[i] = std::max(std::sqrt(sq[i] / w_mass[i] / 0.6f), 0.15f * std::max(s.size, 0.01f));
+    // The mass's extent along each axis: a ball of radius R has an rms spread of R sqrt(1/5) per
+    // axis. Per axis, so that a long mass (a poplar's or a cypress's leader, a level limb) is an
+    // ellipsoid whose ends lie inside its rim: one radius for all axes made it a ball, and its
+    // ends (the leader's top metres) fell in the "gap" past the rim and lost their leaves. A
+    // floor keeps a lone twig's mass from being a point.
+    const float floor_r = 0.15f * std::max(s.size, 0.01f);
+    radius[i] = glm::max(glm::sqrt(sq[i] / w_mass[i] / 0.2f), glm::vec3(floor_r));
     const glm::vec3 o = sum[i] - tree_sum[tree[i]];
     const float len = glm::length(o);
     outward[i] = len > 1e-4f ? o / len : glm::vec3(0, 1, 0);

@@ -143,3 +143,24 @@ TEST(Clumping, OcclusionDarkensTheInsideOfEachMass) {
   ASSERT_GT(n_core, size_t(20));
   EXPECT_LT(core / double(n_core) + 20, rim / double(n_rim));
 }
+
+// A long mass is an ellipsoid, not a ball: a 4 m upright leader that forms one limb mass keeps its
+// leaves to its tip. With one radius for every axis its top metre fell past the ball's rim, in the
+// "gap" between masses, and the poplar's leader stuck out of its crown bare.
+TEST(Clumping, ALongMassKeepsItsEndsLeafy) {
+  tree_skeleton t;
+  int32_t par = t.add_node(glm::vec3(0), -1, 0.01f, 0, 0);
+  for (int k = 1; k <= 40; ++k) par = t.add_node(glm::vec3(0, 0.1f * float(k), 0), par, 0.01f, uint16_t(k), 0);
+  const std::vector<float> weight(t.size(), 1.0f);
+  const std::vector<float> d = clump_density(t, weight, clump_settings{1.0f, 3.0f, 0.0f}, 7);
+  ASSERT_EQ(d.size(), t.size());
+  EXPECT_EQ(limb_masses(t, 3.0f)[40], 0);  // the whole leader is one mass
+  std::vector<float> inner(d.begin() + 1, d.end());
+  std::nth_element(inner.begin(), inner.begin() + inner.size() / 2, inner.end());
+  const float median = inner[inner.size() / 2];
+  ASSERT_GT(median, 0.0f);
+  // Both ends lie in the shell: as dense as the median internode, and denser than the centre.
+  EXPECT_GE(d[40], 0.9f * median);
+  EXPECT_GE(d[1], 0.9f * median);
+  EXPECT_GT(d[40], 2.0f * d[20]);
+}
