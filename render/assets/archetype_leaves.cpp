@@ -280,13 +280,15 @@ void draw_twig_cluster(leaf_canvas& c, rng& g) {
 
 // A flat two-ranked beech spray (Fagus sylvatica: leaves elliptic, 5-10 cm, with an entire, wavy
 // margin and 5-9 pairs of straight parallel veins that run out to it; alternate along a zigzag
-// twig and held in one plane): five leaves on a twig that bends at each node.
+// twig and held in one plane): four leaves on a twig that bends at each node.
 void draw_beech_spray(leaf_canvas& c, rng& g) {
   blade_style st;
   st.serration = 0, st.vein_angle = 36, st.veins = 8, st.edge_dark = 0.34f;
-  // Six side leaves and the long, slender, pointed bud beech shoots end in (no tip leaf).
-  const spray_layout s{0.035f, 9.0f, 0.74f, 0.009f, 0.005f, 6, 0.18f, 0.72f, 52, 66, 0.02f, 0.02f, 0.0035f, 0.003f,
-                       0.004f, 0.04f, 0.32f, 0.38f, 0.3f, 0, 0, 0, 0, 0, 0.07f};
+  // Four side leaves and the long, slender, pointed bud beech shoots end in (no tip leaf). Six
+  // smaller ones in a row read as a compound leaf's leaflets (round 34: "pinnately compound leaves
+  // with many oval leaflets", the beech named as an ash at 2).
+  const spray_layout s{0.04f, 9.0f, 0.72f, 0.009f, 0.005f, 4, 0.16f, 0.68f, 50, 64, 0.02f, 0.02f, 0.0035f, 0.003f,
+                       0.004f, 0.04f, 0.42f, 0.48f, 0.33f, 0, 0, 0, 0, 0, 0.07f};
   // Widest a little below the middle, tapering straight to an acute tip (a pow below 1 would round
   // it off); no teeth (round 17's reader saw the old card's twelve shallow teeth as "jagged" and
   // thought of hornbeam), only a low wave between the vein ends.
