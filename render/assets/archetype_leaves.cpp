@@ -299,7 +299,7 @@ void draw_beech_spray(leaf_canvas& c, rng& g) {
 }
 
 // A hazel shoot (Corylus avellana: leaves broad, nearly round, 6-12 cm, with a heart-shaped base,
-// a doubly toothed margin and a short abrupt point; alternate in two ranks): four leaves on a
+// a doubly toothed margin and a short abrupt point; alternate in two ranks): three leaves on a
 // hairy twig. The outline is a circle set on its base that narrows to the point in its last fifth;
 // teeth on teeth double the margin. The heart: two round basal lobes reach back past where the
 // petiole joins, either side of it, with the notch between them (rounds 22-23's readers found the
@@ -307,9 +307,12 @@ void draw_beech_spray(leaf_canvas& c, rng& g) {
 void draw_hazel_spray(leaf_canvas& c, rng& g) {
   blade_style st;
   st.serration = 0.07f, st.teeth = 46, st.vein_angle = 44, st.veins = 7, st.dome = 0.14f;
-  // Five side leaves and a small blunt bud at the shoot's end (no tip leaf).
-  const spray_layout s{0.03f, 7.0f, 0.62f, 0.011f, 0.006f, 5, 0.2f, 0.74f, 50, 62, 0.03f, 0.03f, 0.004f, 0.0035f,
-                       0.0f, 0.03f, 0.36f, 0.42f, 0.43f, 0, 0, 0, 0, 0, 0.03f};
+  // Three broad side leaves, a quarter longer than the five they replace (about 7.5 cm on
+  // species_bush's 0.15 m card), and a small blunt bud at the shoot's end (no tip leaf). Five
+  // smaller ones in a row read "pinnate-like" and "smaller and more oval than hazel's broad
+  // cordate leaves" (rounds 29-34).
+  const spray_layout s{0.035f, 7.0f, 0.6f, 0.011f, 0.006f, 3, 0.16f, 0.66f, 48, 64, 0.035f, 0.035f, 0.004f, 0.0035f,
+                       0.0f, 0.03f, 0.46f, 0.52f, 0.5f, 0, 0, 0, 0, 0, 0.03f};
   auto hazel = [](float t, int) {
     // A round blade that ends in an abrupt short point (cuspidate), with the larger teeth of the
     // double serration over the fine ones.
