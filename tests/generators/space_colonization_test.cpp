@@ -307,10 +307,10 @@ TEST(SpaceColonization, EnvelopeShapesHoldTheirPoints) {
   check(envelope_shape::hemisphere, [&](glm::vec3 d) { return d.y >= -1 && d.x * d.x / 4 + (d.y + 1) * (d.y + 1) / 4 + d.z * d.z / 9 <= 1 + eps; });
   // Cone: apex at the top; at height y the cross-section shrinks by (1 - y)/2.
   check(envelope_shape::cone, [&](glm::vec3 d) { const float f = (1 - d.y) / 2; return d.x * d.x / 4 + d.z * d.z / 9 <= f * f + eps; });
-  // Flame: as wide as the box a quarter of the way up (y = -0.5), a point at the top.
+  // Flame: as wide as the box a quarter of the way up (y = -0.5), an ogive to a point at the top.
   check(envelope_shape::flame, [&](glm::vec3 d) {
     const float t = (d.y + 1) / 2;
-    const float r = t < 0.25f ? std::sqrt(std::max(0.0f, 1 - (0.25f - t) * (0.25f - t) / 0.0625f)) : std::pow((1 - t) / 0.75f, 0.85f);
+    const float r = t < 0.25f ? std::sqrt(std::max(0.0f, 1 - (0.25f - t) * (0.25f - t) / 0.0625f)) : std::pow((1 - t) / 0.75f, 0.6f);
     return std::fabs(d.y) <= 1 && d.x * d.x / 4 + d.z * d.z / 9 <= r * r + eps;
   });
   p.slab_thickness = 0.1f;
