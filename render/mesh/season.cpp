@@ -15,10 +15,8 @@ bool archetype_is_evergreen(leaf_archetype a) {
 }
 
 bool archetype_is_fruit(leaf_archetype a) {
-  return a == leaf_archetype::cone_hanging || a == leaf_archetype::cone_upright || a == leaf_archetype::samaras ||
-         a == leaf_archetype::hazelnuts || a == leaf_archetype::cone_ovoid ||
-         a == leaf_archetype::beechnuts || a == leaf_archetype::coconuts || a == leaf_archetype::ash_keys ||
-         a == leaf_archetype::cone_barrel || a == leaf_archetype::acorns;
+  const int k = int(a);
+  return k >= 0 && k < leaf_archetype_count && leaf_archetype_fruit[k];   // the kind in generators/archetypes.h
 }
 
 uint32_t fruit_archetype_mask() {
