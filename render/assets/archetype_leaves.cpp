@@ -234,7 +234,7 @@ void leaf_spray(leaf_canvas& c, rng& g, const spray_layout& s, blade_style st, P
     float x0 = 0.5f, t_prev = 0;
     for (int i = 0; i < s.leaves; ++i) {
       const float ti = node_t(i), xi = 0.5f + ((i % 2) ? -s.wobble : s.wobble);
-      if (t <= ti) return vec2(x0 + (xi - x0) * (t - t_prev) / (ti - t_prev), s.height * t);
+      if (t <= ti) return vec2(x0 + (xi - x0) * (t - t_prev) / std::max(ti - t_prev, 1e-3f), s.height * t);
       x0 = xi, t_prev = ti;
     }
     return vec2(x0 + (0.5f - x0) * (t - t_prev) / std::max(1 - t_prev, 1e-3f), s.height * t);
