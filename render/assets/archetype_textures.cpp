@@ -54,7 +54,7 @@ const leaf_entry leaf_table[] = {
     {draw_hazelnuts, {{140, 158, 74}, {168, 120, 64}}, 1},      // green husks, brown nuts
     {draw_cone_ovoid, {{84, 72, 58}, {150, 132, 104}}, 1},      // Pinus sylvestris: grey-brown shields
     {draw_beechnuts, {{138, 120, 70}, {120, 74, 40}}, 1},       // Fagus: olive-tan cupules, brown nuts
-    {draw_coconuts, {{112, 142, 34}, {206, 150, 48}}, 1},       // Cocos: green nuts ripening orange-yellow
+    {draw_coconuts, {{92, 124, 34}, {132, 96, 48}}, 1},         // Cocos: green nuts ripening to brown
     {draw_maple_spray, {{178, 194, 152}, {210, 208, 152}}, 1},  // as palmate
     {draw_ash_keys, {{182, 176, 104}, {128, 112, 60}}, 1},       // Fraxinus: pale straw-green wings, brown seeds
     {draw_cone_barrel, {{96, 84, 66}, {158, 146, 112}}, 1},      // Cedrus: grey-brown, pale scale edges
