@@ -40,7 +40,8 @@ namespace sylva {
   X(maple_spray, leaf)   /* maple: opposite pairs of palmate leaves on a shoot (cluster card) */ \
   X(ash_keys, fruit)     /* ash: a hanging bunch of single-winged keys (fruit card) */ \
   X(cone_barrel, fruit)  /* true cedar (Cedrus): a squat upright barrel, flat-topped (fruit card) */ \
-  X(acorns, fruit)       /* pedunculate oak: acorns in scaly cups on a long stalk (fruit card) */
+  X(acorns, fruit)       /* pedunculate oak: acorns in scaly cups on a long stalk (fruit card) */ \
+  X(horse_chestnut, leaf) /* horse chestnut: seven obovate leaflets fanned from a long petiole */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -123,6 +123,37 @@ void draw_maple_spray(leaf_canvas& c, rng& g) {
   darken_silhouette(c, 0.28f, 4, 0.012f);
 }
 
+// A horse chestnut leaf (Aesculus hippocastanum: palmately compound, five to seven obovate,
+// abruptly pointed, doubly toothed leaflets without stalks, the middle one longest, up to about
+// 25 cm, on a petiole about as long; leaves opposite; Rushforth 1999). Seven leaflets fanned from
+// the petiole's tip a third of the way up the card, the outer pairs shorter and turned down; each
+// leaflet is narrow at its wedge-shaped base and widest two thirds of the way to its tip, with
+// many straight secondary veins. No other tree in the library has a palmately compound leaf.
+void draw_horse_chestnut(leaf_canvas& c, rng& g) {
+  const vec2 hub(0.5f, 0.34f);
+  stroke(c, {0.5f, 0.0f}, hub, 0.0085f, 0.0062f, petiole_style);
+  blade_style st;
+  st.serration = 0.05f, st.teeth = 34, st.vein_angle = 52, st.veins = 15, st.midrib = 1.1f, st.edge_dark = 0.32f;
+  auto leaflet = [](float t, int side) {
+    // Obovate: a wedge at the base, widest near t = 0.68, then a short abrupt point; the two
+    // halves a little out of step.
+    const float u = std::pow(t, side ? 1.75f : 1.85f);
+    return std::pow(std::sin(pi * u), 0.62f) * (1 - 0.25f * smooth(0.9f, 1.0f, t));
+  };
+  const float angles[4] = {0, 33, 66, 102};       // degrees from the middle leaflet
+  const float lengths[4] = {0.62f, 0.56f, 0.43f, 0.27f};
+  for (int k : {3, 2, 1, 0})
+    for (int side : {-1, 1}) {
+      if (k == 0 && side > 0) continue;
+      const float a = 90 + float(side) * (angles[k] + g.range(-3, 3));
+      const vec2 d = heading(a);
+      const vec2 base = hub + d * 0.012f;
+      const float len = fit(base, d, lengths[k] * g.range(0.95f, 1.04f), 0.02f);
+      st.bend = -float(side) * (k == 0 ? 0 : 0.04f + 0.02f * float(k));   // the outer ones droop outward
+      blade(c, base, a, len, 0.2f * len, leaflet, st);
+    }
+}
+
 void draw_pinnate(leaf_canvas& c, rng& g) {
   auto rachis = [](float t) { return vec2(0.5f + 0.015f * std::sin(2.5f * t), 0.78f * t); };
   curve_stroke(c, rachis, 6, 0.0075f, 0.0042f, petiole_style);

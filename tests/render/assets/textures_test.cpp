@@ -170,6 +170,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.08, 0.40},  // ash keys: a bunch of narrow keys, sky between them
       {0.12, 0.35},  // cone_barrel: a squat barrel on a short stalk
       {0.06, 0.30},  // acorns: three acorns on a long stalk
+      {0.25, 0.60},  // horse chestnut: seven leaflets fanned on a long petiole, sky between them
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {

@@ -29,8 +29,8 @@ export const EZ_DEFAULT = 'Oak Medium';
 export const EXCLUDED_PRESETS = ['species_forest', 'species_maple_cards'];
 
 // Names a reader may give for a species in the recognition test (matched as whole words,
-// case-insensitive, after the species key itself). A genus or a common variant counts; a
-// neighbour does not (a "spruce" answer for the fir is wrong).
+// case-insensitive; only these, so a key that is not a species name, "sapling", does not count).
+// A genus or a common variant counts; a neighbour does not (a "spruce" answer for the fir is wrong).
 export const SPECIES_NAMES = {
   oak: ['oak', 'quercus'],
   beech: ['beech', 'fagus'],
@@ -38,7 +38,7 @@ export const SPECIES_NAMES = {
   ash: ['ash', 'fraxinus'],
   birch: ['birch', 'betula'],
   poplar: ['poplar', 'populus'],
-  sapling: ['sapling', 'maple', 'acer'], // a young maple: its species or what it is
+  sapling: ['horse chestnut', 'horse-chestnut', 'horsechestnut', 'aesculus', 'buckeye'], // a young horse chestnut (docs/SPECIES.md)
   bush: ['bush', 'shrub', 'hazel', 'corylus'], // species_bush is a hazel (docs/SPECIES.md)
   pine: ['pine', 'pinus'],
   spruce: ['spruce', 'picea'],
@@ -109,7 +109,7 @@ const escapeRe = (s) => s.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
 export function recognises(answer, species) {
   if (typeof answer !== 'string' || !answer.trim()) return false;
   const a = answer.toLowerCase();
-  const names = [species, ...(SPECIES_NAMES[species] || [])];
+  const names = SPECIES_NAMES[species] || [species];
   return names.some((n) => new RegExp(`(^|[^a-z])${escapeRe(n.toLowerCase())}([^a-z]|$)`).test(a));
 }
 

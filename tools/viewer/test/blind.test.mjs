@@ -66,7 +66,8 @@ test('recognition matches whole words and aliases, not neighbours', () => {
   assert.ok(recognises('weeping willow (Salix)', 'willow'));
   assert.ok(recognises('Abies alba', 'fir'));
   assert.ok(recognises('shrub', 'bush'));
-  assert.ok(recognises('young maple', 'sapling'));
+  assert.ok(recognises('Horse chestnut (Aesculus hippocastanum), young tree', 'sapling'));
+  assert.ok(!recognises('Maple (Acer sp.), young tree / sapling', 'sapling'));
   assert.ok(!recognises('spruce', 'fir'));
   assert.ok(!recognises('ashwood', 'ash'));
   assert.ok(!recognises('firethorn', 'fir'));
@@ -80,6 +81,9 @@ test('median of odd, even and partly missing lists', () => {
   assert.equal(median([null, 5, undefined]), 5);
   assert.equal(median([]), null);
 });
+
+// What a reader who knows the tree writes: its first listed name (the sapling's is horse chestnut).
+const nameOf = (sp) => SPECIES_NAMES[sp][0];
 
 function answersFor(key, sylvaScore, ezScore, preferSylva, names) {
   const pairs = {};
@@ -95,7 +99,7 @@ function answersFor(key, sylvaScore, ezScore, preferSylva, names) {
 
 test('unblind puts each score on the right tree and checks the goals', () => {
   const key = makeKey(SPECIES, 11);
-  const good = unblind(key, answersFor(key, 8, 5, true, (sp) => sp));
+  const good = unblind(key, answersFor(key, 8, 5, true, nameOf));
   assert.deepEqual(good.problems, []);
   for (const r of good.rows) {
     assert.equal(r.sylva_score, 8);
@@ -109,7 +113,7 @@ test('unblind puts each score on the right tree and checks the goals', () => {
   assert.ok(good.summary.goal_preferred_every_pair && good.summary.goal_median_7 && good.summary.goal_recognition);
 
   // The reader prefers ez-tree and calls every fir a spruce.
-  const bad = unblind(key, answersFor(key, 4, 6, false, (sp) => (sp === 'fir' ? 'spruce' : sp)));
+  const bad = unblind(key, answersFor(key, 4, 6, false, (sp) => (sp === 'fir' ? 'spruce' : nameOf(sp))));
   assert.equal(bad.summary.sylva_median, 4);
   assert.equal(bad.summary.ez_preferred, SPECIES.length);
   assert.equal(bad.rows.find((r) => r.species === 'fir').recognised, false);
@@ -130,7 +134,7 @@ test('judge-score.mjs prints the unblinded table for a key and an answers file',
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'judge-score-'));
   const key = makeKey(SPECIES, 23);
   fs.writeFileSync(path.join(dir, 'key.json'), JSON.stringify(key));
-  fs.writeFileSync(path.join(dir, 'a.json'), JSON.stringify({ ...answersFor(key, 7, 6, true, (sp) => sp), reader: 'artist' }));
+  fs.writeFileSync(path.join(dir, 'a.json'), JSON.stringify({ ...answersFor(key, 7, 6, true, nameOf), reader: 'artist' }));
   const script = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', 'judge-score.mjs');
   const out = execFileSync('node', [script, path.join(dir, 'key.json'), path.join(dir, 'a.json')], { encoding: 'utf8' });
   fs.rmSync(dir, { recursive: true });
