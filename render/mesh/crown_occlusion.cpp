@@ -13,28 +13,9 @@
 namespace sylva {
 namespace {
 
-// A box of cubic cells holding the leaf area density (m² of leaf per m³) and, once baked, the
-// share of the sky each cell sees through the foliage within `window` metres.
-struct leaf_grid {
-  glm::vec3 origin{0};
-  float cell = 1;
-  int nx = 0, ny = 0, nz = 0;
-  std::vector<float> value;
-  size_t at(int x, int y, int z) const { return (size_t(y) * size_t(nz) + size_t(z)) * size_t(nx) + size_t(x); }
-  bool inside(int x, int y, int z) const { return x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz; }
-  // Trilinear between cell centres, clamped to the box.
-  float sample(const glm::vec3& p) const {
-    const glm::vec3 g = glm::clamp((p - origin) / cell - 0.5f, glm::vec3(0), glm::vec3(float(nx - 1), float(ny - 1), float(nz - 1)));
-    if (!std::isfinite(g.x) || !std::isfinite(g.y) || !std::isfinite(g.z)) return 1;
-    const int x0 = int(g.x), y0 = int(g.y), z0 = int(g.z);
-    const int x1 = std::min(x0 + 1, nx - 1), y1 = std::min(y0 + 1, ny - 1), z1 = std::min(z0 + 1, nz - 1);
-    const float fx = g.x - float(x0), fy = g.y - float(y0), fz = g.z - float(z0);
-    auto lerp = [](float a, float b, float f) { return a + (b - a) * f; };
-    const float a = lerp(lerp(value[at(x0, y0, z0)], value[at(x1, y0, z0)], fx), lerp(value[at(x0, y1, z0)], value[at(x1, y1, z0)], fx), fy);
-    const float b = lerp(lerp(value[at(x0, y0, z1)], value[at(x1, y0, z1)], fx), lerp(value[at(x0, y1, z1)], value[at(x1, y1, z1)], fx), fy);
-    return lerp(a, b, fz);
-  }
-};
+// The grid is crown_sky (mesh.h): a box of cubic cells holding the leaf area density (m² of leaf
+// per m³) and, once baked, the share of the sky each cell sees through the foliage within `window`.
+using leaf_grid = crown_sky;
 
 // exp(-x) for x in [0, 87]: 2^(-x·log2 e) split into a power of two 2^i, written into a float's
 // exponent bits, and 2^f for the rest f in [-1/2, 1/2] from a degree-4 polynomial with p(0) = 1
@@ -127,37 +108,61 @@ void bake_sky(leaf_grid& g, float window) {
 
 }  // namespace
 
-void bake_crown_occlusion(tree_mesh& m) {
-  m.occlusion.assign(m.position.size(), 1.0f);
-  if (m.leaves.empty()) return;   // no crown: nothing shades the sky
+// Trilinear between cell centres, clamped to the box.
+float crown_sky::sample(const glm::vec3& p) const {
+  const glm::vec3 g = glm::clamp((p - origin) / cell - 0.5f, glm::vec3(0), glm::vec3(float(nx - 1), float(ny - 1), float(nz - 1)));
+  if (!std::isfinite(g.x) || !std::isfinite(g.y) || !std::isfinite(g.z)) return 1;
+  const int x0 = int(g.x), y0 = int(g.y), z0 = int(g.z);
+  const int x1 = std::min(x0 + 1, nx - 1), y1 = std::min(y0 + 1, ny - 1), z1 = std::min(z0 + 1, nz - 1);
+  const float fx = g.x - float(x0), fy = g.y - float(y0), fz = g.z - float(z0);
+  auto lerp = [](float a, float b, float f) { return a + (b - a) * f; };
+  const float a = lerp(lerp(value[at(x0, y0, z0)], value[at(x1, y0, z0)], fx), lerp(value[at(x0, y1, z0)], value[at(x1, y1, z0)], fx), fy);
+  const float b = lerp(lerp(value[at(x0, y0, z1)], value[at(x1, y0, z1)], fx), lerp(value[at(x0, y1, z1)], value[at(x1, y1, z1)], fx), fy);
+  return lerp(a, b, fz);
+}
+
+crown_sky bake_crown_sky(const std::vector<glm::vec4>& leaves) {
+  crown_sky g;
+  if (leaves.empty()) return g;   // no crown: nothing shades the sky
   glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const leaf_instance& l : m.leaves) { lo = glm::min(lo, l.position); hi = glm::max(hi, l.position); }
-  if (!std::isfinite(lo.x + lo.y + lo.z + hi.x + hi.y + hi.z)) return;
-  const glm::vec3 c = 0.5f * (lo + hi), inv = 1.0f / glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
+  for (const glm::vec4& l : leaves) { lo = glm::min(lo, glm::vec3(l)); hi = glm::max(hi, glm::vec3(l)); }
+  if (!std::isfinite(lo.x + lo.y + lo.z + hi.x + hi.y + hi.z)) return g;
+  g.centre = 0.5f * (lo + hi), g.inv_radius = 1.0f / glm::max(0.5f * (hi - lo), glm::vec3(0.05f));
 
   // The leaf area density on a grid over the leaves' box, about 40 cells along its longest side,
   // reaching one window below it (the rays only go up), so shade fades out down the trunk.
   const float longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 0.1f});
   const float window = std::clamp(longest / 6.0f, 0.1f, 3.0f);   // about a limb mass
-  leaf_grid g;
   // Cells no smaller than a leaf's card, so one leaf never fills a cell on its own.
   double mean_size = 0;
-  for (const leaf_instance& l : m.leaves) mean_size += std::isfinite(l.size) ? double(l.size) : 0.0;
-  mean_size /= double(m.leaves.size());
+  for (const glm::vec4& l : leaves) mean_size += std::isfinite(l.w) ? double(l.w) : 0.0;
+  mean_size /= double(leaves.size());
   g.cell = std::max({longest / 40.0f, 1.5f * float(mean_size), 0.05f});
   g.origin = lo - glm::vec3(0.5f * g.cell, 0.5f * g.cell + window, 0.5f * g.cell);
   const glm::vec3 extent = hi + glm::vec3(0.5f * g.cell) - g.origin;
   g.nx = int(extent.x / g.cell) + 1, g.ny = int(extent.y / g.cell) + 1, g.nz = int(extent.z / g.cell) + 1;
   g.value.assign(size_t(g.nx) * size_t(g.ny) * size_t(g.nz), 0.0f);
   const float volume = g.cell * g.cell * g.cell;
-  for (const leaf_instance& l : m.leaves) {
-    const glm::vec3 q = (l.position - g.origin) / g.cell;
+  for (const glm::vec4& l : leaves) {
+    const glm::vec3 q = (glm::vec3(l) - g.origin) / g.cell;
     const int x = std::clamp(int(q.x), 0, g.nx - 1), y = std::clamp(int(q.y), 0, g.ny - 1), z = std::clamp(int(q.z), 0, g.nz - 1);
-    const float s = std::isfinite(l.size) ? l.size : 0.0f;
+    const float s = std::isfinite(l.w) ? l.w : 0.0f;
     g.value[g.at(x, y, z)] += 0.5f * s * s / volume;   // a blade fills about half its card
   }
   bake_sky(g, std::max(window, 2 * g.cell));
+  return g;
+}
 
+void bake_crown_occlusion(tree_mesh& m) {
+  std::vector<glm::vec4> leaves(m.leaves.size());
+  for (size_t k = 0; k < leaves.size(); ++k) leaves[k] = glm::vec4(m.leaves[k].position, m.leaves[k].size);
+  shade_by_crown(m, bake_crown_sky(leaves));
+}
+
+void shade_by_crown(tree_mesh& m, const crown_sky& g) {
+  m.occlusion.assign(m.position.size(), 1.0f);
+  if (g.value.empty()) return;   // no crown: every point sees the open sky
+  const glm::vec3 c = g.centre, inv = g.inv_radius;
   // Depth in the crown's ellipsoid (0 at the centre, 1 on its surface and outside) darkens the
   // crown's core; the local sky darkens each clump's inside. Open sky: 1.
   auto visibility = [&](const glm::vec3& p) {

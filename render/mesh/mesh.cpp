@@ -561,21 +561,40 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   foliage placed;
   const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
   const bool fruit = p.fruits.count > 0;   // the generator's own leaves are then copied, fruit added
-  // Leaf placement reads only the skeleton: it runs on a pool helper beside the bark (job_pool.h),
-  // or after it here when none is free (st.leaf_place is its own time). The bark runs here only (a
-  // helper taking both runs places the leaves), so its arrays never fill a helper's malloc arena.
+  // Leaf placement and the crown's sky field read only the skeleton: they run on a pool helper
+  // beside the bark (job_pool.h), or after it here when none is free (st.leaf_place and st.sky are
+  // their own times). The bark runs here only (a helper taking both runs the leaves), so its arrays
+  // never fill a helper's malloc arena.
   const std::thread::id caller = std::this_thread::get_id();
   const bool place = p.leaves_enabled && (!own || fruit);
-  std::atomic<bool> bark_taken{false}, leaves_taken{!place};
+  const std::vector<leaf>& src = own && !fruit ? t.leaves : placed.leaves;   // the generator's, uncopied
+  const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
+  const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
+  auto usable = [&](const leaf& l) { return l.node >= 0 && size_t(l.node) < n && finite3(l.position); };
+  crown_sky sky;
+  std::atomic<bool> bark_taken{false}, leaves_taken{!p.leaves_enabled};
   auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
   auto leaves = [&] {
     const auto t0 = clock_type::now();
-    if (!own) placed = place_leaves(t, p.leaves, seed);
-    else placed.leaves = t.leaves;
-    if (fruit) place_fruits(t, p.fruits, seed, p.leaves.ground, placed.leaves);
-    st.leaf_place = ms_since(t0);
+    if (place) {
+      if (!own) placed = place_leaves(t, p.leaves, seed);
+      else placed.leaves = t.leaves;
+      if (fruit) place_fruits(t, p.fruits, seed, p.leaves.ground, placed.leaves);
+    }
+    const auto t1 = clock_type::now();
+    st.leaf_place = ms_between(t0, t1);
+    // The leaves the sort below keeps (usable, up to the cap), where they hang before gnarl.
+    std::vector<glm::vec4> crown;
+    crown.reserve(std::min(src.size(), cap));
+    for (const leaf& l : src) {
+      if (!usable(l)) continue;
+      if (crown.size() == cap) break;
+      crown.emplace_back(l.position, l.size * scale);
+    }
+    sky = bake_crown_sky(crown);
+    st.sky = ms_since(t1);
   };
-  parallel_jobs(place ? 2 : 1, [&](size_t) {
+  parallel_jobs(p.leaves_enabled ? 2 : 1, [&](size_t) {
     if (std::this_thread::get_id() == caller && !bark_taken.exchange(true)) bark();
     if (!leaves_taken.exchange(true)) leaves();
   });
@@ -584,10 +603,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
 
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
-    const std::vector<leaf>& src = own && !fruit ? t.leaves : placed.leaves;   // the generator's, uncopied
-    const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
-    auto usable = [&](const leaf& l) { return l.node >= 0 && size_t(l.node) < n && finite3(l.position); };
     auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
     size_t kept = 0, end = src.size();
     for (size_t k = 0; k < src.size(); ++k) {
@@ -604,7 +620,6 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       cursor[s] = m.leaf_end[s - 1];
     }
     m.leaves.resize(m.leaf_end.back());
-    const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
     const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
     // Each leaf's slot first (the counting sort's order), then the slots filled in parallel.
     std::vector<uint32_t> slot(end, UINT32_MAX);
@@ -634,7 +649,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     m.bounds_max = hi;
   }
   lap(st.bounds);
-  bake_crown_occlusion(m);
+  shade_by_crown(m, sky);
   lap(st.occlusion);
   return m;
 }

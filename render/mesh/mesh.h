@@ -121,12 +121,13 @@ struct tree_mesh {
 // Wall milliseconds of each stage of one mesh_tree call (`sylva bench --stages`): the per-node
 // frame (radii, gnarl, axes, curve velocities, flare, texture wraps), the detail budget (curve,
 // collar and flare rings chosen), the bark rings, the index buffer, leaf placement (the foliage
-// model, or the generator's leaves taken), the leaves sorted by step with their gnarl, the bounds,
-// and the crown occlusion bake. Leaf placement runs on a pool helper beside the first four (the
-// bark), so with a helper free the stages add up to more than the call's wall time.
+// model, or the generator's leaves taken), the crown's sky field (bake_crown_sky), the leaves
+// sorted by step with their gnarl, the bounds, and the crown occlusion sampled from the field.
+// Leaf placement and the sky field run on a pool helper beside the first four (the bark), so with
+// a helper free the stages add up to more than the call's wall time.
 struct mesh_stage_times {
-  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, leaf_sort = 0, bounds = 0, occlusion = 0;
-  double total() const { return frame + budget + rings + index + leaf_place + leaf_sort + bounds + occlusion; }
+  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, sky = 0, leaf_sort = 0, bounds = 0, occlusion = 0;
+  double total() const { return frame + budget + rings + index + leaf_place + sky + leaf_sort + bounds + occlusion; }
 };
 
 tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1, mesh_stage_times* times = nullptr);
@@ -137,8 +138,26 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed 
 // Beer-Lambert transmittance through the leaf area density within about a sixth of the crown's
 // size, along nine upward directions (render/mesh/crown_occlusion.cpp). Visibility 0.35 + 0.65 sqrt(d) s:
 // 1 under open sky. Fills m.occlusion and each leaf's occlusion; O(vertices + leaves + grid cells,
-// about 40 along the crown's longest side). mesh_tree calls it.
+// about 40 along the crown's longest side). Same as shade_by_crown(m, bake_crown_sky(its leaves)).
 void bake_crown_occlusion(tree_mesh& m);
+
+// The crown's sky field: a box of cubic cells over the leaves (about 40 along the longest side,
+// reaching a window below them) holding the share of the sky each cell sees, and the crown's
+// ellipsoid (centre, 1 / half extent). Empty value: no crown.
+struct crown_sky {
+  glm::vec3 origin{0}, centre{0}, inv_radius{1};
+  float cell = 1;
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<float> value;
+  size_t at(int x, int y, int z) const { return (size_t(y) * size_t(nz) + size_t(z)) * size_t(nx) + size_t(x); }
+  float sample(const glm::vec3& p) const;   // trilinear between cell centres, clamped to the box
+};
+// The field from the leaves' centres (xyz) and card sizes (w). It reads only the leaves, so
+// mesh_tree bakes it on a pool helper beside the bark, from the leaves before gnarl moves them
+// (a few centimetres against cells of about a fortieth of the crown).
+crown_sky bake_crown_sky(const std::vector<glm::vec4>& leaves);
+// m.occlusion for the bark's vertices and each leaf's occlusion, sampled from the field.
+void shade_by_crown(tree_mesh& m, const crown_sky& sky);
 
 // Gnarl: per node, the rotation vector (axis * angle) of its internode, from seeded noise
 // scaled by age and order; and the offset of every node once each internode is turned and its
