@@ -42,7 +42,7 @@ template <params_of<fruit_params> P, class V>
 void visit_params(P& p, V&& visitor) {
   auto v = declare_class(visitor, param_remesh);   // mesh_tree places the fruit on the kept skeleton
   v(p.count, param_info{"fruit_count", "Fruit count", "", 0, 2000, "Cones or fruit on the tree, each on its own shoot tip (0: none); more keeps the ones already there", 0, "Cones and fruit"});
-  v(p.archetype, param_info{"fruit_archetype", "Fruit card", "", 0, leaf_archetype_count - 1, "Card of the cones or fruit: cone_hanging (spruce), cone_upright (fir), samaras (maple), hazelnuts (hazel), cone_ovoid (pine), beechnuts (beech), coconuts (palm), ash_keys (ash), cone_barrel (cedar), acorns (oak); drawn in their own colours, not the leaf tint", 0, nullptr, leaf_archetype_names});
+  v(p.archetype, param_info{"fruit_archetype", "Fruit card", "", 0, leaf_archetype_count - 1, "Card of the cones or fruit: cone_hanging (spruce), cone_upright (fir), samaras (maple), hazelnuts (hazel), cone_ovoid (pine), beechnuts (beech), coconuts (palm), ash_keys (ash), cone_barrel (cedar), acorns (oak), cypress_cones (cypress); drawn in their own colours, not the leaf tint", 0, nullptr, leaf_archetype_names});
   v(p.size, param_info{"fruit_size", "Fruit size", "", 0.01f, 1, "Card side in metres (a cone fills about 85 % of it)", param_log});
   v(p.size_jitter, param_info{"fruit_size_jitter", "Fruit size variation", "", 0, 1, "Relative random variation of the fruit size"});
   v(p.pose, param_info{"fruit_pose", "Fruit pose", "", 0, 1, "hanging: from the tip, down (spruce cones, samaras, nuts); upright: standing on the shoot (fir and cedar cones)", 0, nullptr, fruit_pose_names});

@@ -1,5 +1,5 @@
 // Cone and fruit cards (generators/fruits.h places them; the list is generators/archetypes.h's):
-// cones, samaras, keys, nuts, acorns and coconuts. Unlike the leaf cards they are drawn in their own
+// cones, samaras, keys, nuts, acorns, coconuts and cypress cones. Unlike the leaf cards they are drawn in their own
 // colours (the leaf_look's two colours are final, not a pale base for the leaf tint):
 // render/mesh/season.h archetype_is_fruit keeps the tint off them.
 //
@@ -329,6 +329,56 @@ void draw_acorns(leaf_canvas& c, rng& g) {
     ellipse(c, base + d * (0.06f + 0.5f * len), deg, len, 0.082f, 1.0f, 1.0f);
     const vec2 apex = base + d * (0.06f + len);
     stroke(c, apex - d * 0.012f, apex + d * 0.012f, 0.005f, 0.0015f, scale_row);
+  }
+}
+
+void draw_cypress_cones(leaf_canvas& c, rng& g) {
+  // Cupressus sempervirens: cones nearly round, 2-4 cm, of 8-14 woody peltate scales that meet
+  // edge to edge, each with a small boss in its middle; green at first, grey-brown and glossy when
+  // ripe in their second year; on short stout stalks, often several together on a branchlet
+  // (Farjon 2010). Three cones on a short twig. Each ball's shields are the cells of ten points
+  // spread evenly over the sphere (a Fibonacci lattice) turned at random: a seam where the nearest
+  // two centres are about equally near, a boss where one is very near.
+  const vec2 top(0.5f, 0.0f), fork(0.5f, 0.3f);
+  stroke(c, top, fork, 0.014f, 0.011f, twig_style);
+  constexpr int shields = 10;
+  vec3 centre3[shields];
+  for (int k = 0; k < shields; ++k) {
+    const float z = 1 - 2 * (float(k) + 0.5f) / float(shields), rho = std::sqrt(1 - z * z);
+    const float phi = 2.39996323f * float(k);   // the golden angle
+    centre3[k] = vec3(rho * std::cos(phi), rho * std::sin(phi), z);
+  }
+  struct ball { float x, y, r, ripe; };
+  const ball balls[3] = {{0.3f, 0.47f, 0.15f, 0.8f}, {0.71f, 0.5f, 0.16f, 0.95f}, {0.5f, 0.7f, 0.2f, 1.0f}};
+  for (const ball& b : balls) {
+    const vec2 centre(b.x + g.range(-0.01f, 0.01f), b.y + g.range(-0.01f, 0.01f));
+    stroke(c, fork, centre, 0.012f, 0.01f, twig_style);
+    const float ya = g.range(0, 2 * pi), xa = g.range(0, pi);
+    const float cy = std::cos(ya), sy = std::sin(ya), cx = std::cos(xa), sx = std::sin(xa);
+    const float r = b.r;
+    raster(c, centre - vec2(0, r), vec2(0, 1), 2 * r, r, 0, [&](float a, float w) {
+      sample s;
+      const float u = (a - r) / r, v = w / r, rr = u * u + v * v;
+      s.cover = clamp01((1 - std::sqrt(rr)) * r / c.px + 0.5f);
+      if (s.cover <= 0) return s;
+      const float facing = std::sqrt(std::max(0.0f, 1 - rr));
+      // The surface point, turned about the view axis and then about the card's x axis.
+      const float x1 = v * cy - u * sy, y1 = v * sy + u * cy;
+      const vec3 n(x1, y1 * cx - facing * sx, y1 * sx + facing * cx);
+      float best = -2, second = -2;
+      for (const vec3& k : centre3) {
+        const float d = n.x * k.x + n.y * k.y + n.z * k.z;
+        if (d > best) second = best, best = d;
+        else if (d > second) second = d;
+      }
+      const float in = clamp01(((best - second) / std::max(facing, 0.3f) - 0.02f) * 18.0f);   // 0 on a seam
+      const float boss = clamp01((best - 0.985f) / 0.015f);
+      s.height = 0.6f * r * facing + 0.012f * (in - 1) + 0.01f * boss;
+      s.shade = (0.4f + 0.6f * std::pow(facing, 0.7f)) * (0.45f + 0.55f * in) * (1 - 0.4f * boss);
+      s.warm = b.ripe * in * (0.75f + 0.25f * facing);
+      s.thin = 0.05f;   // woody
+      return s;
+    });
   }
 }
 

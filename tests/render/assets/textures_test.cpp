@@ -171,6 +171,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.12, 0.35},  // cone_barrel: a squat barrel on a short stalk
       {0.06, 0.30},  // acorns: three acorns on a long stalk
       {0.25, 0.60},  // horse chestnut: seven leaflets fanned on a long petiole, sky between them
+      {0.15, 0.45},  // cypress cones: three balls on a short twig
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
@@ -447,7 +448,7 @@ TEST(ArchetypeTextures, FruitCardsAreInTheirOwnColours) {
     EXPECT_GT(r, 0.6 * g) << leaf_archetype_names[i] << ": not a leaf's green";
     EXPECT_GT(g, 0.04) << leaf_archetype_names[i] << ": not black";
   }
-  EXPECT_EQ(fruits, 10);
+  EXPECT_EQ(fruits, 11);   // the X-macro's fruit entries: cones, samaras, nuts, keys, coconuts, cypress cones
   // The two cones differ in colour (a ripe spruce cone is brown, a fir or cedar cone grey-green).
   auto mean_rg = [](leaf_archetype a) {
     const image& c = leaf_archetype_textures(a, kSize).color;
