@@ -140,7 +140,7 @@ void draw_horse_chestnut(leaf_canvas& c, rng& g) {
     const float u = std::pow(t, side ? 1.75f : 1.85f);
     return std::pow(std::sin(pi * u), 0.62f) * (1 - 0.25f * smooth(0.9f, 1.0f, t));
   };
-  const float angles[4] = {0, 33, 66, 102};       // degrees from the middle leaflet
+  const float angles[4] = {0, 37, 74, 112};       // degrees from the middle leaflet
   const float lengths[4] = {0.62f, 0.56f, 0.43f, 0.27f};
   for (int k : {3, 2, 1, 0})
     for (int side : {-1, 1}) {
@@ -150,7 +150,7 @@ void draw_horse_chestnut(leaf_canvas& c, rng& g) {
       const vec2 base = hub + d * 0.012f;
       const float len = fit(base, d, lengths[k] * g.range(0.95f, 1.04f), 0.02f);
       st.bend = -float(side) * (k == 0 ? 0 : 0.04f + 0.02f * float(k));   // the outer ones droop outward
-      blade(c, base, a, len, 0.2f * len, leaflet, st);
+      blade(c, base, a, len, 0.17f * len, leaflet, st);
     }
 }
 
