@@ -135,9 +135,9 @@ void draw_horse_chestnut(leaf_canvas& c, rng& g) {
   blade_style st;
   st.serration = 0.05f, st.teeth = 34, st.vein_angle = 52, st.veins = 15, st.midrib = 1.1f, st.edge_dark = 0.32f;
   auto leaflet = [](float t, int side) {
-    // Obovate: a wedge at the base, widest near t = 0.68, then a short abrupt point; the two
+    // Obovate: a wedge at the base, widest near t = 0.7, then a short abrupt point; the two
     // halves a little out of step.
-    const float u = std::pow(t, side ? 1.75f : 1.85f);
+    const float u = std::pow(t, side ? 1.95f : 2.05f);
     return std::pow(std::sin(pi * u), 0.62f) * (1 - 0.25f * smooth(0.9f, 1.0f, t));
   };
   const float angles[4] = {0, 37, 74, 112};       // degrees from the middle leaflet
@@ -150,7 +150,7 @@ void draw_horse_chestnut(leaf_canvas& c, rng& g) {
       const vec2 base = hub + d * 0.012f;
       const float len = fit(base, d, lengths[k] * g.range(0.95f, 1.04f), 0.02f);
       st.bend = -float(side) * (k == 0 ? 0 : 0.04f + 0.02f * float(k));   // the outer ones droop outward
-      blade(c, base, a, len, 0.17f * len, leaflet, st);
+      blade(c, base, a, len, 0.19f * len, leaflet, st);
     }
 }
 
