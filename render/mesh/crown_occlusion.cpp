@@ -13,10 +13,6 @@
 namespace sylva {
 namespace {
 
-// The grid is crown_sky (mesh.h): a box of cubic cells holding the leaf area density (m² of leaf
-// per m³) and, once baked, the share of the sky each cell sees through the foliage within `window`.
-using leaf_grid = crown_sky;
-
 // exp(-x) for x in [0, 87]: 2^(-x·log2 e) split into a power of two 2^i, written into a float's
 // exponent bits, and 2^f for the rest f in [-1/2, 1/2] from a degree-4 polynomial with p(0) = 1
 // (least squares on the relative error, at most 5.7e-6; the occlusion is stored in 8 bits), so
@@ -38,7 +34,9 @@ inline float exp_neg(float x) {
 // the foliage within `window` metres counts, so a clump shades its own inside and its neighbours'
 // sides, not the trunk far below the crown. Each direction is a prefix sum along its sheared rows
 // (O(cells)), and the window is a difference of two prefix sums.
-void bake_sky(leaf_grid& g, float window) {
+// g (crown_sky, mesh.h) holds the leaf area density (m² of leaf per m³) per cell on entry and the
+// share of the sky each cell sees through the foliage within `window` on return.
+void bake_sky(crown_sky& g, float window) {
   const std::vector<float>& lad = g.value;
   const size_t cells = lad.size(), nx = size_t(g.nx);
   const int steps = std::max(1, int(std::lround(window / g.cell)));

@@ -571,6 +571,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   const size_t cap = size_t(std::clamp(p.leaves.cap, 1, 2000000));
   const float scale = std::isfinite(p.leaf_scale) ? p.leaf_scale : 1.0f;
   auto usable = [&](const leaf& l) { return l.node >= 0 && size_t(l.node) < n && finite3(l.position); };
+  auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
+  size_t kept = 0, end = 0;   // leaves kept (usable, up to the cap); src[0, end) holds them
   crown_sky sky;
   std::atomic<bool> bark_taken{false}, leaves_taken{!p.leaves_enabled};
   auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
@@ -583,12 +585,17 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     }
     const auto t1 = clock_type::now();
     st.leaf_place = ms_between(t0, t1);
-    // The leaves the sort below keeps (usable, up to the cap), where they hang before gnarl.
+    // One pass over the leaves the sort below keeps (usable, up to the cap): each step's count for
+    // the counting sort, and where they hang before gnarl for the sky field.
     std::vector<glm::vec4> crown;
     crown.reserve(std::min(src.size(), cap));
-    for (const leaf& l : src) {
+    end = src.size();
+    for (size_t k = 0; k < src.size(); ++k) {
+      const leaf& l = src[k];
       if (!usable(l)) continue;
-      if (crown.size() == cap) break;
+      if (kept == cap) { end = k; placed.capped = true; break; }
+      ++kept;
+      ++m.leaf_end[step_of(l)];
       crown.emplace_back(l.position, l.size * scale);
     }
     sky = bake_crown_sky(crown);
@@ -603,15 +610,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
 
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
-    // Counting sort by born straight into m.leaves (no temporary copy of every leaf).
-    auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
-    size_t kept = 0, end = src.size();
-    for (size_t k = 0; k < src.size(); ++k) {
-      if (!usable(src[k])) continue;
-      if (kept == cap) { end = k; placed.capped = true; break; }
-      ++kept;
-      ++m.leaf_end[step_of(src[k])];
-    }
+    // Counting sort by born straight into m.leaves (no temporary copy of every leaf); the leaves
+    // job counted each step's leaves.
     if (placed.capped)
       m.message = "leaf cap reached: " + std::to_string(kept) + " leaves placed (raise Leaf cap or Leaf spacing)";
     std::vector<uint32_t> cursor(m.leaf_end.size(), 0);
