@@ -70,6 +70,11 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
                                                                      : std::clamp(p.whorl, 2, 8);
   const float spacing = std::isfinite(p.spacing) ? std::clamp(p.spacing, 0.001f, 100.0f) : 0.06f;
   const int cluster = p.clusters ? std::clamp(p.cluster_size, 2, 32) : 1;
+  // Crossed cards: each leaf stands as `planes` cards turned pi/planes apart about its blade axis
+  // (the frame's +Y), all from the leaf's one set of draws, so a tree with one plane is unchanged.
+  const int planes = std::clamp(p.planes, 1, 3);
+  glm::quat turn[3];
+  for (int c = 0; c < 3; ++c) turn[c] = glm::angleAxis(3.14159265f * float(c) / float(planes), glm::vec3(0, 1, 0));
   const size_t cap = size_t(std::clamp(p.cap, 1, 2000000));
   auto carries = [&](size_t i) {
     return t.parent[i] >= 0 && t.order[i] >= p.min_order && t.died[i] > t.born[i] &&
@@ -128,7 +133,7 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
   std::vector<size_t> first(n + 1, 0);   // first[k]: the slot of node n-1-k's first leaf
   for (size_t k = 0; k < n; ++k) {
     rng r(0);
-    first[k + 1] = first[k] + size_t(leaf_nodes(n - 1 - k, r)) * size_t(per_node);
+    first[k + 1] = first[k] + size_t(leaf_nodes(n - 1 - k, r)) * size_t(per_node) * size_t(planes);
   }
   out.capped = first[n] > cap;
   out.leaves.resize(std::min(first[n], cap));
@@ -162,14 +167,18 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
           // Blades turn their upper face outward and to the sky, each a little differently, so a crown
           // reads as dense from the side as from above.
           const glm::vec3 wobble(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f));
-          leaf& l = out.leaves[at_slot++];
-          l.position = at;
-          l.orientation = blade_frame(b, 0.7f * up + radial + wobble, radial);
-          l.size = size * (1 + jitter * r.uniform(-1, 1));
-          l.born = t.born[i];
-          l.died = died;
-          l.node = int32_t(i);
-          l.archetype = card;
+          const glm::quat frame = blade_frame(b, 0.7f * up + radial + wobble, radial);
+          const float leaf_size = size * (1 + jitter * r.uniform(-1, 1));
+          for (int c = 0; c < planes && at_slot < cap; ++c) {
+            leaf& l = out.leaves[at_slot++];
+            l.position = at;
+            l.orientation = c == 0 ? frame : glm::normalize(frame * turn[c]);
+            l.size = leaf_size;
+            l.born = t.born[i];
+            l.died = died;
+            l.node = int32_t(i);
+            l.archetype = card;
+          }
         }
         az += divergence;
       }

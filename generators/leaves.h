@@ -43,6 +43,7 @@ struct leaf_params {
   float clumping = 0;         // 0: leaves spread evenly; 1: only on the outer shells of the limb masses
   float clump_size = 1.2f;    // metres: half the extent of one limb mass
   float clump_variation = 0.3f;  // seeded density difference between limb masses
+  int planes = 1;             // cards per leaf, turned evenly about its blade axis (crossed cards)
   bool operator==(const leaf_params&) const = default;
 };
 
@@ -72,6 +73,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.clumping, param_info{"leaf_clumping", "Clumping", "", 0, 1, "Shoots mode: leaves gather on the outer shoots of each limb mass, thinning in its interior and in the gaps between masses, so the crown breaks into clumps (0: spread evenly; the leaf count stays about the same)"});
   v(p.clump_size, param_info{"leaf_clump_size", "Clump size", "", 0.2f, 8, "Half the extent of one limb mass in metres: the largest subtrees this small each form one clump", param_log});
   v(p.clump_variation, param_info{"leaf_clump_variation", "Clump variation", "", 0, 1, "Seeded difference in leaf density from one limb mass to the next"});
+  v(p.planes, param_info{"leaf_planes", "Card planes", "", 1, 3, "Shoots mode: cards each leaf stands as, turned evenly about its blade axis. 1: one flat card; 2 or 3: crossed cards, so a needle shoot reads as a round brush from every side instead of a flat spray (conifers). Multiplies the leaf count"});
 }
 
 // The editor shows only the sliders that matter for the current mode.
@@ -83,7 +85,7 @@ inline bool param_relevant(const leaf_params& p, const void* field, const param_
     return shoots;
   if (field == &p.whorl) return shoots && p.arrangement == leaf_arrangement::whorled;
   if (field == &p.cluster_size || field == &p.cluster_archetype) return shoots && p.clusters;
-  if (field == &p.clumping) return shoots;
+  if (field == &p.clumping || field == &p.planes) return shoots;
   if (field == &p.clump_size || field == &p.clump_variation) return shoots && p.clumping > 0;
   return true;
 }

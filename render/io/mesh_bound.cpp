@@ -83,7 +83,8 @@ void count_leaves(const tree_skeleton& t, const mesh_params& p, mesh_counts& c) 
     return;
   }
   // Shoots: floor(len / spacing / cluster × density) leaf nodes per internode or one more, with
-  // 1, 2 or whorl leaves each; the clumping density is at most 4 (leaf_clumps.cpp).
+  // 1, 2 or whorl leaves each, each leaf 1-3 crossed cards; the clumping density is at most 4
+  // (leaf_clumps.cpp).
   const int per_node = lp.arrangement == leaf_arrangement::alternate ? 1
                        : lp.arrangement == leaf_arrangement::opposite ? 2
                                                                       : std::clamp(lp.whorl, 2, 8);
@@ -98,7 +99,8 @@ void count_leaves(const tree_skeleton& t, const mesh_params& p, mesh_counts& c) 
     if (!(len > 1e-6) || !std::isfinite(len)) continue;
     leaf_nodes += std::floor(len / spacing / cluster * dmax * (1 + 1e-5)) + 1;
   }
-  c.leaves = std::min(leaf_nodes * per_node, 1e15);
+  const double planes = std::clamp(lp.planes, 1, 3);
+  c.leaves = std::min(leaf_nodes * per_node * planes, 1e15);
   c.placed = std::min(c.leaves, cap);
   c.leaf_work_nodes = double(n);
 }

@@ -131,6 +131,46 @@ TEST(Foliage, ClusterCardsStandForSeveralLeaves) {
   EXPECT_EQ(mesh_tree(t, mp).leaves[0].texture, uint8_t(leaf_archetype::lobed));
 }
 
+TEST(Foliage, CrossedCardsTurnAboutTheBladeAndKeepTheOneCardLeaves) {
+  const tree_skeleton t = shoot(3);
+  leaf_params p = exact(0.25f);
+  p.arrangement = leaf_arrangement::opposite;
+  p.size_jitter = 0.3f;   // the size draw is shared by a leaf's cards
+  const foliage one = place_shoot_leaves(t, p, 7);
+  ASSERT_EQ(one.leaves.size(), size_t(32));
+  for (int planes : {2, 3}) {
+    p.planes = planes;
+    const foliage many = place_shoot_leaves(t, p, 7);
+    ASSERT_EQ(many.leaves.size(), one.leaves.size() * size_t(planes));
+    const float turn = 3.14159265f / float(planes);
+    for (size_t k = 0; k < one.leaves.size(); ++k) {
+      const leaf& a = one.leaves[k];
+      for (int c = 0; c < planes; ++c) {
+        const leaf& b = many.leaves[k * size_t(planes) + size_t(c)];
+        // The same leaf (place, size, life, node), its card turned c·pi/planes about the blade.
+        EXPECT_EQ(b.position, a.position);
+        EXPECT_EQ(b.size, a.size);
+        EXPECT_EQ(b.born, a.born);
+        EXPECT_EQ(b.died, a.died);
+        EXPECT_EQ(b.node, a.node);
+        EXPECT_NEAR(glm::dot(blade(a), blade(b)), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::dot(face(a), face(b)), std::cos(turn * float(c)), 1e-5f) << planes << " planes, card " << c;
+        if (c == 0) EXPECT_EQ(b.orientation, a.orientation);
+      }
+    }
+  }
+  // Out of range asks clamp to 1-3 cards; the cap counts cards.
+  p.planes = 9;
+  EXPECT_EQ(place_shoot_leaves(t, p, 7).leaves.size(), size_t(96));
+  p.planes = 0;
+  EXPECT_EQ(place_shoot_leaves(t, p, 7).leaves.size(), size_t(32));
+  p.planes = 2;
+  p.cap = 5;
+  const foliage capped = place_shoot_leaves(t, p, 7);
+  EXPECT_EQ(capped.leaves.size(), size_t(5));
+  EXPECT_TRUE(capped.capped);
+}
+
 TEST(Foliage, CapStopsPlacementAndTheMeshSaysSo) {
   const tree_skeleton t = shoot(50);
   leaf_params p = exact(0.005f);  // 200 leaf nodes a metre: 10,200 leaves uncapped
