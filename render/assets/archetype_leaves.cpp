@@ -133,7 +133,7 @@ void draw_horse_chestnut(leaf_canvas& c, rng& g) {
   const vec2 hub(0.5f, 0.34f);
   stroke(c, {0.5f, 0.0f}, hub, 0.0085f, 0.0062f, petiole_style);
   blade_style st;
-  st.serration = 0.05f, st.teeth = 34, st.vein_angle = 52, st.veins = 15, st.midrib = 1.1f, st.edge_dark = 0.32f;
+  st.serration = 0.085f, st.teeth = 24, st.vein_angle = 52, st.veins = 15, st.midrib = 1.1f, st.edge_dark = 0.32f;
   auto leaflet = [](float t, int side) {
     // Obovate: a wedge at the base, widest near t = 0.7, then a short abrupt point; the two
     // halves a little out of step.
