@@ -65,14 +65,12 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
         from_tip[par] = std::min<uint16_t>(from_tip[par], uint16_t(std::min<int>(from_tip[i] + 1, never_died - 1)));
     }
   }
-  const int per_node = p.arrangement == leaf_arrangement::alternate ? 1
-                       : p.arrangement == leaf_arrangement::opposite ? 2
-                                                                     : std::clamp(p.whorl, 2, 8);
+  const int per_node = leaves_per_node(p);
   const float spacing = std::isfinite(p.spacing) ? std::clamp(p.spacing, 0.001f, 100.0f) : 0.06f;
   const int cluster = p.clusters ? std::clamp(p.cluster_size, 2, 32) : 1;
   // Crossed cards: each leaf stands as `planes` cards turned pi/planes apart about its blade axis
   // (the frame's +Y), all from the leaf's one set of draws, so a tree with one plane is unchanged.
-  const int planes = std::clamp(p.planes, 1, 3);
+  const int planes = card_planes(p);
   glm::quat turn[3];
   for (int c = 0; c < 3; ++c) turn[c] = glm::angleAxis(3.14159265f * float(c) / float(planes), glm::vec3(0, 1, 0));
   const size_t cap = size_t(std::clamp(p.cap, 1, 2000000));

@@ -3,6 +3,7 @@
 // each generator's own leaf rule stay available as modes.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -89,6 +90,13 @@ inline bool param_relevant(const leaf_params& p, const void* field, const param_
   if (field == &p.clump_size || field == &p.clump_variation) return shoots && p.clumping > 0;
   return true;
 }
+
+// Leaves on one leaf node of a shoot (the arrangement), and the cards each leaf stands as
+// (leaf_planes, clamped): the placement and the mesh bound (render/io/mesh_bound.cpp) share them.
+inline int leaves_per_node(const leaf_params& p) {
+  return p.arrangement == leaf_arrangement::alternate ? 1 : p.arrangement == leaf_arrangement::opposite ? 2 : std::clamp(p.whorl, 2, 8);
+}
+inline int card_planes(const leaf_params& p) { return std::clamp(p.planes, 1, 3); }
 
 struct foliage {
   std::vector<leaf> leaves;

@@ -85,9 +85,7 @@ void count_leaves(const tree_skeleton& t, const mesh_params& p, mesh_counts& c) 
   // Shoots: floor(len / spacing / cluster × density) leaf nodes per internode or one more, with
   // 1, 2 or whorl leaves each, each leaf 1-3 crossed cards; the clumping density is at most 4
   // (leaf_clumps.cpp).
-  const int per_node = lp.arrangement == leaf_arrangement::alternate ? 1
-                       : lp.arrangement == leaf_arrangement::opposite ? 2
-                                                                      : std::clamp(lp.whorl, 2, 8);
+  const int per_node = leaves_per_node(lp);
   const double spacing = std::isfinite(lp.spacing) ? std::clamp(double(lp.spacing), 0.001, 100.0) : 0.06;
   const double cluster = lp.clusters ? std::clamp(lp.cluster_size, 2, 32) : 1;
   const double dmax = std::isfinite(lp.clumping) && lp.clumping > 0 ? 4.0 : 1.0;
@@ -99,7 +97,7 @@ void count_leaves(const tree_skeleton& t, const mesh_params& p, mesh_counts& c) 
     if (!(len > 1e-6) || !std::isfinite(len)) continue;
     leaf_nodes += std::floor(len / spacing / cluster * dmax * (1 + 1e-5)) + 1;
   }
-  const double planes = std::clamp(lp.planes, 1, 3);
+  const double planes = card_planes(lp);
   c.leaves = std::min(leaf_nodes * per_node * planes, 1e15);
   c.placed = std::min(c.leaves, cap);
   c.leaf_work_nodes = double(n);

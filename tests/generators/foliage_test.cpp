@@ -155,7 +155,9 @@ TEST(Foliage, CrossedCardsTurnAboutTheBladeAndKeepTheOneCardLeaves) {
         EXPECT_EQ(b.node, a.node);
         EXPECT_NEAR(glm::dot(blade(a), blade(b)), 1.0f, 1e-5f);
         EXPECT_NEAR(glm::dot(face(a), face(b)), std::cos(turn * float(c)), 1e-5f) << planes << " planes, card " << c;
-        if (c == 0) EXPECT_EQ(b.orientation, a.orientation);
+        if (c == 0) {
+          EXPECT_EQ(b.orientation, a.orientation);
+        }
       }
     }
   }
