@@ -18,30 +18,41 @@ namespace sylva {
 namespace {
 
 constexpr float cell_fraction = 0.5f;
+// A killed point's slot position: its squared distance to any node passes every radius (finite:
+// (1e18)^2 times 3 is under FLT_MAX).
+constexpr float far_away = 1e18f;
 
-// Attraction points in a dense uniform grid over their bounding box, cell size d_i/2; a node visits
-// the cells of its 2·d_i box that come within d_i of it. Points never move; a killed point is swapped behind the live
-// ones of its cell, so scans touch live points only. Each point caches its nearest node, and only
-// a new node can change that cache: an iteration costs O(new nodes · local points + influenced
-// points), and nodes that nothing influences cost nothing.
+// Attraction points in a dense uniform grid over their bounding box, cell size d_i/2, sorted by cell
+// once; points never move. A killed point keeps its slot with its position sent far away, so no
+// distance test passes it. A node scans, row by row, the cells of its 2·d_i box that come within
+// d_i of it: the cells of one row are consecutive in memory, so a row is one run of slots with no
+// per-cell lookup. Each point caches its nearest node, and only a new node can change that cache:
+// an iteration costs O(new nodes · local points + influenced points), and nodes that nothing
+// influences cost nothing.
 // Measured grow time (Release, thread CPU time, min of 5, on the 2-core dev box under load ~8), bench
-// presets: 10k points 6.7 ms (3,309 nodes), 75k 41 ms (5,001 nodes), 1M 0.86 s (6,225 nodes). On
-// 75k points with d_i = 3, cells of d_i/2 took 51 ms against 68 ms for d_i and 52 ms for d_i/3.
-// nanoflann was not measured: a k-d tree over the nodes would need extending every iteration,
-// while this grid over the static points is built once.
+// presets, when each cell was scanned on its own: 10k points 6.7 ms (3,309 nodes), 75k 41 ms (5,001
+// nodes), 1M 0.86 s (6,225 nodes). On 75k points with d_i = 3, cells of d_i/2 took 51 ms against 68
+// ms for d_i and 52 ms for d_i/3. Rows instead of cells, dead points left in place and the
+// branch-free first pass (2026-12-05; `sylva bench P --repeat 31 --threads 1`, medians, three
+// alternating rounds): space_colonization_seed_cube grow 4.75 → 3.65 ms, bench/space_colonization_75k
+// 24 → 19.4 ms; the seed cube's nodes move by at most 1e-6 m (its active list, and so its pull
+// sums, come in another order), every other preset's export is byte-identical. nanoflann was not
+// measured: a k-d tree over the nodes would need extending every iteration, while this grid over
+// the static points is built once.
 struct colonization_state {
   const std::vector<glm::vec3>* pts = nullptr;
   float di2 = 0, dk2 = -1;
   glm::vec3 origin{0};
   float inv_cell = 1;
   glm::ivec3 dim{1};
-  std::vector<int32_t> cell_begin, cell_alive, slots, slot_of, cell_of;
-  std::vector<glm::vec3> slot_pos;  // pts[slots[j]], kept in step so scans read memory in order
-  std::vector<int32_t> nearest;   // nearest node within d_i, or -1
-  std::vector<float> nearest_d2;
+  std::vector<int32_t> cell_begin, slots, slot_of;
+  std::vector<glm::vec3> slot_pos;  // pts[slots[j]] while alive, far_away once killed; scans read it in order
+  std::vector<int32_t> nearest;   // by slot: the nearest node within d_i, or -1
+  std::vector<float> nearest_d2;  // by slot: its squared distance, d_i² while there is none
   std::vector<int32_t> killed;    // step a point was removed in, or -1 while alive
   std::vector<int32_t> dropped_by;   // a point dropped unreached: the node it was nearest to (else -1)
   std::vector<int32_t> active;    // points with a nearest node (may hold dead ones until compacted)
+  std::vector<int32_t> hits;      // visit_new_node's scratch: the slots within reach of the node
   size_t alive = 0;
 };
 
@@ -50,11 +61,8 @@ void init_state(colonization_state& s, const std::vector<glm::vec3>& pts, float 
   s.di2 = d_i * d_i;
   s.dk2 = d_k >= 0 ? d_k * d_k : -1.0f;
   const size_t n = pts.size();
-  s.nearest.assign(n, -1);
-  s.nearest_d2.assign(n, 0.0f);
   s.killed.assign(n, -1);
   s.dropped_by.assign(n, -1);
-  s.cell_of.assign(n, -1);
   s.slot_of.assign(n, -1);
   glm::vec3 lo(0), hi(0);
   bool any = false;
@@ -84,36 +92,35 @@ void init_state(colonization_state& s, const std::vector<glm::vec3>& pts, float 
   s.dim = glm::ivec3(glm::floor((hi - lo) * s.inv_cell)) + 1;
   const size_t cells = size_t(s.dim.x) * size_t(s.dim.y) * size_t(s.dim.z);
   s.cell_begin.assign(cells + 1, 0);
-  s.cell_alive.assign(cells, 0);
+  std::vector<int32_t> cell_of(n, -1), fill(cells, 0);
   for (size_t i = 0; i < n; ++i) {
     if (s.killed[i] >= 0) continue;
     const glm::ivec3 c = glm::clamp(glm::ivec3((pts[i] - lo) * s.inv_cell), glm::ivec3(0), s.dim - 1);
-    s.cell_of[i] = (c.z * s.dim.y + c.y) * s.dim.x + c.x;
-    ++s.cell_alive[size_t(s.cell_of[i])];
+    cell_of[i] = (c.z * s.dim.y + c.y) * s.dim.x + c.x;
+    ++fill[size_t(cell_of[i])];
   }
-  for (size_t c = 0; c < cells; ++c) s.cell_begin[c + 1] = s.cell_begin[c] + s.cell_alive[c];
+  for (size_t c = 0; c < cells; ++c) s.cell_begin[c + 1] = s.cell_begin[c] + fill[c];
   s.slots.assign(size_t(s.cell_begin[cells]), -1);
   s.slot_pos.resize(s.slots.size());
-  std::vector<int32_t> fill(s.cell_begin.begin(), s.cell_begin.end() - 1);
+  s.nearest.assign(s.slots.size(), -1);
+  s.nearest_d2.assign(s.slots.size(), s.di2);
+  std::copy(s.cell_begin.begin(), s.cell_begin.end() - 1, fill.begin());
   for (size_t i = 0; i < n; ++i)
     if (s.killed[i] < 0) {
-      const int32_t slot = fill[size_t(s.cell_of[i])]++;
+      const int32_t slot = fill[size_t(cell_of[i])]++;
       s.slots[size_t(slot)] = int32_t(i);
       s.slot_pos[size_t(slot)] = pts[i];
       s.slot_of[i] = slot;
     }
 }
 
-// Removes point i: swap it behind the live points of its cell.
+// Point i's nearest node within d_i (-1: none) and its squared distance.
+int32_t nearest_of(const colonization_state& s, int32_t i) { return s.nearest[size_t(s.slot_of[size_t(i)])]; }
+float nearest_d2_of(const colonization_state& s, int32_t i) { return s.nearest_d2[size_t(s.slot_of[size_t(i)])]; }
+
+// Removes point i: its slot stays, out of every node's reach.
 void kill_point(colonization_state& s, int32_t i, int step) {
-  const int32_t c = s.cell_of[size_t(i)];
-  const int32_t last = s.cell_begin[size_t(c)] + --s.cell_alive[size_t(c)];
-  const int32_t slot = s.slot_of[size_t(i)];
-  const int32_t other = s.slots[size_t(last)];
-  std::swap(s.slots[size_t(slot)], s.slots[size_t(last)]);
-  std::swap(s.slot_pos[size_t(slot)], s.slot_pos[size_t(last)]);
-  s.slot_of[size_t(other)] = slot;
-  s.slot_of[size_t(i)] = last;
+  s.slot_pos[size_t(s.slot_of[size_t(i)])] = glm::vec3(far_away);
   s.killed[size_t(i)] = step;
   --s.alive;
 }
@@ -133,8 +140,9 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
     hi[k] = std::min(hi[k], s.dim[k] - 1);
     if (lo[k] > hi[k]) return;
   }
-  // Squared distance from pos to a cell's slab along one axis; cells wholly beyond d_i are skipped,
-  // which trims the scanned block towards the sphere of radius d_i.
+  // Squared distance from pos to a cell's slab along one axis; rows wholly beyond d_i are skipped,
+  // and a row's run is trimmed to the cells within d_i along x, which keeps the scan near the
+  // sphere of radius d_i.
   const float cell = 1.0f / s.inv_cell;
   auto gap2 = [&](int k, int c) {
     const float a0 = s.origin[k] + float(c) * cell, a1 = a0 + cell;
@@ -143,36 +151,44 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
   };
   const float di2 = s.di2, dk2 = s.dk2, reach2 = std::max(di2, dk2);
   const glm::vec3* sp = s.slot_pos.data();
+  // First the slots within reach, without a branch per slot (about half the slots scanned pass, at
+  // random, which a branch mispredicts); then those in slot order. nearest_d2 starts at d_i², so
+  // "closer" is also "within d_i", and a point's first nearest node puts it on the active list.
+  size_t n = 0;
   for (int z = lo.z; z <= hi.z; ++z) {
     const float gz = gap2(2, z);
     for (int y = lo.y; y <= hi.y; ++y) {
       const float gzy = gz + gap2(1, y);
       if (gzy >= reach2) continue;
-      for (int x = lo.x; x <= hi.x; ++x) {
-        if (gzy + gap2(0, x) >= reach2) continue;
-        const int32_t c = (z * s.dim.y + y) * s.dim.x + x;
-        int32_t j = s.cell_begin[size_t(c)], end = j + s.cell_alive[size_t(c)];
-        while (j < end) {
-          const glm::vec3 d = sp[j] - pos;
-          const float d2 = glm::dot(d, d);
-          if (d2 >= di2 && d2 > dk2) {
-            ++j;
-            continue;
-          }
-          const int32_t i = s.slots[size_t(j)];
-          if (d2 <= dk2) {  // Runions 2007 §3: kill within d_k
-            kill_point(s, i, step);
-            --end;          // slot j now holds another live point
-            continue;
-          }
-          if (s.nearest[size_t(i)] < 0 || d2 < s.nearest_d2[size_t(i)]) {
-            if (s.nearest[size_t(i)] < 0) s.active.push_back(i);
-            s.nearest[size_t(i)] = node;
-            s.nearest_d2[size_t(i)] = d2;
-          }
-          ++j;
-        }
+      const float w = std::sqrt(reach2 - gzy);
+      const int x0 = std::max(lo.x, int(std::floor((pos.x - w - s.origin.x) * s.inv_cell)));
+      const int x1 = std::min(hi.x, int(std::floor((pos.x + w - s.origin.x) * s.inv_cell)));
+      if (x0 > x1) continue;
+      const int32_t row = (z * s.dim.y + y) * s.dim.x;
+      const int32_t begin = s.cell_begin[size_t(row + x0)], end = s.cell_begin[size_t(row + x1 + 1)];
+      if (s.hits.size() < n + size_t(end - begin)) s.hits.resize(2 * (n + size_t(end - begin)));
+      int32_t* out = s.hits.data();
+      for (int32_t j = begin; j < end; ++j) {
+        const glm::vec3 d = sp[j] - pos;
+        out[n] = j;
+        n += size_t(glm::dot(d, d) < reach2);
       }
+    }
+  }
+  float* near_d2 = s.nearest_d2.data();
+  int32_t* near = s.nearest.data();
+  for (size_t h = 0; h < n; ++h) {
+    const int32_t j = s.hits[h];
+    const glm::vec3 d = sp[j] - pos;
+    const float d2 = glm::dot(d, d);
+    if (d2 <= dk2) {  // Runions 2007 §3: kill within d_k
+      kill_point(s, s.slots[size_t(j)], step);
+      continue;
+    }
+    if (d2 < near_d2[j]) {
+      if (near[j] < 0) s.active.push_back(s.slots[size_t(j)]);
+      near[j] = node;
+      near_d2[j] = d2;
     }
   }
 }
@@ -228,7 +244,10 @@ std::vector<int32_t> find_influencing_nodes(const std::vector<glm::vec3>& points
   colonization_state s;
   init_state(s, points, d_i, -1.0f);
   for (size_t k = 0; k < nodes.size(); ++k) visit_new_node(s, nodes[k], int32_t(k), 0);
-  return s.nearest;
+  std::vector<int32_t> out(points.size(), -1);
+  for (size_t i = 0; i < points.size(); ++i)
+    if (s.killed[i] < 0) out[i] = nearest_of(s, int32_t(i));
+  return out;
 }
 
 glm::vec3 growth_direction(const glm::vec3& pull_sum, const glm::vec3& previous, const glm::vec3& tropism,
@@ -461,8 +480,8 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
         // Bounded as the self-organizing snapshots are (growth_resume::byte_cap).
         const size_t bytes = sizeof(sc_snapshot) + vec_bytes(t.position) + vec_bytes(t.parent) + vec_bytes(t.radius) +
                              vec_bytes(t.born) + vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(has_child) + vec_bytes(forked) +
-                             vec_bytes(last_count) + vec_bytes(s.cell_begin) + vec_bytes(s.cell_alive) +
-                             vec_bytes(s.slots) + vec_bytes(s.slot_of) + vec_bytes(s.cell_of) + vec_bytes(s.slot_pos) +
+                             vec_bytes(last_count) + vec_bytes(s.cell_begin) +
+                             vec_bytes(s.slots) + vec_bytes(s.slot_of) + vec_bytes(s.slot_pos) +
                              vec_bytes(s.nearest) + vec_bytes(s.nearest_d2) + vec_bytes(s.killed) + vec_bytes(s.active);
         if (recorded_bytes(*resume) + bytes <= resume->byte_cap)
           (*snaps)[size_t(k)] = std::make_shared<const sc_snapshot>(sc_snapshot{t, has_child, last_count, s, p, D, tip, rep, forked, bytes});
@@ -475,10 +494,10 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     if (debug) debug->lines.clear(), debug->line_color.clear(), debug->line_kind.clear();
     touched.clear();
     for (int32_t i : s.active) {
-      const int32_t v = s.nearest[size_t(i)];
+      const int32_t v = nearest_of(s, i);
       if (acc_count[size_t(v)]++ == 0) touched.push_back(v);
       // Runions 2007 §3: n = Σ (s − v)/|s − v| over the points S(v) that v is nearest to.
-      acc[size_t(v)] += (pts[size_t(i)] - t.position[size_t(v)]) / std::sqrt(s.nearest_d2[size_t(i)]);
+      acc[size_t(v)] += (pts[size_t(i)] - t.position[size_t(v)]) / std::sqrt(nearest_d2_of(s, i));
       if (debug)
         debug->add_line(pts[size_t(i)], t.position[size_t(v)], glm::vec3(1.0f, 0.75f, 0.2f), debug_kind::influence_link);
     }
@@ -519,8 +538,8 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
     if (any_stuck)
       for (int32_t i : s.active)
-        if (s.killed[size_t(i)] < 0 && stuck[size_t(s.nearest[size_t(i)])]) {
-          s.dropped_by[size_t(i)] = s.nearest[size_t(i)];
+        if (s.killed[size_t(i)] < 0 && stuck[size_t(nearest_of(s, i))]) {
+          s.dropped_by[size_t(i)] = nearest_of(s, i);
           kill_point(s, i, step);
         }
     for (int32_t v : touched) acc[size_t(v)] = glm::vec3(0), acc_count[size_t(v)] = 0, stuck[size_t(v)] = 0;
