@@ -14,6 +14,7 @@
 #include "generators/leaves.h"
 #include "generators/params.h"
 #include "generators/skeleton.h"
+#include "generators/uninit_vector.h"
 
 namespace sylva {
 
@@ -97,12 +98,14 @@ struct tree_mesh {
   // a cap's apex ring (all its vertices at the apex) per tube end. An upright trunk's root ring (and
   // foot cap) lies root_depth below its root node, in the ground. Every ring belongs to the node
   // that ends its internode, so per-node radii and visibility apply to it.
-  std::vector<glm::vec3> position;   // metres
-  std::vector<glm::vec3> normal;     // unit, radial for tube vertices
-  std::vector<glm::vec2> uv;         // u around, v along by length (metres * uv_repeat)
-  std::vector<uint32_t> node;        // skeleton node of the vertex (for per-step radii/visibility)
+  // The bark's arrays are sized first and then filled in parallel chunks: uninit_vector, so that
+  // sizing them does not zero them first.
+  uninit_vector<glm::vec3> position;   // metres
+  uninit_vector<glm::vec3> normal;     // unit, radial for tube vertices
+  uninit_vector<glm::vec2> uv;         // u around, v along by length (metres * uv_repeat)
+  uninit_vector<uint32_t> node;        // skeleton node of the vertex (for per-step radii/visibility)
   std::vector<float> occlusion;      // per vertex: sky visibility from the depth inside the crown (1: open)
-  std::vector<uint32_t> index;       // triangles, sorted by the born step of the internode
+  uninit_vector<uint32_t> index;       // triangles, sorted by the born step of the internode
   // index_end[s] = number of indices to draw for step s (size steps+1, monotone).
   std::vector<uint32_t> index_end;
   std::vector<leaf_instance> leaves; // sorted by born

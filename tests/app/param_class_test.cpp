@@ -81,7 +81,7 @@ void expect_one_class(const P& params, param_class want, const char* what) {
 
 uint64_t skeleton_digest(const tree_skeleton& t) {
   tree_mesh probe;   // the skeleton's own arrays through the mesh digest's hash
-  probe.position = t.position;
+  probe.position.assign(t.position.begin(), t.position.end());
   probe.final_radius = t.radius;
   probe.node.assign(t.parent.begin(), t.parent.end());
   probe.index.assign(t.born.begin(), t.born.end());

@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-template <class T>
-double held(const std::vector<T>& v) { return double(v.capacity()) * sizeof(T); }
+template <class T, class A>
+double held(const std::vector<T, A>& v) { return double(v.capacity()) * sizeof(T); }
 
 // Bytes the mesh holds: every array at its capacity.
 double mesh_held_bytes(const tree_mesh& m) {
