@@ -157,9 +157,40 @@ void bake_crown_occlusion(tree_mesh& m) {
   shade_by_crown(m, bake_crown_sky(leaves));
 }
 
-void shade_by_crown(tree_mesh& m, const crown_sky& g) {
-  m.occlusion.assign(m.position.size(), 1.0f);
-  if (g.value.empty()) return;   // no crown: every point sees the open sky
+void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
+  // The bounds, when asked for, come from the same chunks: each chunk's box, merged after (min
+  // and max give the same box in any order).
+  struct box {
+    glm::vec3 lo{1e30f}, hi{-1e30f};
+    void add(const glm::vec3& a, const glm::vec3& b) { lo = glm::min(lo, a), hi = glm::max(hi, b); }
+  };
+  const size_t stride = size_t(std::max(m.radial_segments, 0)) + 1, nv = m.position.size();
+  const bool rings = stride > 1 && nv % stride == 0 && m.node.size() == nv;
+  const size_t block = rings ? stride : 8192, grain = rings ? 1024 : 1, blocks = (nv + block - 1) / block;
+  constexpr size_t leaf_grain = 8192;
+  std::vector<box> bark_box(set_bounds ? (blocks + grain - 1) / grain : 0);
+  std::vector<box> leaf_box(set_bounds ? (m.leaves.size() + leaf_grain - 1) / leaf_grain : 0);
+  auto merge_bounds = [&] {
+    if (!set_bounds || (m.position.empty() && m.leaves.empty())) return;
+    box all;
+    for (const box& b : bark_box) all.add(b.lo, b.hi);
+    for (const box& b : leaf_box) all.add(b.lo, b.hi);
+    m.bounds_min = all.lo;
+    m.bounds_max = all.hi;
+  };
+  m.occlusion.resize(nv);   // every value is written below
+  if (g.value.empty()) {    // no crown: every point sees the open sky
+    std::fill(m.occlusion.begin(), m.occlusion.end(), 1.0f);
+    if (set_bounds) {
+      for (size_t i = 0; i < nv; ++i) bark_box[i / block / grain].add(m.position[i], m.position[i]);
+      for (size_t k = 0; k < m.leaves.size(); ++k) {
+        const leaf_instance& l = m.leaves[k];
+        leaf_box[k / leaf_grain].add(l.position - glm::vec3(l.size), l.position + glm::vec3(l.size));
+      }
+    }
+    merge_bounds();
+    return;
+  }
   const glm::vec3 c = g.centre, inv = g.inv_radius;
   // Depth in the crown's ellipsoid (0 at the centre, 1 on its surface and outside) darkens the
   // crown's core; the local sky darkens each clump's inside. Open sky: 1.
@@ -177,11 +208,10 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g) {
   // vertex. Wider rings (the trunk, the limbs) sample each vertex; a vertex equal to the one
   // before (a ring's seam, a cap's apex) takes its value. Chunks of whole rings on the shared
   // pool, each writing only its own vertices, so the bytes do not depend on the chunking.
-  const size_t stride = size_t(std::max(m.radial_segments, 0)) + 1, nv = m.position.size();
-  const bool rings = stride > 1 && nv % stride == 0 && m.node.size() == nv;
-  const size_t block = rings ? stride : 8192;
   const float small = 0.25f * g.cell;
-  parallel_chunks((nv + block - 1) / block, rings ? 1024 : 1, [&](size_t b0, size_t b1) {
+  parallel_chunks(blocks, grain, [&](size_t b0, size_t b1) {
+    box local;   // written to bark_box once: boxes of two threads' chunks share cache lines
+    box* bb = set_bounds ? &local : nullptr;
     for (size_t b = b0; b < b1; ++b) {
       const size_t begin = b * block, end = std::min(begin + block, nv);
       if (rings) {
@@ -192,20 +222,31 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g) {
           hi = glm::max(hi, m.position[i]);
           one_node = one_node && m.node[i] == m.node[begin];
         }
+        if (bb) bb->add(lo, hi);
         const glm::vec3 size = hi - lo;
         if (one_node && std::max({size.x, size.y, size.z}) < small) {   // false for NaN: sampled per vertex
           std::fill(m.occlusion.begin() + std::ptrdiff_t(begin), m.occlusion.begin() + std::ptrdiff_t(end),
                     visibility(0.5f * (lo + hi)));
           continue;
         }
+      } else if (bb) {
+        for (size_t i = begin; i < end; ++i) bb->add(m.position[i], m.position[i]);
       }
       for (size_t i = begin; i < end; ++i)
         m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
     }
+    if (bb) bark_box[b0 / grain] = local;
   });
-  parallel_chunks(m.leaves.size(), 8192, [&](size_t begin, size_t end) {
-    for (size_t k = begin; k < end; ++k) m.leaves[k].occlusion = uint8_t(std::lround(255.0f * visibility(m.leaves[k].position)));
+  parallel_chunks(m.leaves.size(), leaf_grain, [&](size_t begin, size_t end) {
+    box local;
+    for (size_t k = begin; k < end; ++k) {
+      leaf_instance& l = m.leaves[k];
+      l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
+      if (set_bounds) local.add(l.position - glm::vec3(l.size), l.position + glm::vec3(l.size));
+    }
+    if (set_bounds) leaf_box[begin / leaf_grain] = local;
   });
+  merge_bounds();
 }
 
 }  // namespace sylva

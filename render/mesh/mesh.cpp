@@ -638,18 +638,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   }
   std::vector<glm::vec3>().swap(rot), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves);  // done with
   lap(st.leaf_sort);
-  if (!m.position.empty() || !m.leaves.empty()) {
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const glm::vec3& v : m.position) { lo = glm::min(lo, v); hi = glm::max(hi, v); }
-    for (const leaf_instance& l : m.leaves) {
-      lo = glm::min(lo, l.position - glm::vec3(l.size));
-      hi = glm::max(hi, l.position + glm::vec3(l.size));
-    }
-    m.bounds_min = lo;
-    m.bounds_max = hi;
-  }
-  lap(st.bounds);
-  shade_by_crown(m, sky);
+  shade_by_crown(m, sky, true);   // and the bounds, in the same parallel passes
   lap(st.occlusion);
   return m;
 }

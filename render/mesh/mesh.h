@@ -125,12 +125,12 @@ struct tree_mesh {
 // frame (radii, gnarl, axes, curve velocities, flare, texture wraps), the detail budget (curve,
 // collar and flare rings chosen), the bark rings, the index buffer, leaf placement (the foliage
 // model, or the generator's leaves taken), the crown's sky field (bake_crown_sky), the leaves
-// sorted by step with their gnarl, the bounds, and the crown occlusion sampled from the field.
+// sorted by step with their gnarl, and the crown occlusion sampled from the field with the bounds.
 // Leaf placement and the sky field run on a pool helper beside the first four (the bark), so with
 // a helper free the stages add up to more than the call's wall time.
 struct mesh_stage_times {
-  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, sky = 0, leaf_sort = 0, bounds = 0, occlusion = 0;
-  double total() const { return frame + budget + rings + index + leaf_place + sky + leaf_sort + bounds + occlusion; }
+  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, sky = 0, leaf_sort = 0, occlusion = 0;
+  double total() const { return frame + budget + rings + index + leaf_place + sky + leaf_sort + occlusion; }
 };
 
 tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1, mesh_stage_times* times = nullptr);
@@ -159,8 +159,10 @@ struct crown_sky {
 // mesh_tree bakes it on a pool helper beside the bark, from the leaves before gnarl moves them
 // (a few centimetres against cells of about a fortieth of the crown).
 crown_sky bake_crown_sky(const std::vector<glm::vec4>& leaves);
-// m.occlusion for the bark's vertices and each leaf's occlusion, sampled from the field.
-void shade_by_crown(tree_mesh& m, const crown_sky& sky);
+// m.occlusion for the bark's vertices and each leaf's occlusion, sampled from the field; with
+// set_bounds also m.bounds_min/max (every bark vertex, every leaf's centre ± its size) from the
+// same passes, as mesh_tree does.
+void shade_by_crown(tree_mesh& m, const crown_sky& sky, bool set_bounds = false);
 
 // Gnarl: per node, the rotation vector (axis * angle) of its internode, from seeded noise
 // scaled by age and order; and the offset of every node once each internode is turned and its
