@@ -574,6 +574,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
   size_t kept = 0, end = 0;   // leaves kept (usable, up to the cap); src[0, end) holds them
   crown_sky sky;
+  std::vector<uint32_t> cursor(m.leaf_end.size(), 0), slot;   // the leaves job's sort slots
   std::atomic<bool> bark_taken{false}, leaves_taken{!p.leaves_enabled};
   auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
   auto leaves = [&] {
@@ -599,6 +600,15 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       crown.emplace_back(l.position, l.size * scale);
     }
     sky = bake_crown_sky(crown);
+    // Each kept leaf's slot in the sort by born step below (a counting sort: prefix sums, then
+    // the leaves in order), here beside the bark rather than after it.
+    for (size_t s = 1; s < m.leaf_end.size(); ++s) {
+      m.leaf_end[s] += m.leaf_end[s - 1];
+      cursor[s] = m.leaf_end[s - 1];
+    }
+    slot.assign(end, UINT32_MAX);
+    for (size_t k = 0; k < end; ++k)
+      if (usable(src[k])) slot[k] = cursor[step_of(src[k])]++;
     st.sky = ms_since(t1);
   };
   parallel_jobs(p.leaves_enabled ? 2 : 1, [&](size_t) {
@@ -611,20 +621,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
   if (p.leaves_enabled) {
     // Counting sort by born straight into m.leaves (no temporary copy of every leaf); the leaves
-    // job counted each step's leaves.
+    // job counted each step's leaves and gave each its slot, filled here in parallel.
     if (placed.capped)
       m.message = "leaf cap reached: " + std::to_string(kept) + " leaves placed (raise Leaf cap or Leaf spacing)";
-    std::vector<uint32_t> cursor(m.leaf_end.size(), 0);
-    for (size_t s = 1; s < m.leaf_end.size(); ++s) {
-      m.leaf_end[s] += m.leaf_end[s - 1];
-      cursor[s] = m.leaf_end[s - 1];
-    }
     m.leaves.resize(m.leaf_end.back());
     const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
-    // Each leaf's slot first (the counting sort's order), then the slots filled in parallel.
-    std::vector<uint32_t> slot(end, UINT32_MAX);
-    for (size_t k = 0; k < end; ++k)
-      if (usable(src[k])) slot[k] = cursor[step_of(src[k])]++;
     parallel_chunks(end, 4096, [&](size_t begin, size_t stop) {
       for (size_t k = begin; k < stop; ++k) {
         if (slot[k] == UINT32_MAX) continue;
@@ -636,7 +637,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       }
     });
   }
-  std::vector<glm::vec3>().swap(rot), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves);  // done with
+  std::vector<glm::vec3>().swap(rot), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves),
+      std::vector<uint32_t>().swap(slot);  // done with
   lap(st.leaf_sort);
   shade_by_crown(m, sky, true);   // and the bounds, in the same parallel passes
   lap(st.occlusion);
