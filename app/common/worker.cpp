@@ -116,12 +116,31 @@ void run_worker(worker_state& w) {
   growth_resume resume;
   tree_spec resume_spec;
   bool have_resume = false;
+  // The overlays built after their result was published, and the debug they come from: a later
+  // result of the same growth (a re-mesh) carries them.
+  std::shared_ptr<const overlay_geometry> built;
+  std::shared_ptr<const growth_debug> built_from;
   for (;;) {
     worker_request req;
     {
       std::unique_lock<std::mutex> lock(w.mutex);
-      w.wake.wait(lock, [&] { return w.quit || w.pending; });
+      const bool overlays_due = last && !last->overlays && last->debug && built_from != last->debug;
+      w.wake.wait(lock, [&] { return w.quit || w.pending || overlays_due; });
       if (w.quit) return;
+      if (!w.pending) {   // idle, and the tree out has no overlays yet: build them now
+        lock.unlock();
+        std::shared_ptr<const overlay_geometry> geo;
+        try {
+          geo = std::make_shared<overlay_geometry>(build_overlays(*last->debug, last->skeleton.get()));
+        } catch (const std::bad_alloc&) {
+          geo = std::make_shared<overlay_geometry>();   // none, rather than a crash; the tree stays
+        }
+        built = geo, built_from = last->debug;
+        lock.lock();
+        w.late_overlays = std::move(geo);
+        w.late_overlays_from = built_from;
+        continue;
+      }
       req = std::move(*w.pending);
       w.pending.reset();
       w.busy = true;
@@ -139,7 +158,7 @@ void run_worker(worker_state& w) {
       // Nothing the generator reads changed: the tree is the same, so skip growth.
       result->skeleton = last->skeleton;
       result->debug = last->debug;
-      result->overlays = last->overlays;
+      result->overlays = last->overlays ? last->overlays : built_from == last->debug ? built : nullptr;
       result->report = last->report;
       result->grow_ms = last->grow_ms;
       result->regrown = false;
@@ -207,13 +226,7 @@ void run_worker(worker_state& w) {
         w.busy = false;
         continue;
       }
-      try {
-        result->overlays = std::make_shared<overlay_geometry>(build_overlays(*debug, skeleton.get()));
-      } catch (const std::bad_alloc&) {
-        publish_failure(w, last, req, "out of memory while building the growth overlays");
-        continue;
-      }
-      result->skeleton = std::move(skeleton);
+      result->skeleton = std::move(skeleton);   // its overlays follow once it is out (late_overlays)
       result->debug = std::move(debug);
     }
     auto t0 = std::chrono::steady_clock::now();
@@ -282,6 +295,12 @@ std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_ge
   std::lock_guard<std::mutex> lock(w.mutex);
   if (w.published && w.published->generation != seen_generation) return w.published;
   return nullptr;
+}
+
+std::shared_ptr<const overlay_geometry> take_late_overlays(worker_state& w, const grow_result& shown) {
+  std::lock_guard<std::mutex> lock(w.mutex);
+  if (shown.overlays || !shown.debug || w.late_overlays_from != shown.debug) return nullptr;
+  return w.late_overlays;
 }
 
 // ---------------------------------------------------------------- LOD chains

@@ -23,7 +23,9 @@ struct grow_result {
   mesh_params mesh_settings;
   std::shared_ptr<const tree_skeleton> skeleton;
   std::shared_ptr<const growth_debug> debug;
-  std::shared_ptr<const overlay_geometry> overlays;   // built from debug here, not on the UI thread
+  // Built from debug here, not on the UI thread. Null on a regrown result: its overlays come
+  // after it (take_late_overlays), so that no slider release waits for them.
+  std::shared_ptr<const overlay_geometry> overlays;
   tree_mesh mesh;
   grow_report report;
   double grow_ms = 0, mesh_ms = 0;
@@ -63,6 +65,11 @@ struct worker_state {
   std::atomic<bool> busy{false};
   std::atomic<float> progress{0};                 // of the growth in progress, 0..1 (grow_options::progress)
   std::atomic<int64_t> node_budget{default_node_budget};   // larger requests ask first
+  // The growth overlays of the newest published result that came without them, built once that
+  // result is out and no request waits (some 5 ms on self_organizing_default), and the growth
+  // debug they were built from.
+  std::shared_ptr<const overlay_geometry> late_overlays;
+  std::shared_ptr<const growth_debug> late_overlays_from;
   bool quit = false;
 };
 
@@ -87,6 +94,8 @@ uint32_t post_request(worker_state& w, const tree_spec& spec, const mesh_params&
 uint32_t cancel_growth(worker_state& w);
 // The newest published result if it is newer than `seen_generation`, else nullptr. Never blocks on work.
 std::shared_ptr<const grow_result> take_result(worker_state& w, uint32_t seen_generation);
+// The overlays of `shown` (a result without them) once the worker has built them, else nullptr.
+std::shared_ptr<const overlay_geometry> take_late_overlays(worker_state& w, const grow_result& shown);
 
 // ---- The LOD chain of a shown tree (render/mesh/lod.h build_lods: about half a second for a forest),
 // built off the UI thread so that no frame waits for it. The newest request wins: a build in

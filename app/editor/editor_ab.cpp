@@ -14,26 +14,29 @@ namespace sylva {
 
 namespace {
 
-void show_result(slot_view& v, const std::shared_ptr<const grow_result>& r, int step) {
+void show_result(slot_view& v, const std::shared_ptr<const grow_result>& r, int step,
+                 std::shared_ptr<const overlay_geometry> overlays = {}) {
   v.shown = r;
   upload_tree(v.renderer, r->mesh);
   editor_lod_new_tree(v.lod);
   upload_wind(v.renderer, *r->skeleton);
-  set_overlays(v.renderer, r->overlays);
+  if (r->overlays) overlays = r->overlays;
+  v.overlays_late = !overlays;
+  set_overlays(v.renderer, std::move(overlays));
   set_tree_step(v.renderer, *r->skeleton, r->mesh_settings.min_radius, std::min(step, r->skeleton->steps));
 }
 
 }  // namespace
 
 std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step,
-                          std::shared_ptr<gl_shared> shared) {
+                          std::shared_ptr<gl_shared> shared, std::shared_ptr<const overlay_geometry> overlays) {
   ab_stop_view(v);
   v = slot_view{};
   v.worker = std::make_unique<worker_state>();
   start_worker(*v.worker);
   if (!init_renderer(v.renderer, std::move(shared))) return v.renderer.error;
   if (shown && shown->skeleton) {
-    show_result(v, shown, step);
+    show_result(v, shown, step, std::move(overlays));
     v.posted_spec = shown->spec;
     v.posted_mesh = shown->mesh_settings;
     v.posted_once = true;
@@ -55,6 +58,11 @@ void ab_stop_view(slot_view& v) {
 void ab_poll_other(ab_state& s, int step) {
   if (!s.has_b || !s.other().worker) return;
   slot_view& v = s.other();
+  if (v.overlays_late && v.shown)   // a regrown tree's overlays, built after it came
+    if (std::shared_ptr<const overlay_geometry> geo = take_late_overlays(*v.worker, *v.shown)) {
+      v.overlays_late = false;
+      set_overlays(v.renderer, std::move(geo));
+    }
   if (std::shared_ptr<const grow_result> r = take_result(*v.worker, v.seen_generation))
     if (ab_take_other_result(v, *r) == ab_result_use::show) show_result(v, r, step);
   if (v.shown && v.shown->skeleton) {

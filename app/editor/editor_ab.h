@@ -51,6 +51,7 @@ struct slot_view {
   editor_lod lod;                   // level of detail shown in the view (app/editor/editor_lod.h)
   std::shared_ptr<const grow_result> shown;
   int overlay_generator = -1;       // the generator whose default overlay layer is selected
+  bool overlays_late = false;       // shown came without its overlays: the worker builds them after
 };
 
 // One slot, A or B: its document and its view.
@@ -123,9 +124,9 @@ bool ab_showing(const ab_state& s);   // B exists and the mode is not off
 
 // Sets up B's view as a copy of the shown tree: a started worker, an initialised renderer holding
 // the same mesh, drawn with `shared` (A's programs and textures: one GL context). Returns the
-// renderer's error or "".
+// renderer's error or "". `overlays`: the ones A shows, for a tree whose result came without them.
 std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step,
-                          std::shared_ptr<gl_shared> shared);
+                          std::shared_ptr<gl_shared> shared, std::shared_ptr<const overlay_geometry> overlays = {});
 void ab_stop_view(slot_view& v);   // stops the worker, frees the renderer
 // Once a frame: takes a newer result of the slot that is not selected, and follows the timeline step.
 void ab_poll_other(ab_state& s, int step);

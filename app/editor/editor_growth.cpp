@@ -84,9 +84,27 @@ void frame_view(orbit_camera& c, const glm::vec3& lo, const glm::vec3& hi, float
   frame_camera(c, lo, hi, aspect);
 }
 
+// The shown tree's growth overlays (null: none yet, the old tree's are cleared); a new generator
+// selects its own first layer once its overlays are there.
+void apply_overlays(editor_state& e, editor_slot& s, std::shared_ptr<const overlay_geometry> geo) {
+  const bool have = geo != nullptr;
+  set_overlays(s.renderer, std::move(geo));
+  fit_shadow_slice(e.overlays, s.renderer.overlay);
+  if (have && s.shown && int(s.shown->spec.params.index()) != s.overlay_generator) {
+    s.overlay_generator = int(s.shown->spec.params.index());
+    overlay_view& v = e.overlays;
+    if (!v.combine) v.kinds = 1u << overlay_default_kind(s.overlay_generator, s.renderer.overlay.present);
+  }
+}
+
 // Shows a newer worker result: upload in the same frame it is seen (DESIGN §5).
 void take_new_tree(editor_state& e) {
   editor_slot& s = e.cur();
+  if (s.overlays_late && s.shown)   // a regrown tree's overlays, built after it came
+    if (std::shared_ptr<const overlay_geometry> geo = take_late_overlays(*s.worker, *s.shown)) {
+      s.overlays_late = false;
+      apply_overlays(e, s, std::move(geo));
+    }
   std::shared_ptr<const grow_result> r = take_result(*s.worker, s.seen_generation);
   if (!r) return;
   s.seen_generation = r->generation;
@@ -120,13 +138,8 @@ void take_new_tree(editor_state& e) {
   upload_tree(s.renderer, r->mesh);
   editor_lod_new_tree(s.lod);
   upload_wind(s.renderer, *r->skeleton);
-  set_overlays(s.renderer, r->overlays);
-  fit_shadow_slice(e.overlays, s.renderer.overlay);
-  if (int(r->spec.params.index()) != s.overlay_generator) {   // a new generator: its own first layer
-    s.overlay_generator = int(r->spec.params.index());
-    overlay_view& v = e.overlays;
-    if (!v.combine) v.kinds = 1u << overlay_default_kind(s.overlay_generator, s.renderer.overlay.present);
-  }
+  s.overlays_late = !r->overlays;
+  apply_overlays(e, s, r->overlays);
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(s.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);

@@ -36,7 +36,8 @@ void handle_ab(editor_state& e, ab_action a) {
       if (!from.shown || !from.shown->skeleton) return set_status(e, "Duplicate to B: wait for the tree to grow first", true);
       if (e.ab.has_b && e.ab.selected != 0) return set_status(e, "Duplicate to B: select slot A first", true);
       ab_duplicate_doc(e.ab);
-      if (std::string err = ab_start_view(b, from.shown, e.step, from.renderer.shared); !err.empty()) {
+      if (std::string err = ab_start_view(b, from.shown, e.step, from.renderer.shared, from.renderer.overlay.geometry);
+          !err.empty()) {
         ab_drop_doc(e.ab);
         ab_stop_view(b);
         return set_status(e, "Duplicate to B failed: " + err, true);

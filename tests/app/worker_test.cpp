@@ -56,6 +56,43 @@ TEST(GrowthWorker, NewestRequestWinsAndMeshEditsReuseTheSkeleton) {
   stop_worker(w);
 }
 
+TEST(GrowthWorker, OverlaysFollowARegrownTreeAndStayWithItsReMeshes) {
+  worker_state w;
+  start_worker(w);
+  self_organizing_params p;
+  p.steps = 8;
+  mesh_params m;
+  const uint32_t g = post_request(w, tree_spec{p, 3}, m);
+  auto r = wait_for(w, g);
+  ASSERT_TRUE(r);
+  EXPECT_TRUE(r->regrown);
+  EXPECT_FALSE(r->overlays);   // published before its overlays: no slider release waits for them
+  std::shared_ptr<const overlay_geometry> late;
+  for (int i = 0; i < 2000 && !late; ++i) {
+    late = take_late_overlays(w, *r);
+    if (!late) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(late);
+  // The overlays the worker built once idle are the ones built from the result's own debug.
+  const overlay_geometry want = build_overlays(*r->debug, r->skeleton.get());
+  EXPECT_GT(want.points.size(), 0u);
+  EXPECT_EQ(late->points.size(), want.points.size());
+  EXPECT_EQ(late->lines.size(), want.lines.size());
+  EXPECT_EQ(late->present, want.present);
+  // A re-mesh of the same growth carries them; a result they were not built for gets none.
+  mesh_params m2 = m;
+  m2.radial_segments = 5;
+  auto r2 = wait_for(w, post_request(w, tree_spec{p, 3}, m2));
+  ASSERT_TRUE(r2);
+  EXPECT_FALSE(r2->regrown);
+  EXPECT_EQ(r2->overlays.get(), late.get());
+  EXPECT_FALSE(take_late_overlays(w, *r2));   // it has them already
+  grow_result other;
+  other.debug = std::make_shared<growth_debug>();
+  EXPECT_FALSE(take_late_overlays(w, other));
+  stop_worker(w);
+}
+
 namespace {
 // Small specs of all four generators, so that a request grows in a few milliseconds to a second.
 std::vector<tree_spec> stress_specs() {
