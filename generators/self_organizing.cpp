@@ -29,6 +29,14 @@ glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   return l2 > 1e-12f && std::isfinite(l2) ? v / std::sqrt(l2) : fallback;
 }
 
+// A shoot a step grows: bud k of node (0: the main bud, 1: the lateral, 2: the far lateral of
+// opposite phyllotaxis) and its plan.
+struct planned_shoot {
+  int32_t node;
+  int k;
+  shoot_plan plan;
+};
+
 // What the step loop carries from one step to the next besides the tree, the RNG and the working
 // params: a resumed growth (generators/resume.h) restores exactly this.
 struct so_vars {
@@ -276,8 +284,11 @@ struct so_state : so_vars {
       if (t.died[i] == never_died) remove_markers_near(t.position[i]);
   }
 
-  // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v).
-  void allocate(int step, const std::vector<int32_t>& roots) {
+  // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v). Under
+  // Borchert-Honda a node's buds get their v when the pass reaches the node, so the pass also
+  // lists the shoots they grow, in bud order (node, then k), into `shoots` and returns true; the
+  // priority model sets them axis by axis and returns false (the caller lists them after).
+  bool allocate(int step, const std::vector<int32_t>& roots, std::vector<planned_shoot>& shoots) {
     for (int32_t root : roots) flow[root] = p.alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
     if (p.allocation == so_allocation::borchert_honda) {
       for (size_t i = 0; i < t.size(); ++i) {
@@ -300,8 +311,13 @@ struct so_state : so_vars {
         if (m >= 0) flow[m] = vm; else q[nb * i] = m == bud_here ? vm : 0.0f;
         if (la >= 0) flow[la] = vl; else q[nb * i + 1] = la == bud_here ? vl : 0.0f;
         if (lb >= 0) flow[lb] = vb; else if (nb == 3) q[nb * i + 2] = lb == bud_here ? vb : 0.0f;
+        for (int k = 0; k < int(nb); ++k) {
+          if (bud(i, k) != bud_here) continue;
+          const shoot_plan plan = plan_shoot(q[nb * i + size_t(k)], p.internode_length);
+          if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan});
+        }
       }
-      return;
+      return true;
     }
     // Priority model: each axis, from its base, ranks its lateral branches and buds and its
     // terminal bud by Q. An axis starts at a root or a lateral child; parents precede children,
@@ -348,6 +364,7 @@ struct so_state : so_vars {
         else q[size_t(-c[k].target - 1)] = vs[k];
       }
     }
+    return false;
   }
 };
 
@@ -504,12 +521,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
 
   std::vector<int32_t> grown;  // nodes made this step
   std::vector<glm::ivec3> grown_voxels;
-  struct shoot {
-    int32_t node;
-    int k;                     // 0: the main bud, 1: the lateral, 2: the far lateral (opposite phyllotaxis)
-    shoot_plan plan;
-  };
-  std::vector<shoot> shoots;
+  std::vector<planned_shoot> shoots;
   std::vector<cone_choice> choices;   // one shoot's cone at a time
   cone_scratch scratch;
   std::vector<float> last_flow;
@@ -546,19 +558,20 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.sweep_flow();
     st.shed(uint16_t(T));   // and the flow again where it sheds
     if (debug) last_flow = st.flow;
-    st.allocate(T, roots);
+    shoots.clear();
+    const bool listed = st.allocate(T, roots, shoots);
 
     // Bud fate and shoots; the environment stays as it was at the step's start, so the result
     // does not depend on the order in which buds are visited.
     grown.clear();
     const size_t n_before = t.size();
-    // The shoots this step grows, in bud order. In the shadow environment each scans its cone
+    // The shoots this step grows, in bud order (listed by allocate under Borchert-Honda, here
+    // under the priority model). In the shadow environment each scans its cone
     // (scan_cone reads the grid only, which stays as it was at the step's start) on this thread:
     // scanning them in parallel chunks on the job pool first made the default tree's growth slower
     // on two cores (14.7 against 13.4 ms, medians of 15; the 642k-node tree 683 against 689 ms),
     // since a step's scan is shorter than waking a helper and waiting for its last chunk.
-    shoots.clear();
-    for (size_t i = 0; i < n_before; ++i) {
+    for (size_t i = 0; i < n_before && !listed; ++i) {
       if (t.died[i] != never_died) continue;
       for (int k = 0; k < int(st.nb); ++k) {
         if (st.bud(i, k) != bud_here) continue;
