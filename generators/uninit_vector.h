@@ -6,7 +6,6 @@
 #include <memory>
 #include <new>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 namespace sylva {
@@ -19,14 +18,11 @@ struct default_init_allocator : std::allocator<T> {
     using other = default_init_allocator<U>;
   };
   // resize(n) and vector(n) construct with no arguments: default-initialise (no zeroing of a
-  // trivial type) instead of value-initialising.
+  // trivial type) instead of value-initialising. Construction with arguments (copies, fills) is
+  // std::allocator_traits' own placement new.
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 };
 

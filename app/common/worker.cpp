@@ -116,15 +116,13 @@ void run_worker(worker_state& w) {
   growth_resume resume;
   tree_spec resume_spec;
   bool have_resume = false;
-  // The overlays built after their result was published, and the debug they come from: a later
-  // result of the same growth (a re-mesh) carries them.
-  std::shared_ptr<const overlay_geometry> built;
-  std::shared_ptr<const growth_debug> built_from;
+  // w.late_overlays and w.late_overlays_from are written only here (under the lock, for the UI),
+  // so this thread reads them without it.
   for (;;) {
     worker_request req;
     {
       std::unique_lock<std::mutex> lock(w.mutex);
-      const bool overlays_due = last && !last->overlays && last->debug && built_from != last->debug;
+      const bool overlays_due = last && !last->overlays && last->debug && w.late_overlays_from != last->debug;
       w.wake.wait(lock, [&] { return w.quit || w.pending || overlays_due; });
       if (w.quit) return;
       if (!w.pending) {   // idle, and the tree out has no overlays yet: build them now
@@ -135,10 +133,9 @@ void run_worker(worker_state& w) {
         } catch (const std::bad_alloc&) {
           geo = std::make_shared<overlay_geometry>();   // none, rather than a crash; the tree stays
         }
-        built = geo, built_from = last->debug;
         lock.lock();
         w.late_overlays = std::move(geo);
-        w.late_overlays_from = built_from;
+        w.late_overlays_from = last->debug;
         continue;
       }
       req = std::move(*w.pending);
@@ -158,7 +155,8 @@ void run_worker(worker_state& w) {
       // Nothing the generator reads changed: the tree is the same, so skip growth.
       result->skeleton = last->skeleton;
       result->debug = last->debug;
-      result->overlays = last->overlays ? last->overlays : built_from == last->debug ? built : nullptr;
+      // A re-mesh of the same growth carries its overlays, built with it or after it.
+      result->overlays = last->overlays ? last->overlays : w.late_overlays_from == last->debug ? w.late_overlays : nullptr;
       result->report = last->report;
       result->grow_ms = last->grow_ms;
       result->regrown = false;

@@ -20,13 +20,16 @@ void show_result(slot_view& v, const std::shared_ptr<const grow_result>& r, int 
   upload_tree(v.renderer, r->mesh);
   editor_lod_new_tree(v.lod);
   upload_wind(v.renderer, *r->skeleton);
-  if (r->overlays) overlays = r->overlays;
-  v.overlays_late = !overlays;
-  set_overlays(v.renderer, std::move(overlays));
+  set_overlays(v.renderer, r->overlays ? r->overlays : std::move(overlays));
   set_tree_step(v.renderer, *r->skeleton, r->mesh_settings.min_radius, std::min(step, r->skeleton->steps));
 }
 
 }  // namespace
+
+std::shared_ptr<const overlay_geometry> take_late_overlays(slot_view& v) {
+  if (!v.worker || !v.shown || v.shown->overlays || v.renderer.overlay.geometry) return nullptr;
+  return take_late_overlays(*v.worker, *v.shown);
+}
 
 std::string ab_start_view(slot_view& v, const std::shared_ptr<const grow_result>& shown, int step,
                           std::shared_ptr<gl_shared> shared, std::shared_ptr<const overlay_geometry> overlays) {
@@ -58,11 +61,7 @@ void ab_stop_view(slot_view& v) {
 void ab_poll_other(ab_state& s, int step) {
   if (!s.has_b || !s.other().worker) return;
   slot_view& v = s.other();
-  if (v.overlays_late && v.shown)   // a regrown tree's overlays, built after it came
-    if (std::shared_ptr<const overlay_geometry> geo = take_late_overlays(*v.worker, *v.shown)) {
-      v.overlays_late = false;
-      set_overlays(v.renderer, std::move(geo));
-    }
+  if (std::shared_ptr<const overlay_geometry> geo = take_late_overlays(v)) set_overlays(v.renderer, std::move(geo));
   if (std::shared_ptr<const grow_result> r = take_result(*v.worker, v.seen_generation))
     if (ab_take_other_result(v, *r) == ab_result_use::show) show_result(v, r, step);
   if (v.shown && v.shown->skeleton) {

@@ -51,8 +51,11 @@ struct slot_view {
   editor_lod lod;                   // level of detail shown in the view (app/editor/editor_lod.h)
   std::shared_ptr<const grow_result> shown;
   int overlay_generator = -1;       // the generator whose default overlay layer is selected
-  bool overlays_late = false;       // shown came without its overlays: the worker builds them after
 };
+
+// Once a frame: the shown tree's overlays if its result came without them, the view has none yet
+// and its worker has now built them (take_late_overlays), else null.
+std::shared_ptr<const overlay_geometry> take_late_overlays(slot_view& v);
 
 // One slot, A or B: its document and its view.
 struct editor_slot : slot_document, slot_view {};

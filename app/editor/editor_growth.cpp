@@ -100,11 +100,7 @@ void apply_overlays(editor_state& e, editor_slot& s, std::shared_ptr<const overl
 // Shows a newer worker result: upload in the same frame it is seen (DESIGN §5).
 void take_new_tree(editor_state& e) {
   editor_slot& s = e.cur();
-  if (s.overlays_late && s.shown)   // a regrown tree's overlays, built after it came
-    if (std::shared_ptr<const overlay_geometry> geo = take_late_overlays(*s.worker, *s.shown)) {
-      s.overlays_late = false;
-      apply_overlays(e, s, std::move(geo));
-    }
+  if (std::shared_ptr<const overlay_geometry> geo = take_late_overlays(s)) apply_overlays(e, s, std::move(geo));
   std::shared_ptr<const grow_result> r = take_result(*s.worker, s.seen_generation);
   if (!r) return;
   s.seen_generation = r->generation;
@@ -138,8 +134,7 @@ void take_new_tree(editor_state& e) {
   upload_tree(s.renderer, r->mesh);
   editor_lod_new_tree(s.lod);
   upload_wind(s.renderer, *r->skeleton);
-  s.overlays_late = !r->overlays;
-  apply_overlays(e, s, r->overlays);
+  apply_overlays(e, s, r->overlays);   // null on a regrown tree: take_late_overlays brings them
   const int steps = r->skeleton->steps;
   e.step = at_end ? steps : std::min(e.step, steps);
   set_tree_step(s.renderer, *r->skeleton, r->mesh_settings.min_radius, e.step);

@@ -170,31 +170,12 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
   constexpr size_t leaf_grain = 8192;
   std::vector<box> bark_box(set_bounds ? (blocks + grain - 1) / grain : 0);
   std::vector<box> leaf_box(set_bounds ? (m.leaves.size() + leaf_grain - 1) / leaf_grain : 0);
-  auto merge_bounds = [&] {
-    if (!set_bounds || (m.position.empty() && m.leaves.empty())) return;
-    box all;
-    for (const box& b : bark_box) all.add(b.lo, b.hi);
-    for (const box& b : leaf_box) all.add(b.lo, b.hi);
-    m.bounds_min = all.lo;
-    m.bounds_max = all.hi;
-  };
   m.occlusion.resize(nv);   // every value is written below
-  if (g.value.empty()) {    // no crown: every point sees the open sky
-    std::fill(m.occlusion.begin(), m.occlusion.end(), 1.0f);
-    if (set_bounds) {
-      for (size_t i = 0; i < nv; ++i) bark_box[i / block / grain].add(m.position[i], m.position[i]);
-      for (size_t k = 0; k < m.leaves.size(); ++k) {
-        const leaf_instance& l = m.leaves[k];
-        leaf_box[k / leaf_grain].add(l.position - glm::vec3(l.size), l.position + glm::vec3(l.size));
-      }
-    }
-    merge_bounds();
-    return;
-  }
   const glm::vec3 c = g.centre, inv = g.inv_radius;
   // Depth in the crown's ellipsoid (0 at the centre, 1 on its surface and outside) darkens the
   // crown's core; the local sky darkens each clump's inside. Open sky: 1.
   auto visibility = [&](const glm::vec3& p) {
+    if (g.value.empty()) return 1.0f;   // no crown: every point sees the open sky
     const float d = glm::length((p - c) * inv);
     if (!std::isfinite(d)) return 1.0f;
     const bool near = glm::all(glm::greaterThanEqual(p, g.origin)) &&
@@ -246,7 +227,12 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
     }
     if (set_bounds) leaf_box[begin / leaf_grain] = local;
   });
-  merge_bounds();
+  if (!set_bounds || (m.position.empty() && m.leaves.empty())) return;
+  box all;
+  for (const box& b : bark_box) all.add(b.lo, b.hi);
+  for (const box& b : leaf_box) all.add(b.lo, b.hi);
+  m.bounds_min = all.lo;
+  m.bounds_max = all.hi;
 }
 
 }  // namespace sylva

@@ -574,7 +574,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   auto step_of = [&](const leaf& l) { return std::min<int>(l.born, m.steps); };
   size_t kept = 0, end = 0;   // leaves kept (usable, up to the cap); src[0, end) holds them
   crown_sky sky;
-  std::vector<uint32_t> cursor(m.leaf_end.size(), 0), slot;   // the leaves job's sort slots
+  std::vector<uint32_t> slot;   // each kept leaf's place in m.leaves (the leaves job's counting sort)
   std::atomic<bool> bark_taken{false}, leaves_taken{!p.leaves_enabled};
   auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
   auto leaves = [&] {
@@ -602,6 +602,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
     sky = bake_crown_sky(crown);
     // Each kept leaf's slot in the sort by born step below (a counting sort: prefix sums, then
     // the leaves in order), here beside the bark rather than after it.
+    std::vector<uint32_t> cursor(m.leaf_end.size(), 0);
     for (size_t s = 1; s < m.leaf_end.size(); ++s) {
       m.leaf_end[s] += m.leaf_end[s - 1];
       cursor[s] = m.leaf_end[s - 1];
