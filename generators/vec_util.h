@@ -20,14 +20,24 @@ inline glm::vec3 any_perpendicular(const glm::vec3& t) {
   return glm::normalize(glm::cross(glm::cross(t, a), t));
 }
 
-// Rodrigues' rotation of v by the rotation vector rv (axis * angle).
-inline glm::vec3 rotate_by(const glm::vec3& v, const glm::vec3& rv) {
+// A rotation vector rv (axis * angle) as Rodrigues' formula uses it: the unit axis k and the
+// angle's cosine and sine, worked out once for a rotation applied to many vectors.
+struct rotation_terms {
+  glm::vec3 k{0};
+  float c = 1, s = 0;
+  bool turns = false;   // false: rv shorter than 1e-12, which leaves every vector as it is
+};
+inline rotation_terms rotation_terms_of(const glm::vec3& rv) {
   const float a = glm::length(rv);
-  if (!(a > 1e-12f)) return v;
-  const glm::vec3 k = rv / a;
-  const float c = std::cos(a), s = std::sin(a);
-  return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
+  if (!(a > 1e-12f)) return {};
+  return {rv / a, std::cos(a), std::sin(a), true};
 }
+// Rodrigues' rotation of v by the rotation r; the inverse rotation is {-k, c, s}.
+inline glm::vec3 rotate_by(const glm::vec3& v, const rotation_terms& r) {
+  if (!r.turns) return v;
+  return v * r.c + glm::cross(r.k, v) * r.s + r.k * glm::dot(r.k, v) * (1 - r.c);
+}
+inline glm::vec3 rotate_by(const glm::vec3& v, const glm::vec3& rv) { return rotate_by(v, rotation_terms_of(rv)); }
 
 // The bytes a vector's contents take (what a copy of it allocates), for memory accounting.
 template <class T>

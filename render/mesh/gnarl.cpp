@@ -36,25 +36,31 @@ std::vector<glm::vec3> gnarl_rotations(const tree_skeleton& t, const mesh_params
   return rot;
 }
 
+std::vector<rotation_terms> gnarl_turns(const std::vector<glm::vec3>& rot) {
+  std::vector<rotation_terms> turn(rot.size());
+  for (size_t i = 0; i < rot.size(); ++i) turn[i] = rotation_terms_of(rot[i]);
+  return turn;
+}
+
 // Where gnarl moves each node: its internode turned, its parent's offset carried down the tree.
-std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<glm::vec3>& rot) {
+std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<rotation_terms>& turn) {
   std::vector<glm::vec3> disp(t.size(), glm::vec3(0));
-  for (size_t i = 0; i < t.size() && i < rot.size(); ++i) {
+  for (size_t i = 0; i < t.size() && i < turn.size(); ++i) {
     const int32_t par = t.parent[i];
     if (par < 0) continue;
     const glm::vec3 d = t.position[i] - t.position[par];
-    disp[i] = disp[par] + rotate_by(d, rot[i]) - d;
+    disp[i] = disp[par] + rotate_by(d, turn[i]) - d;
   }
   return disp;
 }
 
 // A point hung on node k (a leaf) moves with k's internode: turned about the parent like it.
-glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& rot, const std::vector<glm::vec3>& disp,
+glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<rotation_terms>& turn, const std::vector<glm::vec3>& disp,
                         size_t k, const glm::vec3& at) {
   const int32_t par = t.parent[k];
   if (par < 0) return at + disp[k];
   const glm::vec3 d = at - t.position[par];
-  return t.position[par] + disp[par] + rotate_by(d, rot[k]);
+  return t.position[par] + disp[par] + rotate_by(d, turn[k]);
 }
 
 }  // namespace sylva

@@ -73,7 +73,7 @@ glm::vec3 chord_velocity(const glm::vec3& p0, const glm::vec3& p1) {
 // The bark: the frame, budget, rings and index stages of mesh_tree (their times in st); rot and
 // disp are the gnarl, which the leaves follow too.
 void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_stage_times& st,
-               std::vector<glm::vec3>& rot, std::vector<glm::vec3>& disp) {
+               std::vector<rotation_terms>& turn, std::vector<glm::vec3>& disp) {
   auto lap_start = clock_type::now();
   auto lap = [&](double& field) {   // adds the time since the last lap to one stage
     const auto now = clock_type::now();
@@ -93,8 +93,8 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
   }
 
   // Gnarl: every internode turned by seeded angular noise, its subtree carried along.
-  rot = gnarl_rotations(t, p);
-  disp = gnarl_offsets(t, rot);
+  turn = gnarl_turns(gnarl_rotations(t, p));
+  disp = gnarl_offsets(t, turn);
   std::vector<glm::vec3> q(n);
   for (size_t i = 0; i < n; ++i) q[i] = t.position[i] + disp[i];
 
@@ -557,7 +557,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   if (!structurally_sound(t)) return m;
 
   const size_t n = t.size();
-  std::vector<glm::vec3> rot, disp;
+  std::vector<rotation_terms> turn;
+  std::vector<glm::vec3> disp;
   foliage placed;
   const bool own = p.leaves.mode == leaf_mode::generator && !t.leaves.empty();
   const bool fruit = p.fruits.count > 0;   // the generator's own leaves are then copied, fruit added
@@ -576,7 +577,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   crown_sky sky;
   std::vector<uint32_t> slot;   // each kept leaf's place in m.leaves (the leaves job's counting sort)
   std::atomic<bool> bark_taken{false}, leaves_taken{!p.leaves_enabled};
-  auto bark = [&] { mesh_bark(t, p, m, st, rot, disp); };
+  auto bark = [&] { mesh_bark(t, p, m, st, turn, disp); };
   auto leaves = [&] {
     const auto t0 = clock_type::now();
     if (place) {
@@ -633,12 +634,12 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
         const leaf& l = src[k];
         const glm::quat q = l.orientation;
         const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
-        m.leaves[slot[k]] = {gnarled_point(t, rot, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
+        m.leaves[slot[k]] = {gnarled_point(t, turn, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
                              l.born, l.died, uint32_t(l.node), tex};
       }
     });
   }
-  std::vector<glm::vec3>().swap(rot), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves),
+  std::vector<rotation_terms>().swap(turn), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves),
       std::vector<uint32_t>().swap(slot);  // done with
   lap(st.leaf_sort);
   shade_by_crown(m, sky, true);   // and the bounds, in the same parallel passes

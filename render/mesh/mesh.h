@@ -15,6 +15,7 @@
 #include "generators/params.h"
 #include "generators/skeleton.h"
 #include "generators/uninit_vector.h"
+#include "generators/vec_util.h"
 
 namespace sylva {
 
@@ -165,12 +166,14 @@ crown_sky bake_crown_sky(const std::vector<glm::vec4>& leaves);
 void shade_by_crown(tree_mesh& m, const crown_sky& sky, bool set_bounds = false);
 
 // Gnarl: per node, the rotation vector (axis * angle) of its internode, from seeded noise
-// scaled by age and order; and the offset of every node once each internode is turned and its
-// subtree carried along (O(n)). mesh_tree moves bark and leaves by them.
+// scaled by age and order; those rotations' Rodrigues terms (the cosines and sines worked out once
+// for the node and every leaf on it); and the offset of every node once each internode is turned
+// and its subtree carried along (O(n)). mesh_tree moves bark and leaves by them.
 std::vector<glm::vec3> gnarl_rotations(const tree_skeleton& t, const mesh_params& p);
-std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<glm::vec3>& rot);
+std::vector<rotation_terms> gnarl_turns(const std::vector<glm::vec3>& rot);
+std::vector<glm::vec3> gnarl_offsets(const tree_skeleton& t, const std::vector<rotation_terms>& turn);
 // Where a point hung on node k (a leaf) goes once the gnarl has turned k's internode.
-glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<glm::vec3>& rot, const std::vector<glm::vec3>& disp,
+glm::vec3 gnarled_point(const tree_skeleton& t, const std::vector<rotation_terms>& turn, const std::vector<glm::vec3>& disp,
                         size_t k, const glm::vec3& at);
 
 // FNV-1a over every byte the mesh hands on (vertex arrays, indices, step tables, leaves, radii,

@@ -114,8 +114,8 @@ tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const
   // Leaves were placed on the final bend: they follow their node to its place at `step`.
   const std::vector<glm::vec3> x = t.wood ? positions_at_step(t, step) : std::vector<glm::vec3>();
   // The full mesh's leaves moved with the full tree's gnarl; move them to this step's instead.
-  const std::vector<glm::vec3> rot_full = gnarl_rotations(t, p), rot_step = gnarl_rotations(s, p);
-  const std::vector<glm::vec3> disp_full = gnarl_offsets(t, rot_full), disp_step = gnarl_offsets(s, rot_step);
+  const std::vector<rotation_terms> turn_full = gnarl_turns(gnarl_rotations(t, p)), turn_step = gnarl_turns(gnarl_rotations(s, p));
+  const std::vector<glm::vec3> disp_full = gnarl_offsets(t, turn_full), disp_step = gnarl_offsets(s, turn_step);
   for (const leaf_instance& l : full.leaves) {  // already sorted by born, so the filter stays sorted
     if (!(l.born <= step && step < l.died) || l.node >= remap.size() || remap[l.node] < 0) continue;
     leaf_instance c = l;
@@ -123,9 +123,12 @@ tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const
     // Undo the full tree's turn of the leaf's internode, then apply this step's.
     const int32_t par = t.parent[l.node];
     glm::vec3 at = l.position - disp_full[l.node];
-    if (par >= 0) at = t.position[par] + rotate_by(l.position - t.position[par] - disp_full[par], -rot_full[l.node]);
+    if (par >= 0) {
+      const rotation_terms& r = turn_full[l.node];
+      at = t.position[par] + rotate_by(l.position - t.position[par] - disp_full[par], rotation_terms{-r.k, r.c, r.s, r.turns});
+    }
     if (!x.empty()) at += x[l.node] - t.position[l.node];   // the wood pass's bend at this step
-    c.position = gnarled_point(s, rot_step, disp_step, c.node, at);
+    c.position = gnarled_point(s, turn_step, disp_step, c.node, at);
     m.leaves.push_back(c);
     ++m.leaf_end[std::min<int>(l.born, step)];
   }

@@ -598,7 +598,7 @@ TEST(MeshShape, GnarlIsSeededByTheTreeAndCarriesLeaves) {
   for (size_t v = 0; v < a.position.size(); ++v) moved = std::max(moved, glm::length(a.position[v] - smooth.position[v]));
   EXPECT_GT(moved, 0.01f);
   // Each internode turns by at most gnarl x 2.5 (order scale), so its length is kept.
-  const std::vector<glm::vec3> rot = gnarl_rotations(t, p), disp = gnarl_offsets(t, rot);
+  const std::vector<glm::vec3> rot = gnarl_rotations(t, p), disp = gnarl_offsets(t, gnarl_turns(rot));
   for (size_t i = 1; i < t.size(); ++i) {
     const int32_t par = t.parent[i];
     EXPECT_LE(glm::length(rot[i]), glm::radians(8.0f * 2.5f) + 1e-5f);
@@ -628,7 +628,7 @@ TEST(MeshShape, GnarlIsSeededByTheTreeAndCarriesLeaves) {
   const int step = 4;
   const tree_mesh at = mesh_tree_at_step(t, a, p, step);
   const tree_skeleton s = skeleton_at_step(t, step);
-  const std::vector<glm::vec3> rs = gnarl_rotations(s, p), ds = gnarl_offsets(s, rs);
+  const std::vector<glm::vec3> ds = gnarl_offsets(s, gnarl_turns(gnarl_rotations(s, p)));
   ASSERT_EQ(validate_mesh(at), "");
   // Pair each leaf of the step's export with the smooth mesh's leaf alive then (same order).
   size_t j = 0;
