@@ -167,7 +167,7 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
   const size_t stride = size_t(std::max(m.radial_segments, 0)) + 1, nv = m.position.size();
   const bool rings = stride > 1 && nv % stride == 0 && m.node.size() == nv;
   const size_t block = rings ? stride : 8192, grain = rings ? 1024 : 1, blocks = (nv + block - 1) / block;
-  constexpr size_t leaf_grain = 8192;
+  constexpr size_t leaf_grain = 2048;
   std::vector<box> bark_box(set_bounds ? (blocks + grain - 1) / grain : 0);
   std::vector<box> leaf_box(set_bounds ? (m.leaves.size() + leaf_grain - 1) / leaf_grain : 0);
   m.occlusion.resize(nv);   // every value is written below
@@ -190,7 +190,7 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
   // before (a ring's seam, a cap's apex) takes its value. Chunks of whole rings on the shared
   // pool, each writing only its own vertices, so the bytes do not depend on the chunking.
   const float small = 0.25f * g.cell;
-  parallel_chunks(blocks, grain, [&](size_t b0, size_t b1) {
+  auto bark_chunk = [&](size_t b0, size_t b1) {
     box local;   // written to bark_box once: boxes of two threads' chunks share cache lines
     box* bb = set_bounds ? &local : nullptr;
     for (size_t b = b0; b < b1; ++b) {
@@ -217,8 +217,8 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
         m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
     }
     if (bb) bark_box[b0 / grain] = local;
-  });
-  parallel_chunks(m.leaves.size(), leaf_grain, [&](size_t begin, size_t end) {
+  };
+  auto leaf_chunk = [&](size_t begin, size_t end) {
     box local;
     for (size_t k = begin; k < end; ++k) {
       leaf_instance& l = m.leaves[k];
@@ -226,6 +226,13 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
       if (set_bounds) local.add(l.position - glm::vec3(l.size), l.position + glm::vec3(l.size));
     }
     if (set_bounds) leaf_box[begin / leaf_grain] = local;
+  };
+  // The bark's chunks and the leaves' in one batch: one wait for the helpers, and no thread idle
+  // between the two while the other finishes its last chunk.
+  const size_t bark_jobs = (blocks + grain - 1) / grain, leaf_jobs = (m.leaves.size() + leaf_grain - 1) / leaf_grain;
+  parallel_jobs(bark_jobs + leaf_jobs, [&](size_t j) {
+    if (j < bark_jobs) bark_chunk(j * grain, std::min(blocks, (j + 1) * grain));
+    else leaf_chunk((j - bark_jobs) * leaf_grain, std::min(m.leaves.size(), (j - bark_jobs + 1) * leaf_grain));
   });
   if (!set_bounds || (m.position.empty() && m.leaves.empty())) return;
   box all;
