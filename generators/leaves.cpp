@@ -128,18 +128,18 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
   // crown. Each node draws from its own stream, so the result does not depend on the order: a
   // first pass counts each node's leaves, so that chunks of nodes then fill their own slots of the
   // list in parallel (job_pool.h), the bytes those of one thread placing them newest first.
+  // The counting pass keeps each node's stream as its first draw left it, for the filling pass.
   std::vector<size_t> first(n + 1, 0);   // first[k]: the slot of node n-1-k's first leaf
-  for (size_t k = 0; k < n; ++k) {
-    rng r(0);
-    first[k + 1] = first[k] + size_t(leaf_nodes(n - 1 - k, r)) * size_t(per_node) * size_t(planes);
-  }
+  std::vector<rng> stream(n, rng(0));      // stream[k]: node n-1-k's
+  for (size_t k = 0; k < n; ++k)
+    first[k + 1] = first[k] + size_t(leaf_nodes(n - 1 - k, stream[k])) * size_t(per_node) * size_t(planes);
   out.capped = first[n] > cap;
   out.leaves.resize(std::min(first[n], cap));
   parallel_chunks(n, 1024, [&](size_t k0, size_t k1) {
     for (size_t k = k0; k < k1 && first[k] < cap; ++k) {
       const size_t i = n - 1 - k;
-      rng r(0);
-      const int nodes = leaf_nodes(i, r);
+      rng r = stream[k];
+      const int nodes = int((first[k + 1] - first[k]) / (size_t(per_node) * size_t(planes)));
       if (nodes == 0) continue;
       const int32_t par = t.parent[i];
       glm::vec3 d = t.position[i] - t.position[par];
