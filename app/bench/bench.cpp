@@ -55,7 +55,7 @@ struct bench_result {  // plain bytes: sent from the measuring child through a p
 constexpr std::pair<const char*, double mesh_stage_times::*> stage_fields[] = {
     {"frame", &mesh_stage_times::frame},        {"budget", &mesh_stage_times::budget},
     {"rings", &mesh_stage_times::rings},        {"index", &mesh_stage_times::index},
-    {"leaf_place", &mesh_stage_times::leaf_place}, {"sky", &mesh_stage_times::sky}, {"leaf_sort", &mesh_stage_times::leaf_sort},
+    {"leaf_place", &mesh_stage_times::leaf_place}, {"sky", &mesh_stage_times::sky},
     {"occlusion", &mesh_stage_times::occlusion}};
 
 double process_peak_rss_mb() {

@@ -448,7 +448,7 @@ int run_cli(int argc, char** argv) {
   bench->add_flag("--json", bench_json, "One JSON object per line");
   bench->add_flag("--export", bench_export, "Also time GLB export and report the file size");
   bool bench_stages = false;
-  bench->add_flag("--stages", bench_stages, "Also time each stage of the mesher (frame, budget, rings, index, leaf placement, sky field, leaf sort, occlusion with the bounds)");
+  bench->add_flag("--stages", bench_stages, "Also time each stage of the mesher (frame, budget, rings, index, leaf placement, sky field, occlusion with the leaf sort and the bounds)");
   bench->add_flag("--render", bench_render,
                   "Time rendering instead: frame ms per pass (needs DISPLAY; default: one preset per generator)");
   bench->add_flag("--lods", bench_lods, "LOD triangles against their budgets, LOD build and impostor atlas times (default: every species preset)");

@@ -157,7 +157,7 @@ void bake_crown_occlusion(tree_mesh& m) {
   shade_by_crown(m, bake_crown_sky(leaves));
 }
 
-void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
+void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds, const crown_leaf_jobs* leaf_jobs) {
   // The bounds, when asked for, come from the same chunks: each chunk's box, merged after (min
   // and max give the same box in any order).
   struct box {
@@ -169,20 +169,10 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
   const size_t block = rings ? stride : 8192, grain = rings ? 1024 : 1, blocks = (nv + block - 1) / block;
   constexpr size_t leaf_grain = 2048;
   std::vector<box> bark_box(set_bounds ? (blocks + grain - 1) / grain : 0);
-  std::vector<box> leaf_box(set_bounds ? (m.leaves.size() + leaf_grain - 1) / leaf_grain : 0);
+  const size_t leaf_jobs_count = leaf_jobs ? leaf_jobs->count : (m.leaves.size() + leaf_grain - 1) / leaf_grain;
+  std::vector<box> leaf_box(set_bounds || leaf_jobs ? leaf_jobs_count : 0);
   m.occlusion.resize(nv);   // every value is written below
-  const glm::vec3 c = g.centre, inv = g.inv_radius;
-  // Depth in the crown's ellipsoid (0 at the centre, 1 on its surface and outside) darkens the
-  // crown's core; the local sky darkens each clump's inside. Open sky: 1.
-  auto visibility = [&](const glm::vec3& p) {
-    if (g.value.empty()) return 1.0f;   // no crown: every point sees the open sky
-    const float d = glm::length((p - c) * inv);
-    if (!std::isfinite(d)) return 1.0f;
-    const bool near = glm::all(glm::greaterThanEqual(p, g.origin)) &&
-                      glm::all(glm::lessThanEqual(p, g.origin + g.cell * glm::vec3(float(g.nx), float(g.ny), float(g.nz))));
-    const float sky = near ? g.sample(p) : 1.0f;
-    return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
-  };
+  auto visibility = [&](const glm::vec3& p) { return crown_visibility(g, p); };
   // Bark comes in rings of radial_segments + 1 vertices of one node. The field changes over a
   // cell, so a ring whose box is under a quarter of a cell (a twig's, most of a tree's rings)
   // takes the value at its box's centre for all its vertices: one sample instead of one per
@@ -229,9 +219,10 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds) {
   };
   // The bark's chunks and the leaves' in one batch: one wait for the helpers, and no thread idle
   // between the two while the other finishes its last chunk.
-  const size_t bark_jobs = (blocks + grain - 1) / grain, leaf_jobs = (m.leaves.size() + leaf_grain - 1) / leaf_grain;
-  parallel_jobs(bark_jobs + leaf_jobs, [&](size_t j) {
+  const size_t bark_jobs = (blocks + grain - 1) / grain;
+  parallel_jobs(bark_jobs + leaf_jobs_count, [&](size_t j) {
     if (j < bark_jobs) bark_chunk(j * grain, std::min(blocks, (j + 1) * grain));
+    else if (leaf_jobs) leaf_jobs->run(j - bark_jobs, leaf_box[j - bark_jobs].lo, leaf_box[j - bark_jobs].hi);
     else leaf_chunk((j - bark_jobs) * leaf_grain, std::min(m.leaves.size(), (j - bark_jobs + 1) * leaf_grain));
   });
   if (!set_bounds || (m.position.empty() && m.leaves.empty())) return;

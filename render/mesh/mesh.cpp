@@ -620,30 +620,39 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   if (!bark_taken.exchange(true)) bark();
   lap_start = clock_type::now();
 
-  // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap.
+  // Leaves: the foliage model (leaves.h) or the generator's own, capped at the leaf cap, sorted by
+  // born straight into m.leaves (no temporary copy of every leaf): the leaves job counted each
+  // step's leaves and gave each its slot. Chunks of them are written, and shaded from the crown
+  // field, in the batch that shades the bark.
+  crown_leaf_jobs leaf_jobs;
   if (p.leaves_enabled) {
-    // Counting sort by born straight into m.leaves (no temporary copy of every leaf); the leaves
-    // job counted each step's leaves and gave each its slot, filled here in parallel.
     if (placed.capped)
       m.message = "leaf cap reached: " + std::to_string(kept) + " leaves placed (raise Leaf cap or Leaf spacing)";
     m.leaves.resize(m.leaf_end.back());
     const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
-    parallel_chunks(end, 4096, [&](size_t begin, size_t stop) {
-      for (size_t k = begin; k < stop; ++k) {
+    constexpr size_t grain = 2048;
+    leaf_jobs.count = (end + grain - 1) / grain;
+    leaf_jobs.run = [&, fallback](size_t j, glm::vec3& box_lo, glm::vec3& box_hi) {
+      glm::vec3 lo = box_lo, hi = box_hi;   // (in registers: the leaves written could alias the box)
+      for (size_t k = j * grain; k < std::min(end, (j + 1) * grain); ++k) {
         if (slot[k] == UINT32_MAX) continue;
         const leaf& l = src[k];
         const glm::quat q = l.orientation;
         const uint8_t tex = l.archetype < leaf_archetype_count ? l.archetype : fallback;  // texture = archetype
-        m.leaves[slot[k]] = {gnarled_point(t, turn, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
-                             l.born, l.died, uint32_t(l.node), tex};
+        leaf_instance& out = m.leaves[slot[k]];
+        out = {gnarled_point(t, turn, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
+               l.born, l.died, uint32_t(l.node), tex};
+        out.occlusion = uint8_t(std::lround(255.0f * crown_visibility(sky, out.position)));
+        lo = glm::min(lo, out.position - glm::vec3(out.size));
+        hi = glm::max(hi, out.position + glm::vec3(out.size));
       }
-    });
+      box_lo = lo, box_hi = hi;
+    };
   }
+  shade_by_crown(m, sky, true, &leaf_jobs);   // and the bounds, in the same parallel passes
+  lap(st.occlusion);
   std::vector<rotation_terms>().swap(turn), std::vector<glm::vec3>().swap(disp), std::vector<leaf>().swap(placed.leaves),
       std::vector<uint32_t>().swap(slot);  // done with
-  lap(st.leaf_sort);
-  shade_by_crown(m, sky, true);   // and the bounds, in the same parallel passes
-  lap(st.occlusion);
   return m;
 }
 

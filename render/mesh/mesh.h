@@ -1,7 +1,12 @@
 // Skeleton -> bark tube mesh + leaf instances, sorted by birth step for scrubbing (DESIGN §5).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -125,13 +130,14 @@ struct tree_mesh {
 // Wall milliseconds of each stage of one mesh_tree call (`sylva bench --stages`): the per-node
 // frame (radii, gnarl, axes, curve velocities, flare, texture wraps), the detail budget (curve,
 // collar and flare rings chosen), the bark rings, the index buffer, leaf placement (the foliage
-// model, or the generator's leaves taken), the crown's sky field (bake_crown_sky), the leaves
-// sorted by step with their gnarl, and the crown occlusion sampled from the field with the bounds.
+// model, or the generator's leaves taken), the crown's sky field (bake_crown_sky), and the crown
+// occlusion sampled from the field with the bounds, the leaves sorted by step with their gnarl in
+// the same pass.
 // Leaf placement and the sky field run on a pool helper beside the first four (the bark), so with
 // a helper free the stages add up to more than the call's wall time.
 struct mesh_stage_times {
-  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, sky = 0, leaf_sort = 0, occlusion = 0;
-  double total() const { return frame + budget + rings + index + leaf_place + sky + leaf_sort + occlusion; }
+  double frame = 0, budget = 0, rings = 0, index = 0, leaf_place = 0, sky = 0, occlusion = 0;
+  double total() const { return frame + budget + rings + index + leaf_place + sky + occlusion; }
 };
 
 tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed = 1, mesh_stage_times* times = nullptr);
@@ -160,10 +166,30 @@ struct crown_sky {
 // mesh_tree bakes it on a pool helper beside the bark, from the leaves before gnarl moves them
 // (a few centimetres against cells of about a fortieth of the crown).
 crown_sky bake_crown_sky(const std::vector<glm::vec4>& leaves);
-// m.occlusion for the bark's vertices and each leaf's occlusion, sampled from the field; with
-// set_bounds also m.bounds_min/max (every bark vertex, every leaf's centre ± its size) from the
-// same passes, as mesh_tree does.
-void shade_by_crown(tree_mesh& m, const crown_sky& sky, bool set_bounds = false);
+// How much of the sky a point sees, 0.35 (deep in the crown) to 1: the crown ellipsoid's depth
+// times the field's sample; 1 without a crown. A leaf's occlusion is 255 times this, rounded.
+inline float crown_visibility(const crown_sky& g, const glm::vec3& p) {
+  // Depth in the crown's ellipsoid (0 at the centre, 1 on its surface and outside) darkens the
+  // crown's core; the local sky darkens each clump's inside.
+  if (g.value.empty()) return 1.0f;   // no crown: every point sees the open sky
+  const float d = glm::length((p - g.centre) * g.inv_radius);
+  if (!std::isfinite(d)) return 1.0f;
+  const bool near = glm::all(glm::greaterThanEqual(p, g.origin)) &&
+                    glm::all(glm::lessThanEqual(p, g.origin + g.cell * glm::vec3(float(g.nx), float(g.ny), float(g.nz))));
+  const float sky = near ? g.sample(p) : 1.0f;
+  return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
+}
+// The leaves' part of shade_by_crown done by its caller as it writes them (mesh_tree's leaf sort):
+// `count` jobs that run in the batch shading the bark, job j shading its own leaves with
+// crown_visibility and widening lo, hi (at ±1e30 on entry) to their centres ± sizes.
+struct crown_leaf_jobs {
+  size_t count = 0;
+  std::function<void(size_t j, glm::vec3& lo, glm::vec3& hi)> run;
+};
+// m.occlusion for the bark's vertices and each leaf's occlusion, sampled from the field (the
+// leaves' by `leaf_jobs` when given); with set_bounds also m.bounds_min/max (every bark vertex,
+// every leaf's centre ± its size) from the same passes, as mesh_tree does.
+void shade_by_crown(tree_mesh& m, const crown_sky& sky, bool set_bounds = false, const crown_leaf_jobs* leaf_jobs = nullptr);
 
 // Gnarl: per node, the rotation vector (axis * angle) of its internode, from seeded noise
 // scaled by age and order; those rotations' Rodrigues terms (the cosines and sines worked out once
