@@ -51,11 +51,15 @@ std::vector<uint32_t> sort_by_born(size_t count, int steps, BornOf born_of, std:
   return perm;
 }
 
+// Cosine of the angle between two vectors, unclamped (1 when either is zero).
+float cosine_between(const glm::vec3& a, const glm::vec3& b) {
+  const float la = glm::length(a), lb = glm::length(b);
+  if (!(la > 1e-12f) || !(lb > 1e-12f)) return 1.0f;
+  return glm::dot(a, b) / (la * lb);
+}
 // Angle in radians between two vectors (0 when either is zero).
 float angle_between(const glm::vec3& a, const glm::vec3& b) {
-  const float la = glm::length(a), lb = glm::length(b);
-  if (!(la > 1e-12f) || !(lb > 1e-12f)) return 0.0f;
-  return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f));
+  return std::acos(std::clamp(cosine_between(a, b), -1.0f, 1.0f));
 }
 
 // Velocity at p1 of the centripetal Catmull-Rom curve through p0, p1, p2 (Yuksel, Schaefer &
@@ -161,6 +165,7 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
   const float twist = std::isfinite(p.twist) ? std::tan(glm::radians(std::clamp(p.twist, -80.0f, 80.0f))) : 0.0f;
   const float curve_step = glm::radians(std::isfinite(p.curve_angle) ? std::clamp(p.curve_angle, 0.5f, 180.0f) : 12.0f);
   const int curve_rings = std::clamp(p.curve_rings, 0, 16);
+  const float cos_half_step = std::cos(0.4999f * curve_step);
   const float collar = std::isfinite(p.collar) ? std::clamp(p.collar, 0.0f, 4.0f) : 0.0f;
   const float collar_length = std::isfinite(p.collar_length) ? std::clamp(p.collar_length, 0.0f, 100.0f) : 0.0f;
   const float collar_min = std::isfinite(p.collar_min_radius) ? p.collar_min_radius : 0.0f;
@@ -274,7 +279,11 @@ void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_
     m2s[i] = clamp_speed(m2);
     if (!(len > 1e-9f)) continue;
     const float r = 0.5f * (m.final_radius[i] + m.final_radius[par]);
-    if (curve_rings > 0) {
+    // An internode whose curve turns by under curve_step at both ends together wants no ring, and
+    // its turn is read for nothing else: when both ends' cosines lie above that of a little under
+    // half the step (so that the two acosf, within an ulp or two each, sum to less than it), the
+    // arc cosines are not taken.
+    if (curve_rings > 0 && !(cosine_between(m1s[i], chord) > cos_half_step && cosine_between(chord, m2s[i]) > cos_half_step)) {
       float turn = angle_between(m1s[i], chord) + angle_between(chord, m2s[i]);
       if (!std::isfinite(turn)) turn = 0;
       want[i] = uint8_t(std::min(curve_rings, int(turn / curve_step)));
