@@ -43,8 +43,9 @@ void bake_sky(crown_sky& g, float window) {
   // The nine directions are nine jobs on the shared pool, each with its own prefix sums, writing
   // its weighted terms to its own slice; the slices are then summed cell by cell in direction
   // order, so the bytes do not depend on which thread ran which direction. The terms take nine
-  // floats a cell (the grid is at most about 41 × 48 × 41 cells: 2.9 MB).
-  std::vector<float> terms(9 * cells);
+  // floats a cell (the grid is at most about 41 × 48 × 41 cells: 2.9 MB). Every cell of the terms
+  // and of each direction's prefix sums is written below, so neither is zeroed first.
+  uninit_vector<float> terms(9 * cells);
   float weight[9];
   parallel_jobs(9, [&](size_t d) {
     const int dx = int(d / 3) - 1, dz = int(d % 3) - 1;
@@ -52,7 +53,7 @@ void bake_sky(crown_sky& g, float window) {
     const float w = 1.0f / len;                   // cos of the angle to the zenith
     const float half_ds = 0.5f * g.cell * len;   // G = 1/2 times the path through a cell
     weight[d] = w;
-    std::vector<float> prefix(cells);
+    uninit_vector<float> prefix(cells);
     // Row by row: a row's cells read one row of the layer above (shifted by dx), or none where
     // that row is outside the box; the cells whose source falls off the box's x range read 0.
     const int xa = std::max(0, -dx), xb = std::min(g.nx, g.nx - dx);   // x + dx inside
