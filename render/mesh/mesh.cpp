@@ -74,7 +74,7 @@ glm::vec3 chord_velocity(const glm::vec3& p0, const glm::vec3& p1) {
   return (p1 - p0) / std::max(std::sqrt(glm::length(p1 - p0)), 1e-6f);
 }
 
-// The bark: the frame, budget, rings and index stages of mesh_tree (their times in st); rot and
+// The bark: the frame, budget, rings and index stages of mesh_tree (their times in st); turn and
 // disp are the gnarl, which the leaves follow too.
 void mesh_bark(const tree_skeleton& t, const mesh_params& p, tree_mesh& m, mesh_stage_times& st,
                std::vector<rotation_terms>& turn, std::vector<glm::vec3>& disp) {
