@@ -284,11 +284,20 @@ struct so_state : so_vars {
       if (t.died[i] == never_died) remove_markers_near(t.position[i]);
   }
 
-  // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v). Under
-  // Borchert-Honda a node's buds get their v when the pass reaches the node, so the pass also
-  // lists the shoots they grow, in bud order (node, then k), into `shoots` and returns true; the
-  // priority model sets them axis by axis and returns false (the caller lists them after).
-  bool allocate(int step, const std::vector<int32_t>& roots, std::vector<planned_shoot>& shoots) {
+  // The shoots node i's buds grow from their resource (q), in bud order (k), onto `shoots`.
+  void list_shoots(size_t i, std::vector<planned_shoot>& shoots) {
+    for (int k = 0; k < int(nb); ++k) {
+      if (bud(i, k) != bud_here) continue;
+      const shoot_plan plan = plan_shoot(q[nb * i + size_t(k)], p.internode_length);
+      if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan});
+    }
+  }
+
+  // Acropetal pass: turns flow into resource v (flow[] and q[] are overwritten with v), and lists
+  // the step's shoots in bud order (node, then k) into `shoots`. Under Borchert-Honda a node's
+  // buds get their v when the pass reaches the node, so they are listed then; the priority model
+  // sets them axis by axis, so they are listed after it.
+  void allocate(int step, const std::vector<int32_t>& roots, std::vector<planned_shoot>& shoots) {
     for (int32_t root : roots) flow[root] = p.alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
     if (p.allocation == so_allocation::borchert_honda) {
       for (size_t i = 0; i < t.size(); ++i) {
@@ -311,13 +320,9 @@ struct so_state : so_vars {
         if (m >= 0) flow[m] = vm; else q[nb * i] = m == bud_here ? vm : 0.0f;
         if (la >= 0) flow[la] = vl; else q[nb * i + 1] = la == bud_here ? vl : 0.0f;
         if (lb >= 0) flow[lb] = vb; else if (nb == 3) q[nb * i + 2] = lb == bud_here ? vb : 0.0f;
-        for (int k = 0; k < int(nb); ++k) {
-          if (bud(i, k) != bud_here) continue;
-          const shoot_plan plan = plan_shoot(q[nb * i + size_t(k)], p.internode_length);
-          if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan});
-        }
+        list_shoots(i, shoots);
       }
-      return true;
+      return;
     }
     // Priority model: each axis, from its base, ranks its lateral branches and buds and its
     // terminal bud by Q. An axis starts at a root or a lateral child; parents precede children,
@@ -364,7 +369,8 @@ struct so_state : so_vars {
         else q[size_t(-c[k].target - 1)] = vs[k];
       }
     }
-    return false;
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t.died[i] == never_died) list_shoots(i, shoots);
   }
 };
 
@@ -559,26 +565,17 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.shed(uint16_t(T));   // and the flow again where it sheds
     if (debug) last_flow = st.flow;
     shoots.clear();
-    const bool listed = st.allocate(T, roots, shoots);
+    st.allocate(T, roots, shoots);
 
     // Bud fate and shoots; the environment stays as it was at the step's start, so the result
     // does not depend on the order in which buds are visited.
     grown.clear();
-    const size_t n_before = t.size();
-    // The shoots this step grows, in bud order (listed by allocate under Borchert-Honda, here
-    // under the priority model). In the shadow environment each scans its cone
-    // (scan_cone reads the grid only, which stays as it was at the step's start) on this thread:
+    // The shoots this step grows, in bud order (listed by allocate). In the shadow environment
+    // each scans its cone (scan_cone reads the grid only, which stays as it was at the step's
+    // start) on this thread:
     // scanning them in parallel chunks on the job pool first made the default tree's growth slower
     // on two cores (14.7 against 13.4 ms, medians of 15; the 642k-node tree 683 against 689 ms),
     // since a step's scan is shorter than waking a helper and waiting for its last chunk.
-    for (size_t i = 0; i < n_before && !listed; ++i) {
-      if (t.died[i] != never_died) continue;
-      for (int k = 0; k < int(st.nb); ++k) {
-        if (st.bud(i, k) != bud_here) continue;
-        const shoot_plan plan = plan_shoot(st.q[st.nb * i + size_t(k)], p.internode_length);
-        if (plan.metamers > 0) shoots.push_back({int32_t(i), k, plan});
-      }
-    }
     for (size_t j = 0; j < shoots.size() && !rep.hit_node_cap; ++j) {
       if ((j & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
       const size_t i = size_t(shoots[j].node);
