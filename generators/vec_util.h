@@ -26,13 +26,14 @@ struct rotation_terms {
   glm::vec3 k{0};
   float c = 1, s = 0;
   bool turns = false;   // false: rv shorter than 1e-12, which leaves every vector as it is
+  rotation_terms inverse() const { return {-k, c, s, turns}; }   // rotation_terms_of(-rv), bit for bit
 };
 inline rotation_terms rotation_terms_of(const glm::vec3& rv) {
   const float a = glm::length(rv);
   if (!(a > 1e-12f)) return {};
   return {rv / a, std::cos(a), std::sin(a), true};
 }
-// Rodrigues' rotation of v by the rotation r; the inverse rotation is {-k, c, s}.
+// Rodrigues' rotation of v by the rotation r.
 inline glm::vec3 rotate_by(const glm::vec3& v, const rotation_terms& r) {
   if (!r.turns) return v;
   return v * r.c + glm::cross(r.k, v) * r.s + r.k * glm::dot(r.k, v) * (1 - r.c);

@@ -173,7 +173,6 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds, const cro
   const size_t leaf_jobs_count = leaf_jobs ? leaf_jobs->count : (m.leaves.size() + leaf_grain - 1) / leaf_grain;
   std::vector<box> leaf_box(set_bounds || leaf_jobs ? leaf_jobs_count : 0);
   m.occlusion.resize(nv);   // every value is written below
-  auto visibility = [&](const glm::vec3& p) { return crown_visibility(g, p); };
   // Bark comes in rings of radial_segments + 1 vertices of one node. The field changes over a
   // cell, so a ring whose box is under a quarter of a cell (a twig's, most of a tree's rings)
   // takes the value at its box's centre for all its vertices: one sample instead of one per
@@ -198,24 +197,20 @@ void shade_by_crown(tree_mesh& m, const crown_sky& g, bool set_bounds, const cro
         const glm::vec3 size = hi - lo;
         if (one_node && std::max({size.x, size.y, size.z}) < small) {   // false for NaN: sampled per vertex
           std::fill(m.occlusion.begin() + std::ptrdiff_t(begin), m.occlusion.begin() + std::ptrdiff_t(end),
-                    visibility(0.5f * (lo + hi)));
+                    crown_visibility(g, 0.5f * (lo + hi)));
           continue;
         }
       } else if (bb) {
         for (size_t i = begin; i < end; ++i) bb->add(m.position[i], m.position[i]);
       }
       for (size_t i = begin; i < end; ++i)
-        m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : visibility(m.position[i]);
+        m.occlusion[i] = i > begin && m.position[i] == m.position[i - 1] ? m.occlusion[i - 1] : crown_visibility(g, m.position[i]);
     }
     if (bb) bark_box[b0 / grain] = local;
   };
   auto leaf_chunk = [&](size_t begin, size_t end) {
     box local;
-    for (size_t k = begin; k < end; ++k) {
-      leaf_instance& l = m.leaves[k];
-      l.occlusion = uint8_t(std::lround(255.0f * visibility(l.position)));
-      if (set_bounds) local.add(l.position - glm::vec3(l.size), l.position + glm::vec3(l.size));
-    }
+    for (size_t k = begin; k < end; ++k) shade_leaf(m.leaves[k], g, local.lo, local.hi);
     if (set_bounds) leaf_box[begin / leaf_grain] = local;
   };
   // The bark's chunks and the leaves' in one batch: one wait for the helpers, and no thread idle

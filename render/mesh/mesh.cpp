@@ -651,9 +651,7 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
         leaf_instance& out = m.leaves[slot[k]];
         out = {gnarled_point(t, turn, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
                l.born, l.died, uint32_t(l.node), tex};
-        out.occlusion = uint8_t(std::lround(255.0f * crown_visibility(sky, out.position)));
-        lo = glm::min(lo, out.position - glm::vec3(out.size));
-        hi = glm::max(hi, out.position + glm::vec3(out.size));
+        shade_leaf(out, sky, lo, hi);
       }
       box_lo = lo, box_hi = hi;
     };

@@ -179,9 +179,16 @@ inline float crown_visibility(const crown_sky& g, const glm::vec3& p) {
   const float sky = near ? g.sample(p) : 1.0f;
   return 0.35f + 0.65f * std::sqrt(std::min(d, 1.0f)) * sky;
 }
+// A leaf's occlusion, 255 times its centre's crown_visibility, rounded; and its centre ± size
+// added to the box lo, hi (shade_by_crown's leaf part, for its own chunks and mesh_tree's).
+inline void shade_leaf(leaf_instance& l, const crown_sky& g, glm::vec3& lo, glm::vec3& hi) {
+  l.occlusion = uint8_t(std::lround(255.0f * crown_visibility(g, l.position)));
+  lo = glm::min(lo, l.position - glm::vec3(l.size));
+  hi = glm::max(hi, l.position + glm::vec3(l.size));
+}
 // The leaves' part of shade_by_crown done by its caller as it writes them (mesh_tree's leaf sort):
 // `count` jobs that run in the batch shading the bark, job j shading its own leaves with
-// crown_visibility and widening lo, hi (at ±1e30 on entry) to their centres ± sizes.
+// shade_leaf, lo and hi at ±1e30 on entry.
 struct crown_leaf_jobs {
   size_t count = 0;
   std::function<void(size_t j, glm::vec3& lo, glm::vec3& hi)> run;

@@ -123,10 +123,7 @@ tree_mesh mesh_tree_at_step(const tree_skeleton& t, const tree_mesh& full, const
     // Undo the full tree's turn of the leaf's internode, then apply this step's.
     const int32_t par = t.parent[l.node];
     glm::vec3 at = l.position - disp_full[l.node];
-    if (par >= 0) {
-      const rotation_terms& r = turn_full[l.node];
-      at = t.position[par] + rotate_by(l.position - t.position[par] - disp_full[par], rotation_terms{-r.k, r.c, r.s, r.turns});
-    }
+    if (par >= 0) at = t.position[par] + rotate_by(l.position - t.position[par] - disp_full[par], turn_full[l.node].inverse());
     if (!x.empty()) at += x[l.node] - t.position[l.node];   // the wood pass's bend at this step
     c.position = gnarled_point(s, turn_step, disp_step, c.node, at);
     m.leaves.push_back(c);
