@@ -2,6 +2,8 @@
 #include "generators/self_organizing.h"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -9,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "generators/job_pool.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
@@ -70,6 +73,9 @@ struct so_state : so_vars {
   std::vector<int32_t> shed_nodes, resweep;
   std::vector<glm::ivec3> shed_voxels;
   std::vector<uint8_t> resweep_mark;
+  // Scratch of compute_marker_light: the live buds, and each chunk's markers in the order met.
+  std::vector<int32_t> marker_buds;
+  std::vector<std::vector<uint32_t>> marker_seen;
 
   so_state(const self_organizing_params& pp, tree_skeleton& tt, rng& rr) : p(pp), t(tt), r(rr) {}
 
@@ -149,34 +155,55 @@ struct so_state : so_vars {
 
   // Palubicki 2009 §4.1: each marker in a bud's perception cone goes to the closest such bud;
   // a bud with markers has Q = 1 and its optimal direction is the sum of unit vectors to them.
+  // Palubicki 2009 §4.1: each marker is perceived by the closest bud that holds it in its cone
+  // (the earliest bud in node order where two are as close), and a bud's optimal direction is the
+  // sum of the unit vectors to the markers it perceives. The live buds are scanned in chunks on
+  // the shared pool (job_pool.h): each marker keeps the least key (d², bud) any chunk offers, so
+  // the winner is the one the buds scanned in order find. Each chunk lists the markers its cones
+  // hold in the order it meets them; these lists, in chunk order, meet every marker first where
+  // the buds scanned in order do, and the sums below take the markers in that order, so the
+  // directions are the single thread's bit for bit.
   void compute_marker_light() {
     const size_t n = t.size();
     opt.assign(nb * n, glm::vec3(0));
     std::fill(q.begin(), q.end(), 0.0f);
-    std::vector<uint32_t> touched;
+    std::vector<int32_t>& live = marker_buds;
+    live.clear();
     for (size_t i = 0; i < n; ++i) {
       if (t.died[i] != never_died) continue;
-      for (int k = 0; k < int(nb); ++k) {
-        if (this->bud(i, k) != bud_here) continue;
+      for (int k = 0; k < int(nb); ++k)
+        if (this->bud(i, k) == bud_here) live.push_back(int32_t(nb * i + size_t(k)));
+    }
+    const size_t grain = std::max<size_t>(64, live.size() / 32 + 1), chunks = (live.size() + grain - 1) / grain;
+    if (marker_seen.size() < chunks) marker_seen.resize(chunks);
+    parallel_jobs(chunks, [&](size_t c) {
+      std::vector<uint32_t>& seen = marker_seen[c];
+      seen.clear();
+      for (size_t j = c * grain; j < std::min(live.size(), (c + 1) * grain); ++j) {
+        const int32_t bud = live[j];
+        const size_t i = size_t(bud) / nb;
+        const int k = int(size_t(bud) % nb);
         const glm::vec3 def = k == 0 ? heading(int32_t(i)) : lateral_direction(int32_t(i), k == 2);
-        const int32_t bud = int32_t(nb * i + k);
         markers.visit_near(t.position[i], reach, [&](uint32_t m, const glm::vec3& dv) {
-          const float d2 = glm::dot(dv, dv);
+          const float d2 = glm::dot(dv, dv);   // ≥ +0, so its bits order as the values do
           if (glm::dot(dv, def) < cos_theta * std::sqrt(d2)) return;
-          if (markers.best_bud[m] < 0) touched.push_back(m);
-          else if (markers.best_d2[m] <= d2) return;
-          markers.best_bud[m] = bud;
-          markers.best_d2[m] = d2;
+          seen.push_back(m);
+          const uint64_t key = (uint64_t(std::bit_cast<uint32_t>(d2)) << 32) | uint32_t(bud);
+          std::atomic_ref<uint64_t> best(markers.best[m]);
+          for (uint64_t now = best.load(std::memory_order_relaxed);
+               key < now && !best.compare_exchange_weak(now, key, std::memory_order_relaxed);) {
+          }
         });
       }
-    }
-    for (uint32_t m : touched) {
-      const int32_t bud = markers.best_bud[m];
-      const size_t i = size_t(bud) / nb;
-      opt[bud] += safe_normalize(markers.pos[m] - t.position[i], glm::vec3(0));
-      q[bud] = 1;
-      markers.best_bud[m] = -1;
-    }
+    });
+    for (size_t c = 0; c < chunks; ++c)
+      for (uint32_t m : marker_seen[c]) {
+        if (markers.best[m] == marker_state::no_bud) continue;   // met before: summed there
+        const size_t bud = size_t(uint32_t(markers.best[m]));
+        opt[bud] += safe_normalize(markers.pos[m] - t.position[bud / nb], glm::vec3(0));
+        q[bud] = 1;
+        markers.best[m] = marker_state::no_bud;
+      }
   }
 
   void remove_markers_near(const glm::vec3& pos) {
@@ -418,7 +445,7 @@ size_t snapshot_bytes(const tree_skeleton& t, const so_vars& v) {
   return sizeof(so_snapshot) + vec_bytes(t.position) + vec_bytes(t.parent) + vec_bytes(t.radius) + vec_bytes(t.born) +
          vec_bytes(t.died) + vec_bytes(t.order) + vec_bytes(t.leaves) + vec_bytes(v.grid.keys) +
          vec_bytes(v.grid.chunk_of) + vec_bytes(v.grid.cells) + vec_bytes(v.grid.chunk_pos) + vec_bytes(v.grid.scratch) +
-         vec_bytes(m.pos) + vec_bytes(m.alive) + vec_bytes(m.best_bud) + vec_bytes(m.best_d2) + vec_bytes(m.cell_key) +
+         vec_bytes(m.pos) + vec_bytes(m.alive) + vec_bytes(m.best) + vec_bytes(m.cell_key) +
          vec_bytes(m.cell_start) + vec_bytes(m.order) + vec_bytes(v.side) + vec_bytes(v.main) + vec_bytes(v.lat) + vec_bytes(v.lat2) +
          vec_bytes(v.q) + vec_bytes(v.flow) + vec_bytes(v.tips) + vec_bytes(v.buds) + vec_bytes(v.opt) + vec_bytes(v.voxel);
 }

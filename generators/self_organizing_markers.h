@@ -16,8 +16,11 @@ namespace sylva {
 struct marker_state {
   std::vector<glm::vec3> pos;
   std::vector<uint8_t> alive;
-  std::vector<int32_t> best_bud;     // per marker, this step: closest perceiving bud (nb·node + k: k = 0 the main bud, 1 and 2 the laterals)
-  std::vector<float> best_d2;
+  // Per marker, this step: the closest perceiving bud (nb·node + k: k = 0 the main bud, 1 and 2
+  // the laterals) in the low 32 bits, its squared distance's bits in the high ones; no_bud between
+  // steps.
+  static constexpr uint64_t no_bud = ~uint64_t(0);
+  std::vector<uint64_t> best;
   float cell = 1;
   std::vector<uint64_t> cell_key;    // sorted cell keys, with [cell_start[k], cell_start[k+1]) markers
   std::vector<uint32_t> cell_start;
@@ -47,8 +50,7 @@ struct marker_state {
     }
     cell_start.push_back(uint32_t(kv.size()));
     alive.assign(pos.size(), 1);
-    best_bud.assign(pos.size(), -1);
-    best_d2.assign(pos.size(), 0);
+    best.assign(pos.size(), no_bud);
   }
   // Calls f(marker) for the live markers (all when dead_too) within distance d of p.
   template <class F>

@@ -108,6 +108,24 @@ TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
     expect_growth_is_the_single_threaded_one(name, 150);
 }
 
+// The space-colonization environment scans its buds' cones in chunks on the pool: the tree is the
+// single thread's, bit for bit, with the preset's markers and with three buds a node in wide cones,
+// where a node's buds stand at one point and tie for every marker they all perceive.
+TEST(JobPool, MarkerLightFoundTogetherIsTheSingleThreadedOne) {
+  expect_growth_is_the_single_threaded_one("self_organizing_markers", 20000);
+  preset p;
+  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_markers.json", p).ok);
+  auto& so = std::get<self_organizing_params>(p.spec.params);
+  so.phyllotaxis = so_phyllotaxis::opposite, so.perception_angle = 170, so.steps = 12;
+  const int old = set_job_pool_limit(1);
+  const tree_skeleton one = grow(p.spec, grow_options{});
+  set_job_pool_limit(old);
+  const tree_skeleton many = grow(p.spec, grow_options{});
+  ASSERT_GT(one.size(), 500u);
+  EXPECT_EQ(one.parent, many.parent);
+  EXPECT_EQ(one.position, many.position);
+}
+
 // On a lattice many points tie for an octant's nearest: the grid's first pass hands those vertices
 // to the k-d tree, so the edges are still the ones yao8_edges finds (the first tied point it meets).
 TEST(JobPool, GuidingVectorEdgesOnALatticeAreTheOnesBuiltOneByOne) {
