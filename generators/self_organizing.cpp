@@ -2,8 +2,6 @@
 #include "generators/self_organizing.h"
 
 #include <algorithm>
-#include <atomic>
-#include <bit>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -11,7 +9,6 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "generators/job_pool.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
@@ -73,9 +70,9 @@ struct so_state : so_vars {
   std::vector<int32_t> shed_nodes, resweep;
   std::vector<glm::ivec3> shed_voxels;
   std::vector<uint8_t> resweep_mark;
-  // Scratch of compute_marker_light: the live buds, and each chunk's markers in the order met.
+  // Scratch of compute_marker_light: the live buds, in bud order, and perceive_markers'.
   std::vector<int32_t> marker_buds;
-  std::vector<std::vector<uint32_t>> marker_seen;
+  marker_scratch marker_work;
 
   so_state(const self_organizing_params& pp, tree_skeleton& tt, rng& rr) : p(pp), t(tt), r(rr) {}
 
@@ -115,6 +112,8 @@ struct so_state : so_vars {
     const float b = glm::radians(p.branch_angle);
     return safe_normalize(std::cos(b) * heading(i) + std::sin(b) * (far ? -side[i] : side[i]), heading(i));
   }
+  // The default direction of bud k of node i (0 the apical bud, 1 and 2 the laterals).
+  glm::vec3 shoot_default(int32_t i, int k) const { return k == 0 ? heading(i) : lateral_direction(i, k == 2); }
   // Bud k of node i: 0 the apical bud, 1 the lateral, 2 the far lateral (child, bud_here or no_bud).
   // k = 2 exists only when nb is 3.
   int32_t& bud(size_t i, int k) { return k == 0 ? main[i] : k == 1 ? lat[i] : lat2[i]; }
@@ -153,16 +152,9 @@ struct so_state : so_vars {
     }
   }
 
-  // Palubicki 2009 §4.1: each marker in a bud's perception cone goes to the closest such bud;
-  // a bud with markers has Q = 1 and its optimal direction is the sum of unit vectors to them.
-  // Palubicki 2009 §4.1: each marker is perceived by the closest bud that holds it in its cone
-  // (the earliest bud in node order where two are as close), and a bud's optimal direction is the
-  // sum of the unit vectors to the markers it perceives. The live buds are scanned in chunks on
-  // the shared pool (job_pool.h): each marker keeps the least key (d², bud) any chunk offers, so
-  // the winner is the one the buds scanned in order find. Each chunk lists the markers its cones
-  // hold in the order it meets them; these lists, in chunk order, meet every marker first where
-  // the buds scanned in order do, and the sums below take the markers in that order, so the
-  // directions are the single thread's bit for bit.
+  // Palubicki 2009 §4.1: each marker in a bud's perception cone goes to the closest such bud
+  // (perceive_markers); a bud with markers has Q = 1 and its optimal direction is the sum of unit
+  // vectors to them.
   void compute_marker_light() {
     const size_t n = t.size();
     opt.assign(nb * n, glm::vec3(0));
@@ -174,36 +166,14 @@ struct so_state : so_vars {
       for (int k = 0; k < int(nb); ++k)
         if (this->bud(i, k) == bud_here) live.push_back(int32_t(nb * i + size_t(k)));
     }
-    const size_t grain = std::max<size_t>(64, live.size() / 32 + 1), chunks = (live.size() + grain - 1) / grain;
-    if (marker_seen.size() < chunks) marker_seen.resize(chunks);
-    parallel_jobs(chunks, [&](size_t c) {
-      std::vector<uint32_t>& seen = marker_seen[c];
-      seen.clear();
-      for (size_t j = c * grain; j < std::min(live.size(), (c + 1) * grain); ++j) {
-        const int32_t bud = live[j];
-        const size_t i = size_t(bud) / nb;
-        const int k = int(size_t(bud) % nb);
-        const glm::vec3 def = k == 0 ? heading(int32_t(i)) : lateral_direction(int32_t(i), k == 2);
-        markers.visit_near(t.position[i], reach, [&](uint32_t m, const glm::vec3& dv) {
-          const float d2 = glm::dot(dv, dv);   // ≥ +0, so its bits order as the values do
-          if (glm::dot(dv, def) < cos_theta * std::sqrt(d2)) return;
-          seen.push_back(m);
-          const uint64_t key = (uint64_t(std::bit_cast<uint32_t>(d2)) << 32) | uint32_t(bud);
-          std::atomic_ref<uint64_t> best(markers.best[m]);
-          for (uint64_t now = best.load(std::memory_order_relaxed);
-               key < now && !best.compare_exchange_weak(now, key, std::memory_order_relaxed);) {
-          }
-        });
-      }
+    auto bud_at = [&](size_t j, glm::vec3& pos, glm::vec3& def) {
+      pos = t.position[size_t(live[j]) / nb], def = shoot_default(int32_t(size_t(live[j]) / nb), int(size_t(live[j]) % nb));
+    };
+    perceive_markers(markers, live.size(), bud_at, reach, cos_theta, marker_work, [&](size_t j, uint32_t m) {
+      const size_t bud = size_t(live[j]);
+      opt[bud] += safe_normalize(markers.pos[m] - t.position[bud / nb], glm::vec3(0));
+      q[bud] = 1;
     });
-    for (size_t c = 0; c < chunks; ++c)
-      for (uint32_t m : marker_seen[c]) {
-        if (markers.best[m] == marker_state::no_bud) continue;   // met before: summed there
-        const size_t bud = size_t(uint32_t(markers.best[m]));
-        opt[bud] += safe_normalize(markers.pos[m] - t.position[bud / nb], glm::vec3(0));
-        q[bud] = 1;
-        markers.best[m] = marker_state::no_bud;
-      }
   }
 
   void remove_markers_near(const glm::vec3& pos) {
@@ -526,26 +496,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   if (p.environment == so_environment::shadow) {
     for (int32_t i : roots) add_shadow_pyramid(st.grid, st.voxel[i], p.shadow_a, p.shadow_b, p.q_max);
   } else {
-    // Markers fill an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1).
-    const float bottom = std::min(p.envelope_bottom, p.envelope_top), top = std::max(p.envelope_bottom, p.envelope_top);
-    const glm::vec3 radii(p.envelope_radius, 0.5f * (top - bottom), p.envelope_radius);
-    // Memory cap (memory_bound.h): at most so_marker_cap markers in all, shared by the trees.
-    int per_tree = p.marker_count;
-    if (int64_t(per_tree) * int64_t(roots_at.size()) > so_marker_cap) {
-      per_tree = int(so_marker_cap / int64_t(roots_at.size()));
-      rep.message = "markers capped at " + std::to_string(so_marker_cap) + " in all: " + std::to_string(per_tree) +
-                    " per tree instead of " + std::to_string(p.marker_count);
-    }
-    st.markers.pos.reserve(size_t(per_tree) * roots_at.size());
-    for (const glm::vec3& at : roots_at) {
-      const glm::vec3 centre = at + glm::vec3(0, 0.5f * (top + bottom), 0);
-      for (int k = 0; k < per_tree; ++k) {
-        glm::vec3 u;
-        do u = glm::vec3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
-        while (glm::dot(u, u) > 1);
-        st.markers.pos.push_back(centre + u * radii);
-      }
-    }
+    fill_marker_envelopes(st.markers, roots_at, p, r, rep.message);
     st.markers.cell = std::max(st.reach, 1e-3f);
     st.markers.build();
     for (int32_t i : roots) st.remove_markers_near(t.position[i]);
@@ -610,7 +561,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
       {
         const shoot_plan plan = shoots[j].plan;
         int32_t prev = int32_t(i);
-        const glm::vec3 def = k == 0 ? st.heading(int32_t(i)) : st.lateral_direction(int32_t(i), k == 2);
+        const glm::vec3 def = st.shoot_default(int32_t(i), k);
         glm::vec3 ref = k == 0 ? st.side[i] : st.heading(int32_t(i));
         const uint8_t ord = uint8_t(std::min(int(t.order[i]) + (k > 0), 255));
         const glm::vec3 marker_dir = shadow ? glm::vec3(0) : safe_normalize(st.opt[st.nb * i + size_t(k)], def);

@@ -4,11 +4,16 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include "generators/self_organizing.h"
+#include "generators/skeleton.h"
 
 namespace sylva {
 
@@ -73,5 +78,29 @@ struct marker_state {
         }
   }
 };
+
+// Markers in an ellipsoidal crown envelope above each tree (Palubicki 2009 §4.1), from the params'
+// envelope and count, at most so_marker_cap in all (shared by the trees; message says so then).
+// Fills pos only: the caller sets the cell and builds the grid.
+void fill_marker_envelopes(marker_state& m, const std::vector<glm::vec3>& roots_at, const self_organizing_params& p, rng& r,
+                           std::string& message);
+
+// Scratch of perceive_markers: each chunk's markers in the order its buds met them.
+struct marker_scratch {
+  std::vector<std::vector<uint32_t>> seen;
+};
+// Palubicki 2009 §4.1: each live marker is perceived by the closest bud that holds it in its cone
+// (within reach, at most acos(cos_theta) off the bud's default direction), the earliest bud where
+// two are as close. Buds 0 .. buds - 1, in bud order, from bud_at(j, pos, def); perceived(j, m)
+// for each perceived marker m and its bud j, in the order the buds, scanned in order, first met
+// the markers (so sums over a bud's markers are the same bits however the scan ran). m.best is
+// no_bud for every marker on entry and on return.
+// The buds are scanned in chunks on the shared pool (job_pool.h): each marker keeps the least key
+// (d², bud) any chunk offers, which is the closest bud and the earliest on a tie, as one scan in
+// order finds; the chunks' lists of markers met, taken in chunk order, meet each marker first
+// where one scan in order does.
+void perceive_markers(marker_state& m, size_t buds, const std::function<void(size_t, glm::vec3&, glm::vec3&)>& bud_at,
+                      float reach, float cos_theta, marker_scratch& scratch,
+                      const std::function<void(size_t, uint32_t)>& perceived);
 
 }  // namespace sylva
