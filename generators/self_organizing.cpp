@@ -23,6 +23,9 @@ namespace {
 
 constexpr int32_t bud_here = -1;  // main/lat: a live bud sits there
 constexpr int32_t no_bud = -2;    // main/lat: nothing (shed, or never had one)
+// Shoots × cone voxels in a step from which its cones are scanned on the pool (a few hundred µs of
+// scanning, against some tens for waking the helpers and waiting for the last chunk).
+constexpr size_t parallel_scan_work = 200000;
 
 glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float l2 = glm::dot(v, v);
@@ -508,6 +511,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   std::vector<planned_shoot> shoots;
   std::vector<cone_choice> choices;   // one shoot's cone at a time
   cone_scratch scratch;
+  cone_scans scans;
   std::vector<float> last_flow;
   // What is recorded from here on is replaced; the state resumed from stays (it is this state).
   if (resume && resume->record) snaps->resize(size_t(first) + (resumed ? 1 : 0));
@@ -550,10 +554,16 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     grown.clear();
     // The shoots this step grows, in bud order (listed by allocate). In the shadow environment
     // each scans its cone (scan_cone reads the grid only, which stays as it was at the step's
-    // start) on this thread:
-    // scanning them in parallel chunks on the job pool first made the default tree's growth slower
-    // on two cores (14.7 against 13.4 ms, medians of 15; the 642k-node tree 683 against 689 ms),
-    // since a step's scan is shorter than waking a helper and waiting for its last chunk.
+    // start) on this thread, or, in a step of long scans (shoots × cone voxels past
+    // parallel_scan_work: a fine grid's large cones), all first on the pool, each shoot's choices
+    // then replayed on the RNG here in order. The default tree's scans are short: on the pool they
+    // made its growth slower on two cores (14.7 against 13.4 ms), waking helpers for too little.
+    const bool scanned = shadow && shoots.size() * st.cone.offset.size() >= parallel_scan_work;
+    if (scanned)
+      scan_cones(st.grid, st.cone, st.cos_theta, st.reach, shoots.size(), [&](size_t j, glm::vec3& pos, glm::ivec3& v, glm::vec3& def) {
+        const int32_t i = shoots[j].node;
+        pos = t.position[size_t(i)], v = st.voxel[size_t(i)], def = st.shoot_default(i, shoots[j].k);
+      }, scans);
     for (size_t j = 0; j < shoots.size() && !rep.hit_node_cap; ++j) {
       if ((j & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
       const size_t i = size_t(shoots[j].node);
@@ -568,7 +578,9 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         // Palubicki 2009 §5: the shoot's direction blends the default, optimal and tropism
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
         glm::vec3 optimal = marker_dir;
-        if (shadow) {
+        if (scanned) {
+          optimal = pick_optimal(r, scans.first(j), scans.count(j), def);
+        } else if (shadow) {
           choices.clear();
           scan_cone(st.grid, st.cone, st.cos_theta, st.reach, t.position[i], st.voxel[i], def, scratch, choices);
           optimal = pick_optimal(r, choices.data(), uint32_t(choices.size()), def);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -26,9 +27,8 @@ perception_cone make_perception_cone(float perception_distance, float voxel_size
 // The search for the least-shadowed voxel, in two parts: scan_cone reads the grid only (the
 // environment stays as it was at the step's start) and lists the choices the search made, in
 // order: each new best (ties = 1) and each tie met (ties = its count so far); pick_optimal replays
-// the list on the shared RNG, drawing exactly the numbers a one-pass search draws. (The split let
-// a step's cones be scanned in parallel; that cost more than it saved on two cores, and the
-// growth now calls the two back to back, bud by bud.)
+// the list on the shared RNG, drawing exactly the numbers a one-pass search draws, so a step's
+// cones can be scanned in parallel first (scan_cones) and their choices replayed in order.
 struct cone_choice {
   int ties;
   glm::vec3 dir;
@@ -39,6 +39,19 @@ struct cone_scratch {   // one per thread
 };
 void scan_cone(const shadow_grid& grid, const perception_cone& cone, float cos_theta, float reach, const glm::vec3& pos,
                const glm::ivec3& v0, const glm::vec3& def, cone_scratch& sc, std::vector<cone_choice>& choices);
+// Many cones' scans at once (scan_cones): cone j's choices are count(j) from first(j).
+struct cone_scans {
+  size_t grain = 1;
+  std::vector<std::vector<cone_choice>> chunk;   // chunk c: cones [c·grain, (c + 1)·grain), in order
+  std::vector<uint32_t> end;                     // per cone: where its choices end in its chunk
+  std::vector<cone_scratch> scratch;             // per chunk
+  const cone_choice* first(size_t j) const { return chunk[j / grain].data() + (j % grain ? end[j - 1] : 0); }
+  size_t count(size_t j) const { return end[j] - (j % grain ? end[j - 1] : 0); }
+};
+// scan_cone for cones 0 .. count - 1, each from cone_of(j, pos, voxel, def), in chunks on the
+// shared pool (job_pool.h); every cone's choices are the ones scan_cone lists for it alone.
+void scan_cones(const shadow_grid& grid, const perception_cone& cone, float cos_theta, float reach, size_t count,
+                const std::function<void(size_t, glm::vec3&, glm::ivec3&, glm::vec3&)>& cone_of, cone_scans& out);
 // The direction to the chosen voxel; def when the cone held none. Ties go to the voxel closest to
 // the default direction, then to the seeded RNG (reservoir sampling: each tied voxel is kept with
 // probability 1/ties): seed 000's trees leaned because ties took the first voxel found.

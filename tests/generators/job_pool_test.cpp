@@ -108,6 +108,12 @@ TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
     expect_growth_is_the_single_threaded_one(name, 150);
 }
 
+// A step of long cone scans (the bush's fine voxels make large cones) scans them all on the pool
+// first and replays each shoot's choices on the RNG in order: the tree is the single thread's.
+TEST(JobPool, ShadowConesScannedTogetherAreTheSingleThreadedOnes) {
+  expect_growth_is_the_single_threaded_one("species_bush", 3000);
+}
+
 // The space-colonization environment scans its buds' cones in chunks on the pool: the tree is the
 // single thread's, bit for bit, with the preset's markers and with three buds a node in wide cones,
 // where a node's buds stand at one point and tie for every marker they all perceive.
