@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "generators/job_pool.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
@@ -125,10 +126,9 @@ void kill_point(colonization_state& s, int32_t i, int step) {
   --s.alive;
 }
 
-// A new node kills the points within d_k and becomes the nearest node of those it is closer to.
-// Runions 2007 §3: a point influences only its closest node, and only within d_i.
-void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, int step) {
-  if (s.alive == 0) return;
+// The slots within reach (max(d_i, d_k)) of pos, as the grid holds them now, in scan order, written
+// to hits from n on; returns the new count. Reads the grid only.
+size_t slots_in_reach(const colonization_state& s, const glm::vec3& pos, std::vector<int32_t>& hits, size_t n) {
   const float d_i = std::sqrt(s.di2);
   const glm::vec3 a = (pos - d_i - s.origin) * s.inv_cell, b = (pos + d_i - s.origin) * s.inv_cell;
   glm::ivec3 lo, hi;
@@ -138,7 +138,7 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
     hi[k] = int(std::clamp(std::floor(b[k]), -1.0f, float(s.dim[k])));
     lo[k] = std::max(lo[k], 0);
     hi[k] = std::min(hi[k], s.dim[k] - 1);
-    if (lo[k] > hi[k]) return;
+    if (lo[k] > hi[k]) return n;
   }
   // Squared distance from pos to a cell's slab along one axis; rows wholly beyond d_i are skipped,
   // and a row's run is trimmed to the cells within d_i along x, which keeps the scan near the
@@ -154,7 +154,6 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
   // First the slots within reach, without a branch per slot (about half the slots scanned pass, at
   // random, which a branch mispredicts); then those in slot order. nearest_d2 starts at d_i², so
   // "closer" is also "within d_i", and a point's first nearest node puts it on the active list.
-  size_t n = 0;
   for (int z = lo.z; z <= hi.z; ++z) {
     const float gz = gap2(2, z);
     for (int y = lo.y; y <= hi.y; ++y) {
@@ -166,8 +165,8 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
       if (x0 > x1) continue;
       const int32_t row = (z * s.dim.y + y) * s.dim.x;
       const int32_t begin = s.cell_begin[size_t(row + x0)], end = s.cell_begin[size_t(row + x1 + 1)];
-      if (s.hits.size() < n + size_t(end - begin)) s.hits.resize(2 * (n + size_t(end - begin)));
-      int32_t* out = s.hits.data();
+      if (hits.size() < n + size_t(end - begin)) hits.resize(2 * (n + size_t(end - begin)));
+      int32_t* out = hits.data();
       for (int32_t j = begin; j < end; ++j) {
         const glm::vec3 d = sp[j] - pos;
         out[n] = j;
@@ -175,10 +174,20 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
       }
     }
   }
+  return n;
+}
+
+// Node `node` at pos takes the slots `hits` found within its reach: kills those within d_k and
+// becomes the nearest node of those it is closer to. A slot killed since it was found lies far
+// away now, so it is out of both reaches: found before earlier nodes' kills, the hits still give
+// what a scan after them would.
+void take_hits(colonization_state& s, const glm::vec3& pos, int32_t node, int step, const int32_t* hits, size_t n) {
+  const glm::vec3* sp = s.slot_pos.data();
+  const float dk2 = s.dk2;
   float* near_d2 = s.nearest_d2.data();
   int32_t* near = s.nearest.data();
   for (size_t h = 0; h < n; ++h) {
-    const int32_t j = s.hits[h];
+    const int32_t j = hits[h];
     const glm::vec3 d = sp[j] - pos;
     const float d2 = glm::dot(d, d);
     if (d2 <= dk2) {  // Runions 2007 §3: kill within d_k
@@ -190,6 +199,56 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
       near[j] = node;
       near_d2[j] = d2;
     }
+  }
+}
+
+// A new node kills the points within d_k and becomes the nearest node of those it is closer to.
+// Runions 2007 §3: a point influences only its closest node, and only within d_i.
+void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, int step) {
+  if (s.alive == 0) return;
+  const size_t n = slots_in_reach(s, pos, s.hits, 0);
+  take_hits(s, pos, node, step, s.hits.data(), n);
+}
+
+// visit_new_node for nodes first .. t.size() - 1 in order, stopping after a node whose index is
+// a multiple of 1024 when the growth is cancelled. A step of many new nodes (a crown's) finds
+// each node's slots first, in chunks on the shared pool (job_pool.h), from the grid as the step
+// left it, and then takes them node by node: take_hits gives the bits one visit after another
+// does, kills in between included.
+struct visit_batch {
+  size_t grain = 1;
+  std::vector<std::vector<int32_t>> hits;   // chunk c: nodes [c·grain, (c + 1)·grain) of the batch
+  std::vector<size_t> end;                  // per node of the batch: where its hits end in its chunk
+};
+constexpr size_t parallel_visits = 96;   // new nodes from which a step's slots are found on the pool
+
+void visit_new_nodes(colonization_state& s, const tree_skeleton& t, size_t first, int step, const grow_options& o,
+                     visit_batch& b) {
+  const size_t count = t.size() - std::min(first, t.size());
+  if (count < parallel_visits) {
+    for (size_t k = first; k < t.size(); ++k) {
+      visit_new_node(s, t.position[k], int32_t(k), step);
+      if ((k & 1023) == 0 && o.cancelled()) break;  // the next iteration reports it
+    }
+    return;
+  }
+  b.grain = std::max<size_t>(16, count / 32 + 1);
+  const size_t chunks = (count + b.grain - 1) / b.grain;
+  if (b.hits.size() < chunks) b.hits.resize(chunks);
+  b.end.resize(count);
+  if (s.alive > 0)
+    parallel_jobs(chunks, [&](size_t c) {
+      size_t n = 0;
+      for (size_t j = c * b.grain; j < std::min(count, (c + 1) * b.grain); ++j)
+        b.end[j] = n = slots_in_reach(s, t.position[first + j], b.hits[c], n);
+    });
+  for (size_t j = 0; j < count; ++j) {
+    const size_t k = first + j;
+    if (s.alive > 0) {
+      const size_t begin = j % b.grain ? b.end[j - 1] : 0;
+      take_hits(s, t.position[k], int32_t(k), step, b.hits[j / b.grain].data() + begin, b.end[j] - begin);
+    }
+    if ((k & 1023) == 0 && o.cancelled()) break;  // the next iteration reports it
   }
 }
 
@@ -465,6 +524,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // Crown: Runions 2007 §3, one iteration per growth step.
   std::vector<int32_t> touched;
   std::vector<uint8_t> stuck;
+  visit_batch batch;
   const glm::vec3 up(0, 1, 0);
   while (stop.empty()) {
     compact_active(s);
@@ -543,10 +603,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
           kill_point(s, i, step);
         }
     for (int32_t v : touched) acc[size_t(v)] = glm::vec3(0), acc_count[size_t(v)] = 0, stuck[size_t(v)] = 0;
-    for (size_t k = first_new; k < t.size(); ++k) {
-      visit_new_node(s, t.position[k], int32_t(k), step);
-      if ((k & 1023) == 0 && o.cancelled()) break;  // the next iteration reports it
-    }
+    visit_new_nodes(s, t, first_new, step, o, batch);
     if (o.progress) o.progress(float(step) / float(std::max(steps, 1)));
   }
   t.steps = step;

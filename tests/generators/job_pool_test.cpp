@@ -114,6 +114,13 @@ TEST(JobPool, ShadowConesScannedTogetherAreTheSingleThreadedOnes) {
   expect_growth_is_the_single_threaded_one("species_bush", 3000);
 }
 
+// Space colonization finds a crown step's new nodes' points on the pool before they take them one
+// by one: the oak (steps of hundreds of new nodes, with kills) is the single thread's.
+TEST(JobPool, ColonizationVisitsFoundTogetherAreTheSingleThreadedOnes) {
+  expect_growth_is_the_single_threaded_one("species_oak", 3000);
+  expect_growth_is_the_single_threaded_one("space_colonization_seed_cube", 3000);
+}
+
 // The space-colonization environment scans its buds' cones in chunks on the pool: the tree is the
 // single thread's, bit for bit, with the preset's markers and with three buds a node in wide cones,
 // where a node's buds stand at one point and tie for every marker they all perceive.
