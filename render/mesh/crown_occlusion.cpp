@@ -96,13 +96,16 @@ void bake_sky(crown_sky& g, float window) {
   });
   float weights = 0;
   for (float w : weight) weights += w;
-  std::vector<float> sky(terms.begin(), terms.begin() + std::ptrdiff_t(cells));
-  for (size_t d = 1; d < 9; ++d) {
-    const float* term = terms.data() + d * cells;
-    for (size_t c = 0; c < cells; ++c) sky[c] += term[c];
-  }
-  for (float& s : sky) s /= weights;
-  g.value = std::move(sky);
+  // Each cell's nine terms summed in direction order (left to right) and divided by the weights,
+  // in one pass over chunks of cells on the pool, written over the densities (read no more).
+  float* sky = g.value.data();
+  parallel_chunks(cells, 8192, [&](size_t c0, size_t c1) {
+    const float* t = terms.data();
+    const float *t0 = t, *t1 = t + cells, *t2 = t + 2 * cells, *t3 = t + 3 * cells, *t4 = t + 4 * cells,
+                *t5 = t + 5 * cells, *t6 = t + 6 * cells, *t7 = t + 7 * cells, *t8 = t + 8 * cells;
+    for (size_t c = c0; c < c1; ++c)
+      sky[c] = (t0[c] + t1[c] + t2[c] + t3[c] + t4[c] + t5[c] + t6[c] + t7[c] + t8[c]) / weights;
+  });
 }
 
 }  // namespace
