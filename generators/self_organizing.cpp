@@ -28,7 +28,7 @@ constexpr int32_t no_bud = -2;    // main/lat: nothing (shed, or never had one)
 // for waking the helpers). Smaller cones scan faster on the growth thread however many there are:
 // the grid's chunks around the buds are in its cache, as its light pass just read them (with
 // every step of 200,000 on the pool, self_organizing_forest grew in 118 ms against 95).
-constexpr size_t parallel_scan_cone = 256, parallel_scan_work = 200000;
+constexpr size_t parallel_scan_cone = 256, parallel_scan_work = 200000, parallel_scan_window = 512;
 
 glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float l2 = glm::dot(v, v);
@@ -558,18 +558,23 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     // The shoots this step grows, in bud order (listed by allocate). In the shadow environment
     // each scans its cone (scan_cone reads the grid only, which stays as it was at the step's
     // start) on this thread, or, in a step of long scans of large cones (a fine grid's: past
-    // parallel_scan_cone and parallel_scan_work), all first on the pool, each shoot's choices
-    // then replayed on the RNG here in order. The default tree's scans are short: on the pool they
-    // made its growth slower on two cores (14.7 against 13.4 ms), waking helpers for too little.
+    // parallel_scan_cone and parallel_scan_work), first on the pool, a window of
+    // parallel_scan_window shoots at a time (so few choices are kept), each shoot's choices then
+    // replayed on the RNG here in order. The default tree's scans are short: on the pool they made
+    // its growth slower on two cores (14.7 against 13.4 ms), waking helpers for too little.
     const bool scanned = shadow && st.cone.offset.size() >= parallel_scan_cone &&
                          shoots.size() * st.cone.offset.size() >= parallel_scan_work;
-    if (scanned)
-      scan_cones(st.grid, st.cone, st.cos_theta, st.reach, shoots.size(), [&](size_t j, glm::vec3& pos, glm::ivec3& v, glm::vec3& def) {
-        const int32_t i = shoots[j].node;
-        pos = t.position[size_t(i)], v = st.voxel[size_t(i)], def = st.shoot_default(i, shoots[j].k);
-      }, scans);
+    size_t window = 0;   // the first shoot of the window scanned
     for (size_t j = 0; j < shoots.size() && !rep.hit_node_cap; ++j) {
       if ((j & 4095) == 0 && o.cancelled()) { rep.cancelled = true; break; }
+      if (scanned && j % parallel_scan_window == 0) {
+        window = j;
+        scan_cones(st.grid, st.cone, st.cos_theta, st.reach, std::min(parallel_scan_window, shoots.size() - j),
+                   [&](size_t w, glm::vec3& pos, glm::ivec3& v, glm::vec3& def) {
+                     const int32_t i = shoots[window + w].node;
+                     pos = t.position[size_t(i)], v = st.voxel[size_t(i)], def = st.shoot_default(i, shoots[window + w].k);
+                   }, scans);
+      }
       const size_t i = size_t(shoots[j].node);
       const int k = shoots[j].k;
       {
@@ -583,7 +588,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
         glm::vec3 optimal = marker_dir;
         if (scanned) {
-          optimal = pick_optimal(r, scans.first(j), scans.count(j), def);
+          optimal = pick_optimal(r, scans.first(j - window), scans.count(j - window), def);
         } else if (shadow) {
           choices.clear();
           scan_cone(st.grid, st.cone, st.cos_theta, st.reach, t.position[i], st.voxel[i], def, scratch, choices);

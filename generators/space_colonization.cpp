@@ -212,43 +212,47 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
 
 // visit_new_node for nodes first .. t.size() - 1 in order, stopping after a node whose index is
 // a multiple of 1024 when the growth is cancelled. A step of many new nodes (a crown's) finds
-// each node's slots first, in chunks on the shared pool (job_pool.h), from the grid as the step
-// left it, and then takes them node by node: take_hits gives the bits one visit after another
-// does, kills in between included.
+// the slots of a window of them at a time, in chunks on the shared pool (job_pool.h), from the
+// grid as the nodes before left it, and then takes them node by node: take_hits gives the bits
+// one visit after another does, kills in between included.
 struct visit_batch {
   size_t grain = 1;
   std::vector<std::vector<int32_t>> hits;   // chunk c: nodes [c·grain, (c + 1)·grain) of the batch
   std::vector<size_t> end;                  // per node of the batch: where its hits end in its chunk
 };
 constexpr size_t parallel_visits = 96;   // new nodes from which a step's slots are found on the pool
+constexpr size_t visit_window = 256;     // nodes whose slots are found at once
 
 void visit_new_nodes(colonization_state& s, const tree_skeleton& t, size_t first, int step, const grow_options& o,
                      visit_batch& b) {
-  const size_t count = t.size() - std::min(first, t.size());
-  if (count < parallel_visits) {
+  if (t.size() - std::min(first, t.size()) < parallel_visits) {
     for (size_t k = first; k < t.size(); ++k) {
       visit_new_node(s, t.position[k], int32_t(k), step);
       if ((k & 1023) == 0 && o.cancelled()) break;  // the next iteration reports it
     }
     return;
   }
-  b.grain = std::max<size_t>(16, count / 32 + 1);
-  const size_t chunks = (count + b.grain - 1) / b.grain;
-  if (b.hits.size() < chunks) b.hits.resize(chunks);
-  b.end.resize(count);
-  if (s.alive > 0)
-    parallel_jobs(chunks, [&](size_t c) {
-      size_t n = 0;
-      for (size_t j = c * b.grain; j < std::min(count, (c + 1) * b.grain); ++j)
-        b.end[j] = n = slots_in_reach(s, t.position[first + j], b.hits[c], n);
-    });
-  for (size_t j = 0; j < count; ++j) {
-    const size_t k = first + j;
-    if (s.alive > 0) {
-      const size_t begin = j % b.grain ? b.end[j - 1] : 0;
-      take_hits(s, t.position[k], int32_t(k), step, b.hits[j / b.grain].data() + begin, b.end[j] - begin);
+  // Windows of visit_window nodes, so the lists found never hold more than that many nodes' points.
+  for (size_t w = first; w < t.size(); w += visit_window) {
+    const size_t count = std::min(visit_window, t.size() - w);
+    b.grain = std::max<size_t>(16, count / 16 + 1);
+    const size_t chunks = (count + b.grain - 1) / b.grain;
+    if (b.hits.size() < chunks) b.hits.resize(chunks);
+    b.end.resize(count);
+    if (s.alive > 0)
+      parallel_jobs(chunks, [&](size_t c) {
+        size_t n = 0;
+        for (size_t j = c * b.grain; j < std::min(count, (c + 1) * b.grain); ++j)
+          b.end[j] = n = slots_in_reach(s, t.position[w + j], b.hits[c], n);
+      });
+    for (size_t j = 0; j < count; ++j) {
+      const size_t k = w + j;
+      if (s.alive > 0) {
+        const size_t begin = j % b.grain ? b.end[j - 1] : 0;
+        take_hits(s, t.position[k], int32_t(k), step, b.hits[j / b.grain].data() + begin, b.end[j] - begin);
+      }
+      if ((k & 1023) == 0 && o.cancelled()) return;  // the next iteration reports it
     }
-    if ((k & 1023) == 0 && o.cancelled()) break;  // the next iteration reports it
   }
 }
 
