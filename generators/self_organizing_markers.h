@@ -57,18 +57,38 @@ struct marker_state {
     alive.assign(pos.size(), 1);
     best.assign(pos.size(), no_bud);
   }
-  // Calls f(marker) for the live markers (all when dead_too) within distance d of p.
+  // Calls f(marker) for the live markers (all when dead_too) within distance d of p, cell by cell
+  // (z, then y, then x) and in each cell in index order.
+  // Cell keys sort x first, then y, then z, so a column of cells (x, y, lo.z .. hi.z) is one run
+  // of keys: one binary search per column finds its start, and a cursor per column then steps to
+  // each z in turn (a query of 3 × 3 × 3 cells makes 9 searches instead of 27).
   template <class F>
   void visit_near(const glm::vec3& p, float d, F&& f, bool dead_too = false) const {
     const glm::ivec3 lo = cell_of(p - d), hi = cell_of(p + d);
     const float d2 = d * d;
+    constexpr int most = 8;   // columns a side searched once each; wider queries search per cell
+    const int nx = hi.x - lo.x + 1, ny = hi.y - lo.y + 1;
+    const bool columns = nx >= 1 && ny >= 1 && nx <= most && ny <= most;
+    size_t at[most][most];
+    if (columns)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          at[y - lo.y][x - lo.x] = size_t(std::lower_bound(cell_key.begin(), cell_key.end(), key({x, y, lo.z})) - cell_key.begin());
     for (int z = lo.z; z <= hi.z; ++z)
       for (int y = lo.y; y <= hi.y; ++y)
         for (int x = lo.x; x <= hi.x; ++x) {
           const uint64_t k = key({x, y, z});
-          const auto it = std::lower_bound(cell_key.begin(), cell_key.end(), k);
-          if (it == cell_key.end() || *it != k) continue;
-          const size_t c = size_t(it - cell_key.begin());
+          size_t c;
+          if (columns) {
+            size_t& a = at[y - lo.y][x - lo.x];
+            while (a < cell_key.size() && cell_key[a] < k) ++a;
+            if (a == cell_key.size() || cell_key[a] != k) continue;
+            c = a;
+          } else {
+            const auto it = std::lower_bound(cell_key.begin(), cell_key.end(), k);
+            if (it == cell_key.end() || *it != k) continue;
+            c = size_t(it - cell_key.begin());
+          }
           for (uint32_t j = cell_start[c]; j < cell_start[c + 1]; ++j) {
             const uint32_t m = order[j];
             if (!alive[m] && !dead_too) continue;
