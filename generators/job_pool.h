@@ -2,8 +2,10 @@
 // stages, the archetype textures): no thread is started per call.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 namespace sylva {
 
@@ -25,5 +27,32 @@ void parallel_jobs(size_t count, const std::function<void(size_t)>& job, int thr
 
 // parallel_jobs over [0, n) in contiguous chunks of about `grain` items: body(begin, end).
 void parallel_chunks(size_t n, size_t grain, const std::function<void(size_t, size_t)>& body, int threads = 0);
+
+// Results of items 0 .. count - 1 found in chunks on the pool and taken afterwards in item order
+// (the growth's parallel searches: cones, colonization points): chunk c's items write their results
+// one after another into chunk[c], and item j's are count(j) from first(j).
+template <class T>
+struct chunked_results {
+  size_t grain = 1;
+  std::vector<std::vector<T>> chunk;   // chunk c: items [c·grain, (c + 1)·grain), in order
+  std::vector<size_t> end;             // per item: where its results end in its chunk
+  size_t begin(size_t j) const { return j % grain ? end[j - 1] : 0; }
+  const T* first(size_t j) const { return chunk[j / grain].data() + begin(j); }
+  size_t count(size_t j) const { return end[j] - begin(j); }
+  // Runs find(c, j, list, n) for every item j of each chunk c in order, in chunks of `grain`
+  // items on the pool: it writes item j's results into list from n on (list may be longer) and
+  // returns where they end.
+  template <class Find>
+  void fill(size_t items, size_t chunk_grain, Find find) {
+    grain = std::max<size_t>(chunk_grain, 1);
+    const size_t chunks = (items + grain - 1) / grain;
+    if (chunk.size() < chunks) chunk.resize(chunks);
+    end.resize(items);
+    parallel_jobs(chunks, [&](size_t c) {
+      size_t n = 0;
+      for (size_t j = c * grain; j < std::min(items, (c + 1) * grain); ++j) end[j] = n = find(c, j, chunk[c], n);
+    });
+  }
+};
 
 }  // namespace sylva

@@ -588,7 +588,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
         // directions; one direction per shoot, as both seeds do, so a shoot is straight.
         glm::vec3 optimal = marker_dir;
         if (scanned) {
-          optimal = pick_optimal(r, scans.first(j - window), scans.count(j - window), def);
+          optimal = pick_optimal(r, scans.choices.first(j - window), scans.choices.count(j - window), def);
         } else if (shadow) {
           choices.clear();
           scan_cone(st.grid, st.cone, st.cos_theta, st.reach, t.position[i], st.voxel[i], def, scratch, choices);

@@ -6,7 +6,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "generators/job_pool.h"
 
 namespace sylva {
 
@@ -95,21 +94,15 @@ void scan_cone(const shadow_grid& grid, const perception_cone& cone, float cos_t
 
 void scan_cones(const shadow_grid& grid, const perception_cone& cone, float cos_theta, float reach, size_t count,
                 const std::function<void(size_t, glm::vec3&, glm::ivec3&, glm::vec3&)>& cone_of, cone_scans& out) {
-  out.grain = std::max<size_t>(16, count / 64 + 1);
-  const size_t chunks = (count + out.grain - 1) / out.grain;
-  out.chunk.resize(std::max(out.chunk.size(), chunks));
-  out.scratch.resize(std::max(out.scratch.size(), chunks));
-  out.end.resize(count);
-  parallel_jobs(chunks, [&](size_t c) {
-    std::vector<cone_choice>& list = out.chunk[c];
-    list.clear();
-    for (size_t j = c * out.grain; j < std::min(count, (c + 1) * out.grain); ++j) {
-      glm::vec3 pos, def;
-      glm::ivec3 voxel;
-      cone_of(j, pos, voxel, def);
-      scan_cone(grid, cone, cos_theta, reach, pos, voxel, def, out.scratch[c], list);
-      out.end[j] = uint32_t(list.size());
-    }
+  const size_t grain = std::max<size_t>(16, count / 64 + 1);
+  out.scratch.resize(std::max(out.scratch.size(), (count + grain - 1) / grain));
+  out.choices.fill(count, grain, [&](size_t c, size_t j, std::vector<cone_choice>& list, size_t n) {
+    glm::vec3 pos, def;
+    glm::ivec3 voxel;
+    cone_of(j, pos, voxel, def);
+    list.resize(n);   // (shorter: the chunk's earlier steps left more)
+    scan_cone(grid, cone, cos_theta, reach, pos, voxel, def, out.scratch[c], list);
+    return list.size();
   });
 }
 

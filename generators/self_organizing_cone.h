@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "generators/job_pool.h"
 #include "generators/self_organizing_grid.h"
 #include "generators/skeleton.h"
 
@@ -39,14 +40,10 @@ struct cone_scratch {   // one per thread
 };
 void scan_cone(const shadow_grid& grid, const perception_cone& cone, float cos_theta, float reach, const glm::vec3& pos,
                const glm::ivec3& v0, const glm::vec3& def, cone_scratch& sc, std::vector<cone_choice>& choices);
-// Many cones' scans at once (scan_cones): cone j's choices are count(j) from first(j).
+// Many cones' scans at once (scan_cones): cone j's choices are choices.count(j) from first(j).
 struct cone_scans {
-  size_t grain = 1;
-  std::vector<std::vector<cone_choice>> chunk;   // chunk c: cones [c·grain, (c + 1)·grain), in order
-  std::vector<uint32_t> end;                     // per cone: where its choices end in its chunk
-  std::vector<cone_scratch> scratch;             // per chunk
-  const cone_choice* first(size_t j) const { return chunk[j / grain].data() + (j % grain ? end[j - 1] : 0); }
-  size_t count(size_t j) const { return end[j] - (j % grain ? end[j - 1] : 0); }
+  chunked_results<cone_choice> choices;
+  std::vector<cone_scratch> scratch;   // per chunk
 };
 // scan_cone for cones 0 .. count - 1, each from cone_of(j, pos, voxel, def), in chunks on the
 // shared pool (job_pool.h); every cone's choices are the ones scan_cone lists for it alone.

@@ -215,16 +215,11 @@ void visit_new_node(colonization_state& s, const glm::vec3& pos, int32_t node, i
 // the slots of a window of them at a time, in chunks on the shared pool (job_pool.h), from the
 // grid as the nodes before left it, and then takes them node by node: take_hits gives the bits
 // one visit after another does, kills in between included.
-struct visit_batch {
-  size_t grain = 1;
-  std::vector<std::vector<int32_t>> hits;   // chunk c: nodes [c·grain, (c + 1)·grain) of the batch
-  std::vector<size_t> end;                  // per node of the batch: where its hits end in its chunk
-};
 constexpr size_t parallel_visits = 96;   // new nodes from which a step's slots are found on the pool
 constexpr size_t visit_window = 256;     // nodes whose slots are found at once
 
 void visit_new_nodes(colonization_state& s, const tree_skeleton& t, size_t first, int step, const grow_options& o,
-                     visit_batch& b) {
+                     chunked_results<int32_t>& found) {
   if (t.size() - std::min(first, t.size()) < parallel_visits) {
     for (size_t k = first; k < t.size(); ++k) {
       visit_new_node(s, t.position[k], int32_t(k), step);
@@ -235,22 +230,13 @@ void visit_new_nodes(colonization_state& s, const tree_skeleton& t, size_t first
   // Windows of visit_window nodes, so the lists found never hold more than that many nodes' points.
   for (size_t w = first; w < t.size(); w += visit_window) {
     const size_t count = std::min(visit_window, t.size() - w);
-    b.grain = std::max<size_t>(16, count / 16 + 1);
-    const size_t chunks = (count + b.grain - 1) / b.grain;
-    if (b.hits.size() < chunks) b.hits.resize(chunks);
-    b.end.resize(count);
-    if (s.alive > 0)
-      parallel_jobs(chunks, [&](size_t c) {
-        size_t n = 0;
-        for (size_t j = c * b.grain; j < std::min(count, (c + 1) * b.grain); ++j)
-          b.end[j] = n = slots_in_reach(s, t.position[w + j], b.hits[c], n);
-      });
+    if (s.alive == 0) return;   // (no slot left to find or take)
+    found.fill(count, std::max<size_t>(16, count / 16 + 1), [&](size_t, size_t j, std::vector<int32_t>& hits, size_t n) {
+      return slots_in_reach(s, t.position[w + j], hits, n);
+    });
     for (size_t j = 0; j < count; ++j) {
       const size_t k = w + j;
-      if (s.alive > 0) {
-        const size_t begin = j % b.grain ? b.end[j - 1] : 0;
-        take_hits(s, t.position[k], int32_t(k), step, b.hits[j / b.grain].data() + begin, b.end[j] - begin);
-      }
+      if (s.alive > 0) take_hits(s, t.position[k], int32_t(k), step, found.first(j), found.count(j));
       if ((k & 1023) == 0 && o.cancelled()) return;  // the next iteration reports it
     }
   }
@@ -528,7 +514,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // Crown: Runions 2007 §3, one iteration per growth step.
   std::vector<int32_t> touched;
   std::vector<uint8_t> stuck;
-  visit_batch batch;
+  chunked_results<int32_t> found;   // visit_new_nodes' scratch
   const glm::vec3 up(0, 1, 0);
   while (stop.empty()) {
     compact_active(s);
@@ -607,7 +593,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
           kill_point(s, i, step);
         }
     for (int32_t v : touched) acc[size_t(v)] = glm::vec3(0), acc_count[size_t(v)] = 0, stuck[size_t(v)] = 0;
-    visit_new_nodes(s, t, first_new, step, o, batch);
+    visit_new_nodes(s, t, first_new, step, o, found);
     if (o.progress) o.progress(float(step) / float(std::max(steps, 1)));
   }
   t.steps = step;
