@@ -116,6 +116,11 @@ int job_pool_helpers() { return the_pool().helpers(); }
 
 int set_job_pool_limit(int threads) { return limit.exchange(std::max(threads, 0)); }
 
+int job_pool_threads() {
+  const int all = job_pool_helpers() + 1, cap = limit.load();
+  return cap > 0 ? std::min(cap, all) : all;
+}
+
 void parallel_jobs(size_t count, const std::function<void(size_t)>& job, int threads) {
   if (count == 0) return;
   if (const int cap = limit.load(); cap > 0) threads = threads <= 0 ? cap : std::min(threads, cap);

@@ -16,6 +16,10 @@ int job_pool_helpers();
 // thread, the single-threaded path the parallel one must match bit for bit). Returns the old cap.
 int set_job_pool_limit(int threads);
 
+// Threads a parallel_jobs call with no cap of its own may use now: the calling thread and the
+// helpers, under the limit above (1: a caller may take its plain one-thread path).
+int job_pool_threads();
+
 // Runs job(0) .. job(count - 1), each exactly once, on the calling thread and up to `threads` - 1
 // of the pool's helpers (threads <= 0: all of them; 1: the calling thread alone), and returns when
 // all are done. Jobs are taken in order from a shared counter, so which thread runs a job varies:

@@ -15,10 +15,13 @@
 // Reaction wood then turns young shoots back toward their set direction by a share per step.
 #include "generators/wood.h"
 
+#include "generators/job_pool.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <string>
 #include <type_traits>
@@ -249,92 +252,231 @@ struct engine {
     bend[k] = b;
   }
 
-  // One sweep parents-first over [0, end): positions and frames from the bends.
-  // clear_loads: also zero the loads of [0, end) for the reverse sweep that follows (one pass less).
-  void forward(size_t end, bool clear_loads) {
-    for (size_t k = 0; k < end; ++k) {
-      if (clear_loads) acc[k] = load{glm::vec3(0), 0, 0};
-      const int32_t par = t.parent[k];
-      if (par < 0) {
-        at[k].x = rest[k];
-        at[k].frame = bend[k];
-        continue;
-      }
-      const glm::vec3 rd(rest_d[k]);
-      const pose pp = at[size_t(par)];
-      const glm::quat& b = bend[k];
-      if (b.x == 0 && b.y == 0 && b.z == 0) {  // unbent (young nodes): skip the half rotation
-        at[k].x = pp.x + pp.frame * rd;
-        at[k].frame = pp.frame;
-      } else {
-        // The hinge at the middle turns rd by half of b = (w, u). That half is (1 + w, u) / |·|, so
-        // it turns rd to rd + u × rd + u × (u × rd) / (1 + w): no square root (w > 0, see turn_internode).
-        const glm::vec3 u(b.x, b.y, b.z);
-        const glm::vec3 c = glm::cross(u, rd);
-        at[k].x = pp.x + pp.frame * (rd + c + glm::cross(u, c) * (1.0f / (1.0f + b.w)));
-        at[k].frame = pp.frame * b;
-      }
+  // Node k of the forward sweep: its position and frame from its parent's and its bend.
+  // clear_load: also zero its load for the reverse sweep that follows (one pass less).
+  void forward_node(size_t k, bool clear_load) {
+    if (clear_load) acc[k] = load{glm::vec3(0), 0, 0};
+    const int32_t par = t.parent[k];
+    if (par < 0) {
+      at[k].x = rest[k];
+      at[k].frame = bend[k];
+      return;
+    }
+    const glm::vec3 rd(rest_d[k]);
+    const pose pp = at[size_t(par)];
+    const glm::quat& b = bend[k];
+    if (b.x == 0 && b.y == 0 && b.z == 0) {  // unbent (young nodes): skip the half rotation
+      at[k].x = pp.x + pp.frame * rd;
+      at[k].frame = pp.frame;
+    } else {
+      // The hinge at the middle turns rd by half of b = (w, u). That half is (1 + w, u) / |·|, so
+      // it turns rd to rd + u × rd + u × (u × rd) / (1 + w): no square root (w > 0, see turn_internode).
+      const glm::vec3 u(b.x, b.y, b.z);
+      const glm::vec3 c = glm::cross(u, rd);
+      at[k].x = pp.x + pp.frame * (rd + c + glm::cross(u, c) * (1.0f / (1.0f + b.w)));
+      at[k].frame = pp.frame * b;
     }
   }
 
-  // One sweep tips-first over the nodes alive at s among [0, end): radii of that step (pipe radii
-  // as compute_pipe_radii in skeleton.cpp, else the fixed ones), loads, each internode's moment at
-  // its middle, M = Σ m_i (x_i - c) × g, and its turn from the increase since the last bend. The
-  // turns change the bends only: positions follow in the next forward sweep.
-  void reverse(int s, int prev, size_t end) {
-    // forward(end, true) has just cleared acc[0, end).
-    const bool pipe = t.pipe_exponent > 0;
-    float rt = 0, two_over_e = 0;
+  // One sweep parents-first over [0, end): positions and frames from the bends.
+  void forward(size_t end, bool clear_loads) {
+    if (!split) {
+      for (size_t k = 0; k < end; ++k) forward_node(k, clear_loads);
+      return;
+    }
+    for (const uint32_t e : split->top) {   // the trunk first: the tasks' roots hang from it
+      if ((e & ~root_bit) >= end) break;
+      if (!(e & root_bit)) forward_node(e, clear_loads);
+    }
+    parallel_jobs(split->job_end.size(), [&](size_t j) {
+      for (size_t i = j ? split->job_end[j - 1] : 0; i < split->job_end[j]; ++i)
+        for (const uint32_t* q = split->task_first(i); q != split->task_last(i) && *q < end; ++q)
+          forward_node(*q, clear_loads);
+    });
+  }
+
+  // What one node's reverse step adds to its parent's load (to < 0: nothing).
+  struct push {
+    glm::vec3 s{0};
+    float m = 0, pipe = 0;
+    int32_t to = -1;
+  };
+  void add(const push& u) {
+    if (u.to < 0) return;
+    load& up = acc[size_t(u.to)];
+    up.m += u.m;
+    up.s += u.s;
+    up.pipe += u.pipe;
+  }
+  // The reverse sweep's terms for one bend step.
+  struct reverse_terms {
+    bool pipe = false, square_pipe = false;
+    float rt = 0, two_over_e = 0, taper_n = 0, leaf_kg_per_m = 0;
+    glm::vec3 g{0};
+  };
+  reverse_terms terms() const {
+    reverse_terms r;
+    r.pipe = t.pipe_exponent > 0;
     // The usual exponent 2 (da Vinci's rule): r² is the pipe sum itself, no power needed.
-    const bool square_pipe = t.pipe_exponent == 2;
-    if (pipe) {
-      rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
-      two_over_e = 2.0f / t.pipe_exponent;
+    r.square_pipe = t.pipe_exponent == 2;
+    if (r.pipe) {
+      r.rt = std::pow(t.pipe_tip_radius, t.pipe_exponent);
+      r.two_over_e = 2.0f / t.pipe_exponent;
     }
-    const float taper_n = pipe && t.pipe_taper > 0 ? t.pipe_exponent : 0.0f;
-    const glm::vec3 g(0, -standard_gravity * p.gravity, 0);
-    const float leaf_kg_per_m = p.leaf_mass * 1e-3f * p.leaves_per_metre;
-    for (size_t k = end; k-- > 0;) {
-      if (!alive(k, s)) continue;
+    r.taper_n = r.pipe && t.pipe_taper > 0 ? t.pipe_exponent : 0.0f;
+    r.g = glm::vec3(0, -standard_gravity * p.gravity, 0);
+    r.leaf_kg_per_m = p.leaf_mass * 1e-3f * p.leaves_per_metre;
+    return r;
+  }
+
+  // Node k of the reverse sweep at step s, when it is alive: its radius of that step (pipe radii
+  // as compute_pipe_radii in skeleton.cpp, else the fixed one), its load, its internode's moment at
+  // the middle, M = Σ m_i (x_i - c) × g, and its turn from the increase since the last bend. The
+  // turn changes the bend only: positions follow in the next forward sweep. Returns what it adds to
+  // its parent's load.
+  push reverse_node(size_t k, int s, int prev, const reverse_terms& r) {
+    push out;
+    if (!alive(k, s)) return out;
+    const int32_t par = t.parent[k];
+    load& a = acc[k];
+    const glm::vec3 xk = at[k].x;
+    float sum = 0, r2;
+    if (r.pipe) {
+      sum = a.pipe > 0 ? a.pipe : r.rt;
+      r2 = r.square_pipe ? sum : fast_pow(sum, r.two_over_e);
+    } else {
+      r2 = t.radius[k] * t.radius[k];
+    }
+    r2 = std::max(r2, min_beam_radius * min_beam_radius);
+    if (point_mass && k < point_mass->size() && (*point_mass)[k] > 0) {
+      a.m += (*point_mass)[k];
+      a.s += (*point_mass)[k] * xk;
+    }
+    if (par < 0) return out;
+    const float len = rest_d[k].w;
+    // Wood (density × volume, the internode at its tip radius) and the foliage of a young shoot.
+    float m = p.density * pi * r2 * len;
+    if (s - int(t.born[k]) <= p.leaf_age) m += r.leaf_kg_per_m * len;
+    const pose& pp = at[size_t(par)];
+    const glm::vec3 seg = xk - pp.x;
+    const glm::vec3 c = xk - 0.5f * seg;
+    // The internode's own outer half acts at its three-quarter point.
+    const float tm = a.m + 0.5f * m;
+    const glm::vec3 ts = a.s + (0.5f * m) * (xk - 0.25f * seg);
+    const glm::vec3 moment = glm::cross(ts - tm * c, r.g);
+    turn_internode(k, pp.frame, moment - moment_prev[k], r2, s, prev);
+    moment_prev[k] = moment;
+    out.m = a.m + m;
+    out.s = a.s + m * c;
+    // Disused pipes (skeleton.h): a tapered internode passes (r·(1 + τ·ℓ))^n down.
+    out.pipe = r.taper_n > 0 ? sum * std::pow(1.0f + t.pipe_taper * len, r.taper_n) : sum;
+    out.to = par;
+    return out;
+  }
+
+  // One sweep tips-first over the nodes alive at s among [0, end) (forward(end, true) has just
+  // cleared their loads). A parent's load sums its children's in falling index order. On the pool
+  // each task sums its own nodes' that way and keeps what its root adds to its trunk parent; the
+  // trunk's walk, falling through trunk nodes and roots alike, then adds those where the one-thread
+  // sweep would: every load is the same sum in the same order.
+  void reverse(int s, int prev, size_t end) {
+    const reverse_terms r = terms();
+    if (!split) {
+      for (size_t k = end; k-- > 0;) add(reverse_node(k, s, prev, r));
+      return;
+    }
+    parallel_jobs(split->job_end.size(), [&](size_t j) {
+      for (size_t i = j ? split->job_end[j - 1] : 0; i < split->job_end[j]; ++i) {
+        const uint32_t* first = split->task_first(i);
+        const uint32_t* last = std::lower_bound(first, split->task_last(i), uint32_t(std::min<size_t>(end, root_bit)));
+        push root;
+        for (const uint32_t* q = last; q-- != first;) {
+          const push u = reverse_node(*q, s, prev, r);
+          if (q == first) root = u;
+          else add(u);
+        }
+        split->pending[i] = root;
+      }
+    });
+    size_t task = split->pending.size();
+    for (size_t q = split->top.size(); q-- > 0;) {
+      const uint32_t e = split->top[q];
+      const size_t k = e & ~root_bit;
+      if (e & root_bit) --task;
+      if (k >= end) continue;
+      add(e & root_bit ? split->pending[task] : reverse_node(k, s, prev, r));
+    }
+  }
+
+  // A large tree's sweeps on the pool (job_pool.h): its subtrees of at most `grain` nodes are
+  // tasks, swept on the pool in chunks of about `grain` nodes; the trunk above them (every node
+  // with a larger subtree) on the calling thread, before the tasks going forward and after them
+  // going back. A node's pose reads only its parent's and each load is summed in the one-thread
+  // order (reverse), so the bends are the one-thread pass's bit for bit
+  // (JobPool.WoodPassOnThePoolIsTheOneThreadPass). 4 bytes a node while the pass runs.
+  struct pool_split {
+    std::vector<uint32_t> top;        // trunk nodes and task roots (root_bit set), ascending
+    std::vector<uint32_t> nodes;      // every task's nodes, ascending, task after task
+    std::vector<uint32_t> task_end;   // task i: nodes[task_end[i - 1], task_end[i])
+    std::vector<uint32_t> job_end;    // job j: tasks [job_end[j - 1], job_end[j])
+    std::vector<push> pending;        // per task: what its root adds to its trunk parent
+    const uint32_t* task_first(size_t i) const { return nodes.data() + (i ? task_end[i - 1] : 0); }
+    const uint32_t* task_last(size_t i) const { return nodes.data() + task_end[i]; }
+  };
+  static constexpr uint32_t root_bit = 0x80000000u;
+  // Below about 11,000 nodes the pool saved nothing: a small tree bends at every step, and each
+  // sweep's hand-over cost what its half saved (default tree, 19,723 nodes: 2.45 → 1.75 ms,
+  // sylva_microbench --benchmark_filter=WoodPassDefaultThreads).
+  static constexpr size_t pool_min_nodes = 16384;
+  std::unique_ptr<pool_split> split;   // null: one thread sweeps
+
+  void plan_pool(int threads) {
+    if (threads < 2 || n < pool_min_nodes || n >= root_bit) return;
+    const uint32_t grain = uint32_t(std::max<size_t>(n / (size_t(threads) * 8), 1024));
+    std::vector<uint32_t> a(n, 1);   // subtree sizes, then each node's task (trunk: ~0)
+    for (size_t k = n; k-- > 0;) {
       const int32_t par = t.parent[k];
-      load& a = acc[k];
-      const glm::vec3 xk = at[k].x;
-      float sum = 0, r2;
-      if (pipe) {
-        sum = a.pipe > 0 ? a.pipe : rt;
-        r2 = square_pipe ? sum : fast_pow(sum, two_over_e);
-      } else {
-        r2 = t.radius[k] * t.radius[k];
-      }
-      r2 = std::max(r2, min_beam_radius * min_beam_radius);
-      if (point_mass && k < point_mass->size() && (*point_mass)[k] > 0) {
-        a.m += (*point_mass)[k];
-        a.s += (*point_mass)[k] * xk;
-      }
       if (par < 0) continue;
-      const float len = rest_d[k].w;
-      // Wood (density × volume, the internode at its tip radius) and the foliage of a young shoot.
-      float m = p.density * pi * r2 * len;
-      if (s - int(t.born[k]) <= p.leaf_age) m += leaf_kg_per_m * len;
-      const pose& pp = at[size_t(par)];
-      const glm::vec3 seg = xk - pp.x;
-      const glm::vec3 c = xk - 0.5f * seg;
-      // The internode's own outer half acts at its three-quarter point.
-      const float tm = a.m + 0.5f * m;
-      const glm::vec3 ts = a.s + (0.5f * m) * (xk - 0.25f * seg);
-      const glm::vec3 moment = glm::cross(ts - tm * c, g);
-      turn_internode(k, pp.frame, moment - moment_prev[k], r2, s, prev);
-      moment_prev[k] = moment;
-      load& up = acc[size_t(par)];
-      up.m += a.m + m;
-      up.s += a.s + m * c;
-      // Disused pipes (skeleton.h): a tapered internode passes (r·(1 + τ·ℓ))^n down.
-      up.pipe += taper_n > 0 ? sum * std::pow(1.0f + t.pipe_taper * len, taper_n) : sum;
+      if (size_t(par) >= k) return;   // a parent after its child: the one-thread order only
+      a[size_t(par)] += a[k];
     }
+    constexpr uint32_t trunk = ~uint32_t(0);
+    auto sp = std::make_unique<pool_split>();
+    uint32_t tasks = 0;
+    size_t trunk_nodes = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const int32_t par = t.parent[k];
+      if (a[k] > grain) {
+        a[k] = trunk;
+        sp->top.push_back(uint32_t(k));
+        ++trunk_nodes;
+      } else if (par < 0 || a[size_t(par)] == trunk) {
+        a[k] = tasks++;
+        sp->top.push_back(uint32_t(k) | root_bit);
+      } else {
+        a[k] = a[size_t(par)];
+      }
+    }
+    if (trunk_nodes > n / 4 || tasks < 2) return;   // a long unbranched stem: little to share
+    sp->task_end.assign(tasks, 0);
+    for (size_t k = 0; k < n; ++k)
+      if (a[k] != trunk) ++sp->task_end[a[k]];
+    std::vector<uint32_t> cursor(tasks);
+    for (uint32_t i = 0, sum = 0; i < tasks; ++i) cursor[i] = sum, sum += sp->task_end[i], sp->task_end[i] = sum;
+    sp->nodes.resize(n - trunk_nodes);
+    for (size_t k = 0; k < n; ++k)
+      if (a[k] != trunk) sp->nodes[cursor[a[k]]++] = uint32_t(k);
+    for (uint32_t i = 0, in_job = 0; i < tasks; ++i) {
+      in_job += sp->task_end[i] - (i ? sp->task_end[i - 1] : 0);
+      if (in_job >= grain || i + 1 == tasks) sp->job_end.push_back(i + 1), in_job = 0;
+    }
+    sp->pending.resize(tasks);
+    split = std::move(sp);
   }
 
   // Replays the bend steps up to `step`, then leaves the positions of the tree at `step`.
   void run(const std::vector<uint16_t>& steps, int step) {
+    plan_pool(job_pool_threads());
     int prev = -1;
     for (uint16_t s : steps) {
       if (int(s) > step) break;

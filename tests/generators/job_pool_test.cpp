@@ -12,6 +12,7 @@
 #include "generators/job_pool.h"
 #include "render/mesh/mesh.h"
 #include "generators/guiding_vectors.h"
+#include "generators/wood.h"
 #include "render/io/preset.h"
 
 using namespace sylva;
@@ -155,3 +156,32 @@ TEST(JobPool, GuidingVectorEdgesOnALatticeAreTheOnesBuiltOneByOne) {
   }
 }
 
+
+// The wood pass sweeps a large tree's subtrees on the pool and its trunk on the calling thread: the
+// bent tree, its leaves and the bend replayed at earlier steps are the one-thread pass's, bit for
+// bit, on a tree that sheds (the default) and on nine trees in one skeleton (the forest's roots).
+TEST(JobPool, WoodPassOnThePoolIsTheOneThreadPass) {
+  for (const char* name : {"self_organizing_default", "species_forest"}) {
+    SCOPED_TRACE(name);
+    preset p;
+    ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
+    p.spec.wood = wood_params{};   // grown unbent, then bent here both ways
+    const tree_skeleton grown = grow(p.spec, grow_options{});
+    ASSERT_GT(grown.size(), 16384u);   // the pool's threshold in wood.cpp
+    wood_params w;
+    w.gravity = 1;
+    tree_skeleton one = grown, many = grown;
+    const int old = set_job_pool_limit(1);
+    apply_wood(one, w);
+    const std::vector<glm::vec3> one_mid = positions_at_step(one, one.steps / 2);
+    const std::vector<glm::vec3> one_late = positions_at_step(one, one.steps - 2);
+    set_job_pool_limit(old);
+    apply_wood(many, w);
+    ASSERT_NE(one.position, grown.position);   // it bent
+    EXPECT_EQ(one.position, many.position);
+    ASSERT_EQ(one.leaves.size(), many.leaves.size());
+    for (size_t k = 0; k < one.leaves.size(); ++k) ASSERT_EQ(one.leaves[k].position, many.leaves[k].position) << k;
+    EXPECT_EQ(one_mid, positions_at_step(many, many.steps / 2));
+    EXPECT_EQ(one_late, positions_at_step(many, many.steps - 2));
+  }
+}

@@ -2,6 +2,7 @@
 // benchmark, bench/self_organizing_642k.json). The growth runs once; each iteration bends a copy.
 #include <benchmark/benchmark.h>
 
+#include "generators/job_pool.h"
 #include "generators/self_organizing.h"
 #include "generators/wood.h"
 
@@ -67,3 +68,31 @@ static void BM_Grow642k(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Grow642k)->Unit(benchmark::kMillisecond);
+
+// Trees around the pool's threshold (wood.cpp: 16,384 nodes), on one thread (Arg 1) and on the
+// pool (Arg 0): the default tree and its 19,723 nodes, and the 642k tree.
+static void wood_threads(benchmark::State& state, const tree_skeleton& t) {
+  wood_params w;
+  w.gravity = 1;
+  const int old = set_job_pool_limit(int(state.range(0)));
+  for (auto _ : state) {
+    state.PauseTiming();
+    tree_skeleton c = t;
+    state.ResumeTiming();
+    apply_wood(c, w);
+    benchmark::DoNotOptimize(c.position.data());
+  }
+  set_job_pool_limit(old);
+  state.counters["nodes"] = double(t.size());
+}
+static void BM_WoodPassDefaultThreads(benchmark::State& state) {
+  static const tree_skeleton t = [] {
+    grow_options o;
+    o.seed = 1;
+    return grow_self_organizing(self_organizing_params{}, o);
+  }();
+  wood_threads(state, t);
+}
+BENCHMARK(BM_WoodPassDefaultThreads)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+static void BM_WoodPass642kThreads(benchmark::State& state) { wood_threads(state, tree_642k()); }
+BENCHMARK(BM_WoodPass642kThreads)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
