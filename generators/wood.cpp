@@ -425,8 +425,9 @@ struct engine {
   };
   static constexpr uint32_t root_bit = 0x80000000u;
   // Below about 11,000 nodes the pool saved nothing: a small tree bends at every step, and each
-  // sweep's hand-over cost what its half saved (default tree, 19,723 nodes: 2.45 → 1.75 ms,
-  // sylva_microbench --benchmark_filter=WoodPassDefaultThreads).
+  // sweep's hand-over cost what its half saved. The default tree (19,723 nodes) gains a little:
+  // 0.71 to 0.99 of its one-thread time in four runs of sylva_microbench
+  // --benchmark_filter=WoodPassDefaultThreads; the 642k tree 0.71.
   static constexpr size_t pool_min_nodes = 16384;
   std::unique_ptr<pool_split> split;   // null: one thread sweeps
 

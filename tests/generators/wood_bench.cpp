@@ -29,9 +29,10 @@ static const tree_skeleton& tree_642k() {
   return t;
 }
 
-// Bends a fresh copy of the 642k tree per iteration; the copy is not timed.
-static void bend_642k(benchmark::State& state, const wood_params& w) {
-  const tree_skeleton& t = tree_642k();
+// Bends a fresh copy of t per iteration (the copy is not timed), with the job pool capped at
+// `threads` (0: all of it; 1: the pass's one-thread sweeps).
+static void bend(benchmark::State& state, const tree_skeleton& t, const wood_params& w, int threads = 0) {
+  const int old = set_job_pool_limit(threads);
   for (auto _ : state) {
     state.PauseTiming();
     tree_skeleton c = t;
@@ -39,8 +40,10 @@ static void bend_642k(benchmark::State& state, const wood_params& w) {
     apply_wood(c, w);
     benchmark::DoNotOptimize(c.position.data());
   }
+  set_job_pool_limit(old);
   state.counters["nodes"] = double(t.size());
 }
+static void bend_642k(benchmark::State& state, const wood_params& w) { bend(state, tree_642k(), w); }
 
 static void BM_WoodPass642k(benchmark::State& state) {
   wood_params w;
@@ -74,16 +77,7 @@ BENCHMARK(BM_Grow642k)->Unit(benchmark::kMillisecond);
 static void wood_threads(benchmark::State& state, const tree_skeleton& t) {
   wood_params w;
   w.gravity = 1;
-  const int old = set_job_pool_limit(int(state.range(0)));
-  for (auto _ : state) {
-    state.PauseTiming();
-    tree_skeleton c = t;
-    state.ResumeTiming();
-    apply_wood(c, w);
-    benchmark::DoNotOptimize(c.position.data());
-  }
-  set_job_pool_limit(old);
-  state.counters["nodes"] = double(t.size());
+  bend(state, t, w, int(state.range(0)));
 }
 static void BM_WoodPassDefaultThreads(benchmark::State& state) {
   static const tree_skeleton t = [] {
