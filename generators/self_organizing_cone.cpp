@@ -6,7 +6,6 @@
 
 #include <glm/geometric.hpp>
 
-
 namespace sylva {
 
 perception_cone make_perception_cone(float perception_distance, float voxel_size, float voxel_metres) {

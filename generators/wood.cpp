@@ -388,7 +388,7 @@ struct engine {
     parallel_jobs(split->job_end.size(), [&](size_t j) {
       for (size_t i = j ? split->job_end[j - 1] : 0; i < split->job_end[j]; ++i) {
         const uint32_t* first = split->task_first(i);
-        const uint32_t* last = std::lower_bound(first, split->task_last(i), uint32_t(std::min<size_t>(end, root_bit)));
+        const uint32_t* last = std::lower_bound(first, split->task_last(i), uint32_t(end));   // end ≤ n < root_bit
         push root;
         for (const uint32_t* q = last; q-- != first;) {
           const push u = reverse_node(*q, s, prev, r);
