@@ -45,6 +45,11 @@ struct leaf_params {
   float clump_size = 1.2f;    // metres: half the extent of one limb mass
   float clump_variation = 0.3f;  // seeded density difference between limb masses
   int planes = 1;             // cards per leaf, turned evenly about its blade axis (crossed cards)
+  // Blades as geometry (render/mesh/leaf_blade.h): each card a grid cut to its picture's outline.
+  bool blades = true;         // false: flat cards
+  float fold = 14;            // degrees each half of the blade rises about the midrib
+  float curl = 22;            // degrees the blade turns down from petiole to tip (negative: up)
+  float shade_size = 0.3f;    // shade leaves larger, sun leaves smaller: 1 + shade_size (0.5 - sky)
   bool operator==(const leaf_params&) const = default;
 };
 
@@ -74,6 +79,10 @@ void visit_params(P& p, V&& visitor) {
   v(p.clumping, param_info{"leaf_clumping", "Clumping", "", 0, 1, "Shoots mode: leaves gather on the outer shoots of each limb mass, thinning in its interior and in the gaps between masses, so the crown breaks into clumps (0: spread evenly; the leaf count stays about the same)"});
   v(p.clump_size, param_info{"leaf_clump_size", "Clump size", "", 0.2f, 8, "Half the extent of one limb mass in metres: the largest subtrees this small each form one clump", param_log});
   v(p.clump_variation, param_info{"leaf_clump_variation", "Clump variation", "", 0, 1, "Seeded difference in leaf density from one limb mass to the next"});
+  v(p.blades, param_info{"leaf_blades", "Leaf blades", "", 0, 1, "Each leaf is a small mesh cut to the outline of its picture, folded along the midrib and curled, in the viewport and in every export (off: flat square cards, lighter for game budgets)"});
+  v(p.fold, param_info{"leaf_fold", "Midrib fold", "", 0, 60, "Degrees each half of the blade rises about the midrib: 0 flat, 20-30 a keeled leaf", param_degrees});
+  v(p.curl, param_info{"leaf_curl", "Blade curl", "", -90, 90, "Degrees the blade bends down over its length from petiole to tip (negative: up)", param_degrees});
+  v(p.shade_size, param_info{"leaf_shade_size", "Shade leaf size", "", 0, 1, "Leaves deep in the crown grow larger and those under open sky smaller, as shade and sun leaves do: a leaf's size is times 1 + this x (0.5 - its sky visibility from 0 to 1), from the crown occlusion (leaves the generator placed itself keep their sizes)"});
   v(p.planes, param_info{"leaf_planes", "Card planes", "", 1, 3, "Shoots mode: cards each leaf stands as, turned evenly about its blade axis. 1: one flat card; 2 or 3: crossed cards, so a needle shoot reads as a round brush from every side instead of a flat spray (conifers). Multiplies the leaf count"});
 }
 
@@ -88,6 +97,7 @@ inline bool param_relevant(const leaf_params& p, const void* field, const param_
   if (field == &p.cluster_size || field == &p.cluster_archetype) return shoots && p.clusters;
   if (field == &p.clumping || field == &p.planes) return shoots;
   if (field == &p.clump_size || field == &p.clump_variation) return shoots && p.clumping > 0;
+  if (field == &p.fold || field == &p.curl) return p.blades;
   return true;
 }
 

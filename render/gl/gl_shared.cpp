@@ -4,17 +4,30 @@
 #include "render/gl/overlays.h"
 #include "render/gl/shaders.h"
 #include "render/gl/wind_gl.h"
+#include "render/mesh/leaf_blade.h"
 
 namespace sylva {
 
 using namespace glsl;
+
+namespace {
+
+// The leaf vertex shader's blade table sizes (render/mesh/leaf_blade.h), after its #version line.
+std::string with_blade_sizes(std::string s) {
+  const size_t eol = s.find('\n');
+  const std::string sizes = "const int BLADE_VERTICES = " + std::to_string(blade_vertices) +
+                            ";\nconst int BLADE_PROTOTYPES = " + std::to_string(blade_prototypes) + ";\n";
+  return eol == std::string::npos ? s : s.substr(0, eol + 1) + sizes + s.substr(eol + 1);
+}
+
+}  // namespace
 
 std::shared_ptr<gl_shared> make_gl_shared() {
   auto s = std::make_shared<gl_shared>();
   const std::string bark_fs = lit_source((std::string(bark_tint_glsl) + bark_fs_body).c_str()), leaf_fs = lit_source(leaf_fs_body),
                     ground_fs = lit_source(ground_fs_body), sky_fs = sky_source(sky_fs_body),
                     occ_fs = sky_source(occlusion_fs_body);
-  const std::string bark_vs_wind = with_wind_glsl(bark_vs), leaf_vs_wind = with_wind_glsl(leaf_vs);
+  const std::string bark_vs_wind = with_wind_glsl(bark_vs), leaf_vs_wind = with_blade_sizes(with_wind_glsl(leaf_vs));
   s->bark = compile_program("bark", bark_vs_wind.c_str(), bark_fs.c_str());
   s->bark_depth = compile_program("bark depth", bark_vs_wind.c_str(), depth_fs);
   s->leaf = compile_program("leaf", leaf_vs_wind.c_str(), leaf_fs.c_str());

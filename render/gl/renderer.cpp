@@ -110,6 +110,8 @@ void bind_tree_textures(const renderer_gpu& r) {
   glBindTexture(GL_TEXTURE_2D_ARRAY, r.leaf_thickness_tex.id);
   glActiveTexture(GL_TEXTURE7);
   glBindTexture(GL_TEXTURE_2D, r.bark_rough_tex.id);
+  glActiveTexture(GL_TEXTURE9);   // unit 8 is the wind's (render/gl/wind_gl.cpp)
+  glBindTexture(GL_TEXTURE_BUFFER, r.blade_tex.id);
   glActiveTexture(GL_TEXTURE0);
 }
 
@@ -143,7 +145,12 @@ void draw_leaves(renderer_gpu& r) {
   ++r.counts.draw_calls;
   ++r.counts.leaf_draw_calls;
   glBindVertexArray(r.leaf_vao.id);
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
+  // Every leaf is its archetype's blade grid (render/mesh/leaf_blade.h); when none bends, the flat
+  // card's two triangles after the grid's in the same index buffer.
+  if (r.blade_shown.on && !r.blade_flat_shown)
+    glDrawElementsInstanced(GL_TRIANGLES, 3 * blade_triangles, GL_UNSIGNED_SHORT, nullptr, GLsizei(n));
+  else
+    glDrawElementsInstanced(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, (void*)(sizeof(uint16_t) * 3 * blade_triangles), GLsizei(n));
 }
 
 // ---------------------------------------------------------------- passes of the frame
@@ -249,6 +256,7 @@ void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setu
     set_uniform(r.shared->leaf_depth, "u_step", r.step);
     set_uniform(r.shared->leaf_depth, "u_radius", 2);
     set_uniform(r.shared->leaf_depth, "u_leaf", 3);
+    set_uniform(r.shared->leaf_depth, "u_blade", 9);
     set_uniform(r.shared->leaf_depth, "u_layers", r.leaf_layers);
     set_uniform(r.shared->leaf_depth, "u_cutoff", rp.alpha_cutoff);
     set_uniform(r.shared->leaf_depth, "u_shadow_pass", 1);   // the impostor's sun card casts (render/gl/impostor.h)
@@ -335,7 +343,9 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
       set_uniform(r.shared->leaf, "u_step", r.step);
       set_uniform(r.shared->leaf, "u_radius", 2);
       set_uniform(r.shared->leaf, "u_variation", rp.leaf_color_variation);
+      set_uniform(r.shared->leaf, "u_sun_tone", rp.leaf_sun_tone);
       set_uniform(r.shared->leaf, "u_leaf", 3);
+      set_uniform(r.shared->leaf, "u_blade", 9);
       set_uniform(r.shared->leaf, "u_layers", r.leaf_layers);
       set_uniform(r.shared->leaf, "u_leaf_normal", 5);
       set_uniform(r.shared->leaf, "u_leaf_thickness", 6);

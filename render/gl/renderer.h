@@ -43,6 +43,12 @@ struct tree_gpu {
   gl_vertex_array bark_vao, leaf_vao;
   gl_buffer bark_position, bark_normal, bark_uv, bark_node, bark_ao, bark_index, leaf_corner, leaf_instances, node_radius;
   gl_texture node_radius_tex;
+  // The leaves' blade grids (render/mesh/leaf_blade.h): their triangles (bound to leaf_vao) and the
+  // table of every prototype's vertices the leaf vertex shader reads, for the shape shown.
+  gl_buffer blade_index, blade_table;
+  gl_texture blade_tex;
+  leaf_blade_shape blade_shown;
+  bool blade_flat_shown = false, blade_uploaded = false;
   // The textures the tree is drawn with: the shared procedural maps (gl_shared), or its own when
   // own_bark / own_leaves (then freed with it).
   gl_texture bark_tex, bark_normal_tex, bark_rough_tex, leaf_tex, leaf_normal_tex, leaf_thickness_tex;

@@ -175,6 +175,24 @@ image scaled_to(const image& im, int size) {
 // The archetypes' layers, then the LOD levels' baked cluster cards (render/mesh/lod_cards.h), if any.
 }  // namespace
 
+void upload_blades(renderer_gpu& r, const leaf_blade_shape& shape) {
+  const bool flat = r.user_leaf;
+  if (r.blade_uploaded && shape == r.blade_shown && flat == r.blade_flat_shown) return;
+  std::vector<glm::vec4> table;
+  table.reserve(size_t(2 * blade_prototypes * blade_vertices));
+  for (int k = 0; k < blade_prototypes; ++k) {
+    const bool card = flat || k == leaf_archetype_count || archetype_is_fruit(leaf_archetype(k));
+    const auto grid = card ? blade_prototype(full_card_outline(), leaf_blade_shape{})
+                           : blade_prototype(shape.on ? archetype_outline(leaf_archetype(k)) : full_card_outline(), shape);
+    for (const blade_vertex& v : grid) table.emplace_back(v.position, v.uv.x), table.emplace_back(v.normal, v.uv.y);
+  }
+  glBindBuffer(GL_TEXTURE_BUFFER, r.blade_table.id);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  ++r.uploads_total;
+  r.blade_shown = shape, r.blade_flat_shown = flat, r.blade_uploaded = true;
+}
+
 void upload_procedural_leaves(renderer_gpu& r) {
   std::vector<const image*> color, normal, thickness;
   for (int i = 0; i < leaf_archetype_count; ++i) {
@@ -295,6 +313,7 @@ void update_user_textures(renderer_gpu& r, const render_params& rp) {
   }
   if (!r.user_bark && r.bark_shown != int(rp.bark)) upload_procedural_bark(r, rp.bark);
   if (!r.user_leaf && r.cards.get() != r.cards_shown) upload_procedural_leaves(r);   // a LOD's baked cards
+  upload_blades(r, r.blade_shown);   // the user's picture shows on flat cards
   if (paths_changed) check_gl("user textures");
 }
 

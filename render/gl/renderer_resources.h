@@ -17,6 +17,10 @@ void release_tree_textures(renderer_gpu& r);
 // Loads the user's bark and leaf PNGs when their paths change (a file that cannot be used is
 // reported and the procedural texture stays); re-uploads the archetypes as needed.
 void update_user_textures(renderer_gpu& r, const render_params& rp);
+// The blade table (render/mesh/leaf_blade.h) for `shape`: every archetype's grid cut to its
+// picture's outline, or every grid the flat card while the user's leaf picture shows; uploads only
+// when the shape or that choice changes.
+void upload_blades(renderer_gpu& r, const leaf_blade_shape& shape);
 // The uniforms of glsl::bark_tint_glsl (the bark's tint by height) on program p, which is in use.
 void set_bark_tint_uniforms(const gl_program& p, const render_params& rp);
 

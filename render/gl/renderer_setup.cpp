@@ -60,7 +60,7 @@ bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
   glGenVertexArrays(1, &r.bark_vao.id);
   glGenVertexArrays(1, &r.leaf_vao.id);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
-                       &r.leaf_corner, &r.leaf_instances, &r.node_radius})
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius, &r.blade_index, &r.blade_table})
     glGenBuffers(1, &b->id);
 
   // Bark: one buffer per attribute, matching tree_mesh's arrays so upload is a straight copy.
@@ -81,9 +81,17 @@ bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
   glVertexAttribPointer(4, 1, GL_FLOAT, GL_FALSE, 0, nullptr);   // enabled when a mesh brings its occlusion
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.bark_index.id);
 
-  // Leaves: a unit quad plus one leaf_instance per instance.
-  const float corners[8] = {-0.5f, 0, 0.5f, 0, -0.5f, 1, 0.5f, 1};
+  // Leaves: the blade grid's triangles plus one leaf_instance per instance; the leaf shader looks
+  // each grid vertex up in the blade table. Attribute 0 is the unit quad's corners for the impostor's
+  // atlas pass (render/gl/impostor.cpp), padded to the grid's vertex count.
+  float corners[2 * blade_vertices] = {-0.5f, 0, 0.5f, 0, -0.5f, 1, 0.5f, 1};
   glBindVertexArray(r.leaf_vao.id);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.blade_index.id);
+  // The grid's triangles, then the flat card's two from the grid's corners (drawn when no leaf bends).
+  std::vector<uint16_t> grid(blade_indices().begin(), blade_indices().end());
+  constexpr uint16_t tip = blade_rows * blade_row_vertices;
+  grid.insert(grid.end(), {0, blade_columns, tip + blade_columns, 0, tip + blade_columns, tip});
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(sizeof(uint16_t) * grid.size()), grid.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_corner.id);
   glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
   glEnableVertexAttribArray(0);
@@ -99,6 +107,11 @@ bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
   glBufferData(GL_TEXTURE_BUFFER, 8, nullptr, GL_DYNAMIC_DRAW);
   glBindTexture(GL_TEXTURE_BUFFER, r.node_radius_tex.id);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.node_radius.id);
+  glGenTextures(1, &r.blade_tex.id);
+  glBindBuffer(GL_TEXTURE_BUFFER, r.blade_table.id);
+  glBindTexture(GL_TEXTURE_BUFFER, r.blade_tex.id);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.blade_table.id);
+  upload_blades(r, leaf_blade_shape{});
 
   // Procedural textures (render/assets/textures.h): the app needs no asset files. All archetype sets are
   // made once per process, on two threads, and uploaded once per context (gl_shared).
@@ -117,13 +130,13 @@ void destroy_renderer(renderer_gpu& r) {
   destroy_overlays(r.overlay);
   for (gl_vertex_array* v : {&r.bark_vao, &r.leaf_vao, &r.empty_vao}) delete_gl(*v);
   for (gl_buffer* b : {&r.bark_position, &r.bark_normal, &r.bark_uv, &r.bark_node, &r.bark_ao, &r.bark_index,
-                       &r.leaf_corner, &r.leaf_instances, &r.node_radius, &r.wind_nodes})
+                       &r.leaf_corner, &r.leaf_instances, &r.node_radius, &r.wind_nodes, &r.blade_index, &r.blade_table})
     delete_gl(*b);
   delete_gl(r.wind_tex);
   r.wind_node_count = 0;
   // The tree's own textures; the shared procedural ones go with the context's set.
   release_tree_textures(r);
-  for (gl_texture* t : {&r.node_radius_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex,
+  for (gl_texture* t : {&r.node_radius_tex, &r.blade_tex, &r.shadow_tex, &r.hdr_color, &r.hdr_depth, &r.occlusion_tex, &r.rays_tex,
                         &r.march_tex, &r.average_tex})
     delete_gl(*t);
   for (gl_framebuffer* f : {&r.shadow_fbo, &r.hdr_fbo, &r.occlusion_fbo, &r.rays_fbo, &r.march_fbo, &r.average_fbo, &r.msaa_fbo})
@@ -175,6 +188,7 @@ void upload_tree(renderer_gpu& r, const tree_mesh& m) {
   if (m.cards) r.cards = m.cards;   // kept when LOD0 comes back: the layers stay valid
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;
+  upload_blades(r, m.blade);
   r.final_radius = m.final_radius;
   r.node_count = int(m.final_radius.size());
   r.radius_upload.assign(size_t(r.node_count) * 4, 0.0f);

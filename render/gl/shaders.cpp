@@ -117,11 +117,13 @@ void main() { if (v_alive < 0.999) discard; }
 )";
 
 const char* const leaf_vs = R"(#version 330 core
-layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation; layout(location = 3) in float i_size;
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
 layout(location = 7) in uint i_node;
-uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform int u_layers; uniform samplerBuffer u_radius;
+uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform float u_sun_tone; uniform int u_layers; uniform samplerBuffer u_radius;
+// The blade grids (render/mesh/leaf_blade.h): per archetype, then the flat card, BLADE_VERTICES
+// vertices of two texels each, (position xyz, u) and (normal xyz, v), in card units.
+uniform samplerBuffer u_blade;
 uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (render/gl/impostor.h) instead of its camera card
 // The season (render/mesh/season.h season_look): deciduous archetypes' colour range, share kept, size.
 uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uvec2 u_deciduous;
@@ -149,30 +151,41 @@ void main() {
     size *= u_season_scale;
     v_color = mix(u_autumn_a, u_autumn_b, leaf_random(uint(gl_InstanceID), 1u));
   }
-  // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h).
-  vec3 local = vec3(a_corner.x, a_corner.y, 0.0) * size;
+  bool plain = i_texture >= 128u;
+  // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h): the grid of
+  // the leaf's archetype, or the flat card for fruit, baked cards and the impostor.
+  int proto = (!plain && !fruit && i_texture < uint(BLADE_PROTOTYPES - 1)) ? int(i_texture) : BLADE_PROTOTYPES - 1;
+  int at = 2 * (proto * BLADE_VERTICES + gl_VertexID);
+  vec4 pa = texelFetch(u_blade, at), pb = texelFetch(u_blade, at + 1);
+  vec3 local = pa.xyz * size;
   v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend
-  v_normal = rotate(i_rotation, vec3(0.0, 0.0, 1.0));
-  // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image).
-  v_tangent = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
-  v_bitangent = rotate(i_rotation, vec3(0.0, 1.0, 0.0));
+  v_normal = rotate(i_rotation, pb.xyz);
+  // The card's frame is the normal map's tangent frame: +X across, +Y toward the tip (up the image),
+  // here made orthogonal to the bent blade's normal.
+  vec3 across = rotate(i_rotation, vec3(1.0, 0.0, 0.0));
+  v_tangent = normalize(across - v_normal * dot(v_normal, across));
+  v_bitangent = cross(v_normal, v_tangent);
   // Wind (render/mesh/wind.h): the card and its frame follow its branch, and its tip flaps along the normal.
   // An impostor card (texture >= 128, render/gl/impostor.h) carries final colours and does not flutter.
   v_world = wind_sway_frame(v_world, int(i_node), v_normal, v_tangent, v_bitangent);
-  bool plain = i_texture >= 128u;
   // Texture + 64 marks the impostor's sun card: shadow pass only; its camera card: lit pass only.
   if (plain && (i_texture >= 192u) != (u_shadow_pass != 0)) alive = false;
   v_plain = plain ? 1.0 : 0.0;
   if (!plain)
-    v_world = wind_flutter_frame(v_world, v_normal, v_bitangent, a_corner.y, size, 6.2831853 * hash(i_position.zxy));
-  v_uv = vec2(a_corner.x + 0.5, 1.0 - a_corner.y);   // image rows run tip (top) to petiole (bottom)
+    v_world = wind_flutter_frame(v_world, v_normal, v_bitangent, pa.y, size, 6.2831853 * hash(i_position.zxy));
+  v_uv = vec2(pa.w, pb.w);   // image rows run tip (top) to petiole (bottom)
   v_layer = float(int(plain ? i_texture & 63u : i_texture) % u_layers);
   v_ao = i_ao;
   // crown_outward (render/mesh/leaf_shading.cpp): the gradient of the ellipsoid through the leaf.
   vec3 g = (i_position - u_crown_centre) / (u_crown_radii * u_crown_radii);
   v_outward = length(g) > 1e-6 ? normalize(g) : vec3(0.0, 1.0, 0.0);
-  float h = hash(i_position);
-  v_tint = vec3(1.0) + u_variation * vec3(h - 0.5, 0.6 * (fract(h * 7.13) - 0.5), -0.5 * (h - 0.5));
+  // leaf_color_factor (render/mesh/leaf_shading.cpp), line for line: sun and shade leaves, twig and leaf.
+  float t_sky = clamp((i_ao - 0.35) / 0.65, 0.0, 1.0);
+  vec3 light = mix(vec3(1.0), mix(vec3(0.8, 0.84, 0.92), vec3(1.12, 1.1, 0.9), t_sky), clamp(u_sun_tone, 0.0, 1.0));
+  float hue = 0.7 * (leaf_random(i_node, 11u) - 0.5) + 0.3 * (leaf_random(uint(gl_InstanceID), 12u) - 0.5);
+  float lightness = 0.7 * (leaf_random(i_node, 13u) - 0.5) + 0.3 * (leaf_random(uint(gl_InstanceID), 14u) - 0.5);
+  vec3 twig = vec3(1.0) + clamp(u_variation, 0.0, 1.0) * vec3(hue + lightness, 0.6 * hue + lightness, -0.5 * hue + lightness);
+  v_tint = light * max(twig, vec3(0.0));
   if (plain || fruit) { v_tint = vec3(1.0); v_color = vec3(1.0); }   // texture_tint_gain is 1 (render/assets/textures.h)
   gl_Position = alive ? u_viewproj * vec4(v_world, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
 }

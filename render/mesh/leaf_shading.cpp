@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/mesh/season.h"
+
 namespace sylva {
 
 void crown_box::add(const glm::vec3& p) {
@@ -46,6 +48,19 @@ glm::vec3 blend_leaf_normal(const glm::vec3& side, const glm::vec3& outward, flo
   const float a = glm::length(across);
   if (!(a > 1e-4f)) return side;
   return min_leaf_normal_cos * side + std::sqrt(1.0f - min_leaf_normal_cos * min_leaf_normal_cos) * (across / a);
+}
+
+glm::vec3 leaf_color_factor(uint32_t node, uint32_t index, float visibility, float variation, float sun_tone) {
+  const float v = std::isfinite(visibility) ? visibility : 1.0f;
+  const float t = std::clamp((v - 0.35f) / 0.65f, 0.0f, 1.0f);   // 0 deep in the crown, 1 open sky
+  const float tone = std::clamp(std::isfinite(sun_tone) ? sun_tone : 0.0f, 0.0f, 1.0f);
+  const glm::vec3 light = glm::mix(glm::vec3(1.0f), glm::mix(glm::vec3(0.8f, 0.84f, 0.92f), glm::vec3(1.12f, 1.1f, 0.9f), t), tone);
+  // Seeded offsets (season_leaf_random, the shader's leaf_random), 70 % the twig's, 30 % the leaf's.
+  const float hue = 0.7f * (season_leaf_random(node, 11) - 0.5f) + 0.3f * (season_leaf_random(index, 12) - 0.5f);
+  const float lightness = 0.7f * (season_leaf_random(node, 13) - 0.5f) + 0.3f * (season_leaf_random(index, 14) - 0.5f);
+  const float var = std::clamp(std::isfinite(variation) ? variation : 0.0f, 0.0f, 1.0f);
+  const glm::vec3 twig = glm::vec3(1.0f) + var * glm::vec3(hue + lightness, 0.6f * hue + lightness, -0.5f * hue + lightness);
+  return light * glm::max(twig, glm::vec3(0.0f));
 }
 
 }  // namespace sylva

@@ -46,4 +46,14 @@ inline constexpr float leaf_back_offset = 0.002f;
 inline constexpr float min_leaf_normal_cos = 0.25f;
 glm::vec3 blend_leaf_normal(const glm::vec3& side, const glm::vec3& outward, float blend);
 
+// A leaf's colour factor (issue 52), multiplied into its tinted picture in the viewport's leaf
+// shader (render/gl/shaders.cpp, the same lines) and into every exported blade's COLOR_0:
+// - light: a leaf under open sky (sky visibility 1, leaf_instance::occlusion / 255) is lighter and
+//   yellower, one deep in the crown (0.35) darker and bluer, as sun and shade leaves differ;
+//   sun_tone 0 leaves the colour alone;
+// - twig and leaf: a seeded offset in hue and lightness, mostly shared by the leaves of one node
+//   (a twig's leaves grew together) and partly each leaf's own, scaled by variation.
+// `index` is the leaf's place in tree_mesh::leaves (the shader's gl_InstanceID).
+glm::vec3 leaf_color_factor(uint32_t node, uint32_t index, float visibility, float variation, float sun_tone);
+
 }  // namespace sylva

@@ -561,6 +561,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   };
   m.steps = std::max(t.steps, 0);
   m.radial_segments = std::clamp(p.radial_segments, 3, 256);
+  m.blade = leaf_blade_shape{p.leaves.blades, std::isfinite(p.leaves.fold) ? p.leaves.fold : 0.0f,
+                             std::isfinite(p.leaves.curl) ? p.leaves.curl : 0.0f};
   m.index_end.assign(size_t(m.steps) + 1, 0);
   m.leaf_end.assign(size_t(m.steps) + 1, 0);
   if (!structurally_sound(t)) return m;
@@ -639,9 +641,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
       m.message = "leaf cap reached: " + std::to_string(kept) + " leaves placed (raise Leaf cap or Leaf spacing)";
     m.leaves.resize(m.leaf_end.back());
     const uint8_t fallback = uint8_t(std::clamp(int(p.leaves.archetype), 0, leaf_archetype_count - 1));
+    // Sun and shade leaves for the foliage model's leaves; a generator's own keep the sizes it gave.
+    const float shade_size = own || !std::isfinite(p.leaves.shade_size) ? 0.0f : std::clamp(p.leaves.shade_size, 0.0f, 1.0f);
     constexpr size_t grain = 2048;
     leaf_jobs.count = (end + grain - 1) / grain;
-    leaf_jobs.run = [&, fallback](size_t j, glm::vec3& box_lo, glm::vec3& box_hi) {
+    leaf_jobs.run = [&, fallback, shade_size](size_t j, glm::vec3& box_lo, glm::vec3& box_hi) {
       glm::vec3 lo = box_lo, hi = box_hi;   // (in registers: the leaves written could alias the box)
       for (size_t k = j * grain; k < std::min(end, (j + 1) * grain); ++k) {
         if (slot[k] == UINT32_MAX) continue;
@@ -652,6 +656,11 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
         out = {gnarled_point(t, turn, disp, size_t(l.node), l.position), glm::vec4(q.x, q.y, q.z, q.w), l.size * scale,
                l.born, l.died, uint32_t(l.node), tex};
         shade_leaf(out, sky, lo, hi);
+        if (shade_size > 0 && !leaf_archetype_fruit[tex]) {   // sun and shade leaves (leaves.h leaf_shade_size)
+          const float open = std::clamp((float(out.occlusion) / 255.0f - 0.35f) / 0.65f, 0.0f, 1.0f);
+          out.size *= 1.0f + shade_size * (0.5f - open);
+          lo = glm::min(lo, out.position - glm::vec3(out.size)), hi = glm::max(hi, out.position + glm::vec3(out.size));
+        }
       }
       box_lo = lo, box_hi = hi;
     };

@@ -21,6 +21,7 @@
 #include "generators/skeleton.h"
 #include "generators/uninit_vector.h"
 #include "generators/vec_util.h"
+#include "render/mesh/leaf_blade.h"
 
 namespace sylva {
 
@@ -121,6 +122,7 @@ struct tree_mesh {
   int steps = 0;
   int radial_segments = 0;           // ring stride is radial_segments + 1
   std::string message;               // for the status bar, e.g. the leaf cap was reached
+  leaf_blade_shape blade;            // every leaf's blade mesh (render/mesh/leaf_blade.h); off: flat cards
   // LOD levels only (render/mesh/lod_cards.h): cluster cards baked from the tree's own leaves; a leaf
   // with texture leaf_archetype_count + k uses card k. Null for LOD0.
   std::shared_ptr<const baked_card_textures> cards;

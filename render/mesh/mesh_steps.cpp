@@ -30,6 +30,7 @@ uint64_t mesh_digest(const tree_mesh& m) {
   bytes(&m.bounds_min, sizeof m.bounds_min), bytes(&m.bounds_max, sizeof m.bounds_max);
   bytes(&m.steps, sizeof m.steps), bytes(&m.radial_segments, sizeof m.radial_segments);
   bytes(m.message.data(), m.message.size());
+  bytes(&m.blade.on, sizeof m.blade.on), bytes(&m.blade.fold, sizeof m.blade.fold), bytes(&m.blade.curl, sizeof m.blade.curl);
   return h;
 }
 

@@ -59,6 +59,7 @@ struct render_params {
   float leaf_normal_blend = 0.6f;   // leaf normals bent toward the crown (render/mesh/leaf_shading.h)
   float alpha_cutoff = 0.5f;
   float leaf_color_variation = 0.15f;
+  float leaf_sun_tone = 0.6f;       // sun leaves lighter, shade leaves darker (render/mesh/leaf_shading.h)
   // Season (render/mesh/season.h): the autumn colour runs from autumn_color to autumn_color_2 per leaf.
   leaf_season season = leaf_season::summer;
   leaf_habit habit = leaf_habit::by_archetype;
@@ -119,7 +120,8 @@ void visit_params(P& p, V&& visitor) {
   v(p.leaf_translucency, param_info{"leaf_translucency", "Leaf translucency", "", 0, 1, "Share of sunlight that glows through a leaf lit from behind"});
   v(p.leaf_normal_blend, param_info{"leaf_normal_blend", "Crown normals", "", 0, 1, "Leaves are lit as a volume: each card's normal bends toward the crown's outward direction by this share (0: flat cards, 1: the crown's shape alone), in the viewport and in exports"});
   v(p.alpha_cutoff, param_info{"alpha_cutoff", "Leaf alpha cutoff", "", 0.05f, 0.95f, "Leaf texels below this opacity are cut away"});
-  v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Random per-leaf variation of the tint"});
+  v(p.leaf_color_variation, param_info{"leaf_color_variation", "Leaf colour variation", "", 0, 1, "Seeded variation of the leaves' tint, mostly shared by the leaves of one twig, in the viewport and in exports"});
+  v(p.leaf_sun_tone, param_info{"leaf_sun_tone", "Sun and shade tone", "", 0, 1, "Leaves under open sky are lighter and yellower, leaves deep in the crown darker and bluer, as sun and shade leaves differ (0: one tone), in the viewport and in exports"});
   v(p.season, param_info{"season", "Season", "", 0, 3, "Spring: fresh light green, smaller leaves still unfolding; summer: the leaf colour; autumn: the autumn colours, some leaves fallen; winter: deciduous trees bare (conifers and palms keep theirs). Only the leaves change: no regrow", 0, "Season", leaf_season_names});
   v(p.habit, param_info{"leaf_habit", "Leaf habit", "", 0, 2, "Which leaves turn and fall: by archetype (needles, conifer sprays and palm fronds stay, blades fall), all (deciduous) or none (evergreen)", 0, nullptr, leaf_habit_names});
   v(p.autumn_color, param_info{"autumn_color", "Autumn colour", "", 0, 1, "Autumn leaf tint at one end of the per-leaf range (linear RGB)"});
