@@ -184,6 +184,7 @@ struct export_args {
   int step = -1, width = 1280, height = 720;
   std::vector<std::string> sets;
   bool instancing = false, animation = false, lods = false, compact = false;
+  std::string profile = "plain";   // --profile: plain, hero, hero-baked or game
   float seconds_per_step = 0.5f;
   float wind = 0;                  // --wind SECONDS: glTF loop length, or the .png's moment
   CLI::Option* seed_opt = nullptr;
@@ -351,7 +352,11 @@ int run_export(const export_args& a) {
 
     export_options o;
     o.step = a.step > t.steps ? -1 : a.step;
-    o.gltf_instancing = a.instancing;
+    const bool gltf = ext == ".glb" || ext == ".gltf";
+    // Profiles (docs/design/03-foliage.md): hero = blade leaves, instanced where glTF can carry
+    // them; hero-baked = blade leaves baked into the mesh; game = the LOD chain with its cards.
+    o.gltf_instancing = a.instancing || (a.profile == "hero" && gltf);
+    o.baked_blades = a.profile == "hero" || a.profile == "hero-baked";
     o.compact = a.compact && (ext == ".glb" || ext == ".gltf");
     if (a.compact && !o.compact) warn(path, "--compact applies to .glb and .gltf; ignored");
     o.growth_animation = a.animation;
@@ -359,7 +364,7 @@ int run_export(const export_args& a) {
     o.mesh = p.mesh;
     apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
     lod_export_data lods;   // --lods (app/cli/cli_lods.h): LOD1-3 and the impostor
-    if (a.lods)
+    if (a.lods || a.profile == "game")
       for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
     if (wind && format->wind && !format->render) o.wind_seconds = a.wind;
     else if (wind && !format->wind) warn(path, "--wind applies to " + export_format_list(&export_format::wind) + "; ignored");
@@ -427,6 +432,12 @@ int run_cli(int argc, char** argv) {
   exp->add_option("--width", ex.width, ".png width")->check(CLI::Range(16, 8192));
   exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));
   exp->add_flag("--instancing", ex.instancing, "glTF: leaves as EXT_mesh_gpu_instancing instead of baked quads");
+  exp->add_option("--profile", ex.profile,
+                  "Leaves for the target: plain (default: baked flat cards, every importer, Blender 3.4 included), "
+                  "hero (leaves as blade meshes; glTF instances them with EXT_mesh_gpu_instancing, for three.js, "
+                  "engines and film), hero-baked (blade meshes baked in, for importers without instancing; about 2.6 "
+                  "times plain's size), game (the LOD chain with baked cards and the impostor, as --lods)")
+      ->check(CLI::IsMember({"plain", "hero", "hero-baked", "game"}));
   exp->add_flag("--compact", ex.compact,
                 "glTF: quantized vertices (KHR_mesh_quantization), meshopt-compressed buffers (EXT_meshopt_compression), "
                 "opaque textures as JPEG");

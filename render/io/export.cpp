@@ -73,6 +73,8 @@ void apply_render_params(export_options& o, const render_params& rp) {
   o.leaf_color = o.season.evergreen_color;
   o.alpha_cutoff = rp.alpha_cutoff;
   o.leaf_normal_blend = rp.leaf_normal_blend;
+  o.leaf_color_variation = rp.leaf_color_variation;
+  o.leaf_sun_tone = rp.leaf_sun_tone;
   o.bark_texture = rp.bark_texture;
   o.leaf_texture = rp.leaf_texture;
   o.leaf_opacity = rp.leaf_opacity;

@@ -35,6 +35,10 @@ struct export_impostor {
 struct export_options {
   int step = -1;                        // export the tree as it stood at this step (-1: final)
   bool gltf_instancing = false;         // EXT_mesh_gpu_instancing for leaves instead of baked quads
+  // Baked leaves as the mesh's blades (render/mesh/leaf_blade.h, the hero profile) instead of flat
+  // cards: 24 triangles a leaf instead of 4, so off by default (docs/design/03-foliage.md). An
+  // instanced prototype is always the blade when the mesh has blades on.
+  bool baked_blades = false;
   // glTF: KHR_mesh_quantization (16-bit positions on a grid per mesh, 8-bit normals and tangents)
   // and EXT_meshopt_compression of every buffer view; textures without alpha as JPEG.
   bool compact = false;
@@ -59,6 +63,8 @@ struct export_options {
   float bark_base_height = 0;
   float alpha_cutoff = 0.5f;            // leaves: glTF alphaCutoff
   float leaf_normal_blend = 0.6f;       // leaf normals bent toward the crown (render/mesh/leaf_shading.h)
+  // Each leaf's colour factor in its COLOR_0 (leaf_color_factor, render/mesh/leaf_shading.h).
+  float leaf_color_variation = 0.15f, leaf_sun_tone = 0.6f;
   // The season (render/mesh/season.h): deciduous archetypes' materials take the middle of its colour
   // range, and its fallen leaves are left out. The default changes nothing (leaf_color is used).
   season_look season;
@@ -108,17 +114,19 @@ struct export_format {
   bool mesh;            // written from the mesh (the skeleton JSON needs none: nothing is meshed for it)
   // What the writer (or the renderer) holds on top of the mesh, per bark triangle and per leaf, for
   // the mesh budget (render/io/mesh_bound.h): measured peaks (`/usr/bin/time -v sylva export`) on bark-
-  // and leaf-heavy trees, with room for vector slack (docs/DESIGN-NOTES.md "Mesh bound").
+  // and leaf-heavy trees, with room for vector slack (docs/DESIGN-NOTES.md "Mesh bound"). A baked
+  // leaf is a blade of 24 vertices (render/mesh/leaf_blade.h, two faces of 12) where a card had 8,
+  // so the per-leaf figures measured on cards are taken three times.
   float writer_triangle_bytes, writer_leaf_bytes;
 };
 inline constexpr export_format export_format_table[] = {
     // ext     label            lods   wind   render manifest gltf   mesh   writer B/triangle, B/leaf
-    {".glb",  "glTF binary",   true,  true,  false, true,  true,  true, 340,  1700},
-    {".gltf", "glTF + .bin",   true,  true,  false, true,  true,  true, 340,  1700},
-    {".obj",  "OBJ + MTL",     true,  false, false, true,  false, true, 420,  1700},
+    {".glb",  "glTF binary",   true,  true,  false, true,  true,  true, 340,  5100},
+    {".gltf", "glTF + .bin",   true,  true,  false, true,  true,  true, 340,  5100},
+    {".obj",  "OBJ + MTL",     true,  false, false, true,  false, true, 420,  5100},
     {".json", "skeleton JSON", false, false, false, true,  false, false, 0,    0},
     {".png",  "render (PNG)",  false, true,  true,  false, false, true, 250,  120},
-    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false, true, 1800, 2900},
+    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false, true, 1800, 8700},
 };
 inline constexpr int export_format_count = int(sizeof export_format_table / sizeof export_format_table[0]);
 

@@ -314,7 +314,7 @@ export_result export_fbx(const tree_skeleton& t, const tree_mesh& m, const expor
       if (l.mesh) levels.push_back(l.mesh);
     for (size_t k = 0; k < levels.size(); ++k) {
       size_t tris = 0;
-      const auto parts = split_parts(t, *levels[k], final_step, true, src.one_leaf_material(), src.leaf_normal_blend(), src.bark_colors());
+      const auto parts = split_parts(t, *levels[k], final_step, true, src.one_leaf_material(), src.leaf_looks(), src.bark_colors());
       if (!b.add_trees(group, parts, tree, "_LOD" + std::to_string(k), tris)) {
         r.error = src.error;
         return r;
@@ -335,7 +335,7 @@ export_result export_fbx(const tree_skeleton& t, const tree_mesh& m, const expor
       }
       r.warning += (r.warning.empty() ? "" : "\n") + wind.note;
     }
-    const auto parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material(), src.leaf_normal_blend(), src.bark_colors());
+    const auto parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material(), src.leaf_looks(), src.bark_colors());
     if (!b.add_trees(scene->mRootNode, parts, tree, "", r.triangles)) {
       r.error = src.error;
       return r;

@@ -3,6 +3,7 @@
 
 #include "render/io/export.h"
 #include "render/mesh/lod_cards.h"
+#include "render/mesh/season.h"
 #include "render/io/export_wind.h"
 
 #include <sys/stat.h>
@@ -254,6 +255,7 @@ struct gltf_materials {
   std::array<int, leaf_slots> leaf = make_filled(-1);
   std::array<bool, leaf_slots> leaf_normal{};
   std::array<int, leaf_slots> quad_mesh = make_filled(-1);  // EXT_mesh_gpu_instancing: one card per slot
+  std::array<size_t, leaf_slots> quad_triangles{};           // ... and its triangles a side
 
   static std::array<int, leaf_slots> make_filled(int v) {
     std::array<int, leaf_slots> a;
@@ -331,7 +333,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
                            const std::string& prefix, size_t& triangles, std::vector<int>& out, int skin = -1,
                            const lod_name* level = nullptr) {
   const bool one = mats.src.one_leaf_material();
-  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one, mats.src.leaf_normal_blend(), mats.src.bark_colors());
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, step, !instanced, one, mats.src.leaf_looks(), mats.src.bark_colors());
   for (size_t k = 0; k < parts.size(); ++k) {
     const tree_part& part = parts[k];
     json tree = {{"name", prefix + (parts.size() > 1 ? "tree_" + std::to_string(k + 1) : "tree")}};
@@ -412,8 +414,15 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
         const int mat = mats.leaf_material(slot);
         if (mat < 0) return mats.src.error;
         geometry quad;
-        // Two sides, unbent: an instance's crown direction would need a normal per instance.
-        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, {});
+        // Two sides, unbent: an instance's crown direction would need a normal per instance. The
+        // prototype is the blade's full grid (render/mesh/leaf_blade.h), or the flat card.
+        const blade_mesh blade = slot < leaf_archetype_count && v.mesh->blade.on && !one && !archetype_is_fruit(leaf_archetype(slot))
+                                     ? export_blade_mesh(leaf_archetype(slot), v.mesh->blade, true)
+                                     : blade_mesh{};
+        leaf_bake look;
+        look.blade = &blade;
+        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, look);
+        mats.quad_triangles[s] = quad.index.size() / 6;
         mats.quad_mesh[s] = d.add_mesh(mats.src.leaf_name(slot), json::array({d.add_primitive(quad, mat, mats.leaf_normal[s])}));
       }
       json attrs = {{"TRANSLATION", d.add_vectors(tr[s], "VEC3", 0)}, {"ROTATION", d.add_vectors(rot[s], "VEC4", 0)},
@@ -424,7 +433,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
       out.push_back(d.add_node({{"name", prefix + mats.src.leaf_name(slot)}, {"mesh", mats.quad_mesh[s]},
                                 {"extensions", {{"EXT_mesh_gpu_instancing", {{"attributes", attrs}}}}}}));
       d.use("EXT_mesh_gpu_instancing", false);
-      triangles += 2 * tr[s].size();
+      triangles += tr[s].size() * mats.quad_triangles[s];
     }
   }
   return "";

@@ -17,6 +17,7 @@
 
 #include "render/io/export.h"
 #include "render/mesh/bark_tint.h"
+#include "render/mesh/leaf_blade.h"
 #include "render/mesh/leaf_shading.h"
 #include "render/mesh/lod_cards.h"
 #include "render/assets/textures.h"
@@ -69,15 +70,30 @@ struct material_pngs {
 
 int leaf_slot(const leaf_instance& l, bool one_leaf_material);
 
+// A leaf's blade mesh in card units (render/mesh/leaf_blade.h): the exporters' subset of its
+// archetype's grid, or the full grid for an instanced prototype. Triangles counter-clockwise from +Z.
+struct blade_mesh {
+  std::vector<blade_vertex> vertex;
+  std::vector<uint16_t> index;
+};
+blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool full_grid);
+// Per leaf slot, the blade to bake (empty: the flat card): the archetypes' own when the mesh's
+// blades are on and no user picture replaces them; fruit and baked cards stay cards.
+std::array<blade_mesh, leaf_archetype_count + max_baked_cards> slot_blades(const leaf_blade_shape& s, bool one_leaf_material,
+                                                                          bool full_grid);
+
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
-// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). A face per
-// side with two_sided (render/mesh/leaf_shading.h), the side looking out of the crown first; with a
-// crown, each side's normal is bent toward its outward direction by normal_blend.
+// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner); or, with
+// a blade, that blade's mesh with the same picture coordinates. A face per side with two_sided
+// (render/mesh/leaf_shading.h), the side looking out of the crown first; with a crown, each side's
+// normal is bent toward its outward direction by normal_blend.
 struct leaf_bake {
   const crown_ellipsoid* crown = nullptr;
   float normal_blend = 0;
   bool two_sided = true;
+  const blade_mesh* blade = nullptr;   // null or empty: the flat card
+  glm::vec3 color{1.0f};               // times the occlusion in COLOR_0 (leaf_color_factor)
 };
 void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b);
 
@@ -95,8 +111,15 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t);
 // case they are left to the caller. Baked leaves are two-sided, bent toward their tree's crown by
 // normal_blend (render/mesh/leaf_shading.h).
 // The bark's COLOR_0 is its crown occlusion times tint.ratio(y) (render/mesh/bark_tint.h).
+// How baked leaves look: normals bent toward the crown by normal_blend; COLOR_0 the crown
+// occlusion times leaf_color_factor(variation, sun_tone) (render/mesh/leaf_shading.h); blade
+// meshes or flat cards.
+struct leaf_look {
+  float normal_blend = 0, variation = 0, sun_tone = 0;
+  bool blades = false;   // bake the mesh's blades (when on) instead of flat cards
+};
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
-                                   float normal_blend, const bark_tint& tint = {});
+                                   const leaf_look& look, const bark_tint& tint = {});
 
 void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mesh_params& p, int step);
 
@@ -207,7 +230,7 @@ class material_source {
     return {o_.bark_color, o_.bark_base_color, vertex_colors_ ? o_.bark_base_height : 0.0f};   // NaN: blends() is false
   }
   void without_vertex_colors() { vertex_colors_ = false; }
-  float leaf_normal_blend() const { return o_.leaf_normal_blend; }
+  leaf_look leaf_looks() const { return {o_.leaf_normal_blend, o_.leaf_color_variation, o_.leaf_sun_tone, o_.baked_blades}; }
 
   // The PNGs of a material, made on first use; nullptr after an encoding failure (see error).
   const material_pngs* bark() {

@@ -60,7 +60,7 @@ export_result export_obj(const tree_skeleton& t, const tree_mesh& m, const expor
   step_view v;
   if (collect) v.skeleton = &t, v.mesh = &m;
   else view_at(v, t, m, o.mesh, s);
-  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material(), src.leaf_normal_blend());
+  std::vector<tree_part> parts = split_parts(*v.skeleton, *v.mesh, s, true, src.one_leaf_material(), src.leaf_looks());
   std::string text = "# Sylva tree: generator " + info.generator + ", seed " + std::to_string(info.seed) +
                      ", step " + std::to_string(s) + "\nmtllib " + file_name(stem) + ".mtl\n";
   size_t verts = 0;

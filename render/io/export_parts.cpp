@@ -34,6 +34,7 @@
 #include <stb_image.h>
 
 #include "render/io/preset.h"
+#include "render/mesh/season.h"
 #include "render/assets/textures.h"
 
 namespace sylva::export_internal {
@@ -42,17 +43,46 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material) {
   return one_leaf_material ? 0 : std::clamp(int(l.texture), 0, leaf_slots - 1);
 }
 
-// A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
-// skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
-// petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner). Each side
-// is a face of its own (render/mesh/leaf_shading.h): the side that looks out of the crown first, then,
-// with b.two_sided, the other a hair behind it; each normal is that side's, bent toward the
-// crown's outward direction by b.normal_blend.
+blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool full_grid) {
+  blade_mesh b;
+  const blade_outline& o = archetype_outline(a);
+  if (full_grid) {
+    const auto grid = blade_prototype(o, s);
+    b.vertex.assign(grid.begin(), grid.end());
+    b.index.assign(blade_indices().begin(), blade_indices().end());
+  } else {
+    const auto grid = export_blade(o, s);
+    b.vertex.assign(grid.begin(), grid.end());
+    b.index.assign(export_blade_indices().begin(), export_blade_indices().end());
+  }
+  return b;
+}
+
+std::array<blade_mesh, leaf_slots> slot_blades(const leaf_blade_shape& s, bool one_leaf_material, bool full_grid) {
+  std::array<blade_mesh, leaf_slots> out;
+  if (!s.on || one_leaf_material) return out;
+  for (int k = 0; k < leaf_archetype_count; ++k)
+    if (!archetype_is_fruit(leaf_archetype(k))) out[size_t(k)] = export_blade_mesh(leaf_archetype(k), s, full_grid);
+  return out;
+}
+
+// A leaf instance as a card of one blade length square (or its blade mesh), base at the petiole
+// (leaf frame of skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture
+// on it: the petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner).
+// Each side is a face of its own (render/mesh/leaf_shading.h): the side that looks out of the crown
+// first, then, with b.two_sided, the other a hair behind it; each normal is that side's, bent toward
+// the crown's outward direction by b.normal_blend.
 void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
+  static const blade_mesh card = [] {
+    blade_mesh c;
+    // The card's corners in the order of before: petiole left, petiole right, tip right, tip left.
+    for (const glm::vec2 p : {glm::vec2(-0.5f, 0), glm::vec2(0.5f, 0), glm::vec2(0.5f, 1), glm::vec2(-0.5f, 1)})
+      c.vertex.push_back({glm::vec3(p, 0), glm::vec3(0, 0, 1), glm::vec2(p.x + 0.5f, 1 - p.y)});
+    c.index = {0, 1, 2, 0, 2, 3};
+    return c;
+  }();
+  const blade_mesh& shape = b.blade && !b.blade->vertex.empty() ? *b.blade : card;
   const glm::quat q(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z);
-  const float h = l.size, w = l.size * 0.5f;
-  const glm::vec3 corner[4] = {{-w, 0, 0}, {w, 0, 0}, {w, h, 0}, {-w, h, 0}};
-  const glm::vec2 uv[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
   auto unit = [](glm::vec3 v, glm::vec3 fallback) {
     const float len = glm::length(v);
     return len > 1e-6f ? v / len : fallback;
@@ -62,30 +92,34 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
   const glm::vec3 out = b.crown ? crown_outward(*b.crown, l.position) : n;
   const glm::vec3 occlusion(float(l.occlusion) / 255.0f);
   const float outer = glm::dot(n, out) < 0 ? -1.0f : 1.0f;   // the side that looks out of the crown
+  const size_t count = shape.vertex.size();
   auto face = [&](float side) {
-    const glm::vec3 nf = blend_leaf_normal(side * n, out, b.normal_blend);
-    // Tangent along +u (local +X), made orthogonal to the bent normal. The bitangent normal x
-    // tangent runs up the image (local +Y) on the front, so w = +1; on the back the normal is
-    // turned over, so w = -1 keeps it running up the image.
-    const glm::vec4 t(unit(across - nf * glm::dot(nf, across), across), side);
     const glm::vec3 shift = side == outer ? glm::vec3(0) : -outer * n * (leaf_back_offset * l.size);
     const uint32_t base = uint32_t(g.position.size());
-    // The back face's corners go 1, 0, 2, 3 so that both faces' triangles use their vertices in
-    // order (vertex-fetch order, which meshoptimizer's index codec packs best); the base corners
-    // stay the first two of every face.
-    static constexpr int front_order[4] = {0, 1, 2, 3}, back_order[4] = {1, 0, 2, 3};
-    for (int j = 0; j < 4; ++j) {
-      const int k = side > 0 ? front_order[j] : back_order[j];
-      g.position.push_back(l.position + q * corner[k] + shift);
+    for (size_t j = 0; j < count; ++j) {
+      // The back face lists the first two vertices swapped, so both faces' triangles use their
+      // vertices in order (vertex-fetch order, which meshoptimizer's index codec packs best).
+      const size_t k = side > 0 || count < 2 || j > 1 ? j : 1 - j;
+      const blade_vertex& v = shape.vertex[k];
+      const glm::vec3 nf = blend_leaf_normal(side * unit(q * v.normal, n), out, b.normal_blend);
+      // Tangent along +u (local +X), made orthogonal to the bent normal. The bitangent normal x
+      // tangent runs up the image (local +Y) on the front, so w = +1; on the back the normal is
+      // turned over, so w = -1 keeps it running up the image.
+      const glm::vec4 t(unit(across - nf * glm::dot(nf, across), across), side);
+      g.position.push_back(l.position + q * (v.position * l.size) + shift);
       g.normal.push_back(nf);
-      g.uv.push_back(uv[k]);
+      g.uv.push_back(v.uv);
       g.tangent.push_back(t);
-      g.color.push_back(occlusion);
+      g.color.push_back(glm::min(occlusion * b.color, glm::vec3(1.0f)));   // glTF's COLOR_0 lies in 0..1
       g.node.push_back(l.node);
     }
-    // Counter-clockwise seen from the side the face looks to.
-    if (side > 0) for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.index.push_back(base + k);
-    else for (uint32_t k : {0u, 1u, 2u, 1u, 3u, 2u}) g.index.push_back(base + k);   // corners (1,0,2), (0,3,2)
+    auto local = [&](uint16_t i) { return side > 0 || count < 2 || i > 1 ? uint32_t(i) : uint32_t(1 - i); };
+    // Counter-clockwise seen from the side the face looks to: the back face reverses each triangle.
+    for (size_t t = 0; t + 2 < shape.index.size(); t += 3) {
+      const uint32_t a = local(shape.index[t]), b1 = local(shape.index[t + 1]), c = local(shape.index[t + 2]);
+      if (side > 0) g.index.insert(g.index.end(), {base + a, base + b1, base + c});
+      else g.index.insert(g.index.end(), {base + a, base + c, base + b1});
+    }
   };
   face(outer);
   if (b.two_sided) face(-outer);
@@ -134,7 +168,7 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t) {
 // baked into quads (one geometry per leaf slot) unless `bake` is false, in which case they are
 // left to the caller.
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
-                                   float normal_blend, const bark_tint& tint) {
+                                   const leaf_look& leaf_style, const bark_tint& tint) {
   const std::vector<int32_t> tree_of = plant_of_nodes(t);
   int trees = 0;
   for (int32_t k : tree_of) trees = std::max(trees, k + 1);
@@ -187,10 +221,22 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
       if (l.born <= step && step < l.died) crowns[part_of(l)].add(l.position);
     std::vector<leaf_bake> look(parts.size());
     std::vector<crown_ellipsoid> shape(parts.size());
-    for (size_t k = 0; k < parts.size(); ++k) shape[k] = crowns[k].ellipsoid(), look[k] = {&shape[k], normal_blend, true};
-    for (const leaf_instance& l : m.leaves)
-      if (l.born <= step && step < l.died)
-        bake_leaf(parts[part_of(l)].leaves[size_t(leaf_slot(l, one_leaf_material))], l, look[part_of(l)]);
+    for (size_t k = 0; k < parts.size(); ++k) shape[k] = crowns[k].ellipsoid(), look[k] = {&shape[k], leaf_style.normal_blend, true};
+    leaf_blade_shape baked = m.blade;
+    baked.on = baked.on && leaf_style.blades;
+    const std::array<blade_mesh, leaf_slots> blades = slot_blades(baked, one_leaf_material, false);
+    for (size_t i = 0; i < m.leaves.size(); ++i) {
+      const leaf_instance& l = m.leaves[i];
+      if (l.born <= step && step < l.died) {
+        const size_t slot = size_t(leaf_slot(l, one_leaf_material));
+        leaf_bake b = look[part_of(l)];
+        b.blade = &blades[slot];
+        // Fruit and a LOD's baked cards keep their own colours (season.h archetype_is_fruit).
+        const bool plain = slot >= size_t(leaf_archetype_count) || (!one_leaf_material && archetype_is_fruit(leaf_archetype(slot)));
+        if (!plain) b.color = leaf_color_factor(l.node, uint32_t(i), float(l.occlusion) / 255.0f, leaf_style.variation, leaf_style.sun_tone);
+        bake_leaf(parts[part_of(l)].leaves[slot], l, b);
+      }
+    }
   }
   for (tree_part& p : parts) {   // vertex-cache and fetch order for every exporter (meshoptimizer)
     optimize_geometry(p.bark);

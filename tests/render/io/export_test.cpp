@@ -216,7 +216,9 @@ TEST(Export, InstancedLeavesAreOneCardMeshPerArchetype) {
     ASSERT_TRUE(card) << name;
     ASSERT_EQ(card->primitives.size(), size_t(1));
     EXPECT_EQ(model.materials[size_t(card->primitives[0].material)].name, name);
-    EXPECT_EQ(model.accessors[card->primitives[0].attributes.at("POSITION")].count, size_t(8));   // two sides
+    // Two sides of the archetype's blade grid (render/mesh/leaf_blade.h); of a flat card with blades off.
+    EXPECT_EQ(model.accessors[card->primitives[0].attributes.at("POSITION")].count,
+              size_t(2 * (h.m.blade.on ? blade_vertices : 4)));
     for (const auto& node : model.nodes)
       if (node.name == name) {
         const auto& ext = node.extensions.at("EXT_mesh_gpu_instancing");

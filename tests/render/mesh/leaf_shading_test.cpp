@@ -12,6 +12,7 @@
 
 #include "generators/lsystem.h"
 #include "render/io/export.h"
+#include "render/mesh/leaf_blade.h"
 #include "render/mesh/leaf_shading.h"
 
 using namespace sylva;
@@ -64,13 +65,17 @@ TEST(LeafShading, BlendRunsFromTheCardToTheCrown) {
 
 // Every baked card is two single-sided faces, each wound toward the side its normal lights; a face
 // that looks out of the crown is lit from outside (render/mesh/leaf_shading.h).
+// Blades (render/mesh/leaf_blade.h) bake the same way, with 12 triangles a face instead of 2.
 TEST(LeafShading, ExportedCardsHaveAFacePerSideLitFromTheirSide) {
+  for (const bool blades : {false, true}) {
+  SCOPED_TRACE(blades ? "blades" : "cards");
   lsystem_params lp;
   lp.derivations = 6;
   const tree_skeleton t = grow_honda(lp, {});
   mesh_params p;
   p.leaves.mode = leaf_mode::tips;
   p.leaves.min_order = 1;
+  p.leaves.blades = blades;
   const tree_mesh m = mesh_tree(t, p);
   ASSERT_FALSE(m.leaves.empty());
   // The export bends toward the crown of the leaves alive at the exported (final) step.
@@ -91,6 +96,7 @@ TEST(LeafShading, ExportedCardsHaveAFacePerSideLitFromTheirSide) {
     o.mesh = p;
     o.texture_size = 32;
     o.leaf_normal_blend = blend;
+    o.baked_blades = blades;   // the hero profile bakes blades; plain bakes cards
     const fs::path file = fs::temp_directory_path() / ("sylva_leaf_shading_" + std::to_string(::getpid()) + ".glb");
     ASSERT_EQ(export_tree(t, m, {"lsystem", 1}, file.string(), o).error, "");
     tinygltf::TinyGLTF loader;
@@ -116,22 +122,28 @@ TEST(LeafShading, ExportedCardsHaveAFacePerSideLitFromTheirSide) {
           const glm::vec3 a = vec3_at(pos, index(k)), b = vec3_at(pos, index(k + 1)), c = vec3_at(pos, index(k + 2));
           const glm::vec3 facing = glm::normalize(glm::cross(b - a, c - a));
           const glm::vec3 n = vec3_at(nrm, index(k));
-          // The leaf's petiole: the middle of the first two of its four corners (bake_leaf).
+          // The leaf's petiole: the middle of the first two of its four corners (bake_leaf); a
+          // blade's triangle is judged from its own centre.
           const size_t corner0 = index(k) / 4 * 4;
-          const glm::vec3 out = crown_outward(crown, 0.5f * (vec3_at(pos, corner0) + vec3_at(pos, corner0 + 1)));
+          const glm::vec3 out = crown_outward(crown, blades ? (a + b + c) / 3.0f : 0.5f * (vec3_at(pos, corner0) + vec3_at(pos, corner0 + 1)));
           ++faces;
           EXPECT_GT(glm::dot(n, facing), 0.0f) << "a face lit from its back";
           if (glm::dot(facing, out) >= 0) {
             ++outer;
-            EXPECT_GE(glm::dot(n, out), -1e-4f) << "a face looking out of the crown lit from inside";
+            // A blade's vertex normal is smooth across its fold (up to 60 degrees off a triangle's).
+            if (!blades || glm::dot(facing, out) >= 0.9f)
+              EXPECT_GE(glm::dot(n, out), -1e-4f) << "a face looking out of the crown lit from inside";
           }
           if (glm::dot(n, facing) < 0.999f) ++bent;
         }
       }
     }
-    EXPECT_EQ(faces, 4 * alive);   // two faces of 2 triangles per card
-    EXPECT_NEAR(double(outer), double(faces) / 2, double(faces) / 100);   // one side of every card looks out
-    if (blend == 0) EXPECT_EQ(bent, size_t(0));
-    else EXPECT_GT(bent, faces / 2);
+    // Two faces of 2 triangles per card, of export_blade_triangles per blade.
+    EXPECT_EQ(faces, (blades ? 2 * size_t(export_blade_triangles) : 4) * alive);
+    // One side of every card looks out (a folded, curled blade's triangles nearly so).
+    EXPECT_NEAR(double(outer), double(faces) / 2, double(faces) / (blades ? 20 : 100));
+    if (blend == 0 && !blades) EXPECT_EQ(bent, size_t(0));   // a blade's normals are smooth across its fold
+    if (blend > 0) EXPECT_GT(bent, faces / 2);
+  }
   }
 }
