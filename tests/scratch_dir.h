@@ -29,6 +29,7 @@ struct scratch_dir {
   }
   ~scratch_dir() {
     std::error_code ec;
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_all, ec);   // a test may have locked it
     std::filesystem::remove_all(dir, ec);
   }
   scratch_dir(const scratch_dir&) = delete;
