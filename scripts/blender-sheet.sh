@@ -7,7 +7,7 @@
 #   bash scripts/blender-sheet.sh [SYLVA_BINARY] [PRESET_DIR] [OUT_PNG]
 #
 # SYLVA_BINARY defaults to ./build/app/sylva, PRESET_DIR to presets/, OUT_PNG to
-# docs/blender_species.png. SIZE (320) is each tile's size, SAMPLES (16) the Cycles samples,
+# out/blender_species.png (out/ is git-ignored). SIZE (320) is each tile's size, SAMPLES (16) the Cycles samples,
 # EXCLUDE (species_forest: nine trees, four million triangles) the presets left out, WORK_DIR
 # (a temporary directory) where the renders, leaf masks and leaves.json go, CONTROL=1 adds a
 # render of the first tree with black leaves to prove the measure sees them (and its tile),
@@ -19,7 +19,7 @@ set -euo pipefail
 
 SYLVA=${1:-./build/app/sylva}
 PRESETS=${2:-presets}
-OUT_PNG=${3:-docs/blender_species.png}
+OUT_PNG=${3:-out/blender_species.png}
 SIZE=${SIZE:-320}
 SAMPLES=${SAMPLES:-16}
 EXCLUDE=${EXCLUDE:-species_forest}

@@ -5,16 +5,16 @@
 #   bash scripts/compare-trees.sh [SYLVA_BINARY] [PRESET_DIR]
 #
 # SYLVA_BINARY defaults to ./build/app/sylva, PRESET_DIR to presets/ (both relative to where it
-# is run, normally the repository root). Writes docs/compare/*.png, docs/compare/coverage.json
-# and docs/side_by_side.png, and prints the coverage table. Installs what it needs on first use:
+# is run, normally the repository root). Writes out/compare/*.png, out/compare/coverage.json
+# and out/side_by_side.png (out/ is git-ignored), and prints the coverage table. Installs what it needs on first use:
 # Debian chromium and imagemagick (apt, only when missing) and tools/viewer's npm packages
 # (only when missing). SYLVA_CHROMIUM overrides the browser path; SIZE the image size (768).
 set -euo pipefail
 
 SYLVA=${1:-./build/app/sylva}
 PRESETS=${2:-presets}
-OUT_DIR=${OUT_DIR:-docs/compare}
-GRID=${GRID:-docs/side_by_side.png}
+OUT_DIR=${OUT_DIR:-out/compare}
+GRID=${GRID:-out/side_by_side.png}
 SIZE=${SIZE:-768}
 VIEWER="$(cd "$(dirname "$0")/../tools/viewer" && pwd)"
 start=$(date +%s)

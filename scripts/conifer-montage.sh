@@ -1,6 +1,7 @@
 #!/bin/bash
-# Makes docs/conifers.png: spruce, fir, cedar, cypress and pine side by side at 256 px, three.js
-# iso view above, front view below (the comparison's viewer). Usage: bash scripts/conifer-montage.sh [build]
+# Makes out/conifers.png (out/ is git-ignored): spruce, fir, cedar, cypress and pine side by side
+# at 256 px, three.js iso view above, front view below (the comparison's viewer).
+# Usage: bash scripts/conifer-montage.sh [build]
 set -e
 build=${1:-build}
 tmp=$(mktemp -d)
@@ -13,6 +14,7 @@ cd "$tmp"
 montage spruce_iso.png fir_iso.png cedar_iso.png cypress_iso.png pine_iso.png -tile 5x1 -geometry 256x256+2+2 iso.png
 montage spruce_front.png fir_front.png cedar_front.png cypress_front.png pine_front.png -tile 5x1 -geometry 256x256+2+2 front.png
 cd - >/dev/null
-montage "$tmp/iso.png" "$tmp/front.png" -tile 1x2 -geometry +0+0 docs/conifers.png
+mkdir -p out
+montage "$tmp/iso.png" "$tmp/front.png" -tile 1x2 -geometry +0+0 out/conifers.png
 rm -r "$tmp"
-echo docs/conifers.png
+echo out/conifers.png

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the same tree before and after the scene work of issue 13 (physical sky, volumetric
 # shafts, fog, ground, framing) at noon and golden hour, front-lit and backlit, and puts the eight
-# images side by side in docs/scene_before_after.png (top row: before; bottom row: after).
+# images side by side in out/scene_before_after.png (git-ignored) (top row: before; bottom row: after).
 #
 #   scripts/scene-before-after.sh OLD_SYLVA NEW_SYLVA [PRESET] [OUT]
 #
@@ -12,7 +12,8 @@ set -euo pipefail
 OLD=${1:?old sylva binary}
 NEW=${2:?new sylva binary}
 PRESET=${3:-presets/self_organizing_default.json}
-OUT=${4:-docs/scene_before_after.png}
+OUT=${4:-out/scene_before_after.png}
+mkdir -p "$(dirname "$OUT")"
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 run() { if [ -n "${DISPLAY:-}" ]; then "$@"; else xvfb-run -a "$@"; fi; }

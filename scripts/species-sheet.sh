@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # The species contact sheet (issue 12): every species preset at seeds 1 and 2, then seed 1 in autumn
 # and in winter, rendered by `sylva export ... .png` and assembled with ImageMagick's montage.
-#   bash scripts/species-sheet.sh [BUILD_DIR] [OUT_PNG]      (defaults: build, docs/species.png)
+#   bash scripts/species-sheet.sh [BUILD_DIR] [OUT_PNG]      (defaults: build, out/species.png; out/ is git-ignored)
 # Needs a display (run under xvfb-run -a -s "-screen 0 1280x1024x24" when there is none).
 # SPECIES="oak pine" limits the species; SIZE sets each tile's edge in pixels (default 256).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
-OUT=${2:-docs/species.png}
+OUT=${2:-out/species.png}
+mkdir -p "$(dirname "$OUT")"
 SIZE=${SIZE:-256}
 SYLVA="$BUILD/app/sylva"
 SPECIES=${SPECIES:-"oak maple beech birch ash poplar willow pine spruce fir cedar cypress palm sapling bush"}

@@ -1,4 +1,4 @@
-// The one long-lived growth worker: latest request wins, stale work is cancelled (DESIGN §5).
+// The one long-lived growth worker: latest request wins, stale work is cancelled (docs/design/09-editor.md).
 #pragma once
 
 #include <atomic>

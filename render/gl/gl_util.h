@@ -13,7 +13,7 @@
 
 namespace sylva {
 
-// Distinct types so that a buffer can never be bound as a texture (DESIGN §9).
+// Distinct types so that a buffer can never be bound as a texture (docs/design/08-renderer.md).
 struct gl_buffer { GLuint id = 0; };
 struct gl_texture { GLuint id = 0; };
 struct gl_vertex_array { GLuint id = 0; };

@@ -1,4 +1,5 @@
-// The frame renderer: programs, procedural textures, tree upload, and the passes of DESIGN §8.
+// The frame renderer: programs, procedural textures, tree upload, and the passes of
+// docs/design/08-renderer.md.
 #include "render/gl/renderer.h"
 #include "render/gl/shaders.h"
 #include "render/gl/renderer_resources.h"

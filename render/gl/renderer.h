@@ -1,5 +1,6 @@
-// The frame renderer (DESIGN §8): shadow -> lit (physical sky, ground, tree) -> light shafts (volumetric
-// ray march at half resolution, or occlusion + radial blur) -> auto exposure -> composite with fog and tonemap.
+// The frame renderer (docs/design/08-renderer.md): shadow -> lit (physical sky, ground, tree) -> light
+// shafts (volumetric ray march at half resolution, or occlusion + radial blur) -> auto exposure ->
+// composite with fog and tonemap.
 #pragma once
 
 #include <cstdint>

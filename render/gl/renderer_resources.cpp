@@ -416,7 +416,7 @@ void resize_shadow(renderer_gpu& r, int size) {
   check_gl("resize shadow map");
 }
 
-// Orthographic sun frustum fitted to the tree's bounds (DESIGN §8 pass 1).
+// Orthographic sun frustum fitted to the tree's bounds (docs/SCENE.md, "What a frame draws", 1).
 void set_bark_tint_uniforms(const gl_program& p, const render_params& rp) {
   set_uniform(p, "u_bark_color", rp.bark_color);
   set_uniform(p, "u_bark_base_color", rp.bark_base_color);

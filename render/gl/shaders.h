@@ -1,5 +1,5 @@
-// The GLSL of the frame renderer's programs (DESIGN §8), compiled by renderer.cpp. Sources that
-// share a prelude (the lighting, the sky) are assembled by the functions at the end.
+// The GLSL of the frame renderer's programs (docs/design/08-renderer.md), compiled by renderer.cpp.
+// Sources that share a prelude (the lighting, the sky) are assembled by the functions at the end.
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
 // The analytic daylight sky of Preetham, Shirley & Smits 1999, "A Practical Analytic Model for
 // Daylight": sky radiance, the sun's colour after the atmosphere, and the sky's irradiance as
-// first-order spherical harmonics for the ambient light (DESIGN §8 pass 4). CPU only.
+// first-order spherical harmonics for the ambient light (docs/SCENE.md, "What a frame draws"). CPU only.
 #pragma once
 
 #include <glm/vec3.hpp>

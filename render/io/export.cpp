@@ -39,7 +39,7 @@ namespace sylva {
 
 using namespace export_internal;
 
-// ---------------------------------------------------------------- skeleton JSON (DESIGN §6)
+// ---------------------------------------------------------------- skeleton JSON (docs/design/10-files.md)
 std::string skeleton_json(const tree_skeleton& full, const export_info& info, int step) {
   const tree_skeleton t = step >= 0 && step < full.steps ? skeleton_at_step(full, step) : full;
   json nodes;

@@ -1,4 +1,4 @@
-// Exporters: glTF 2.0 (.glb/.gltf), OBJ+MTL, and the skeleton JSON (DESIGN §6).
+// Exporters: glTF 2.0 (.glb/.gltf), OBJ+MTL, and the skeleton JSON (docs/design/10-files.md).
 #pragma once
 
 #include <atomic>
@@ -139,7 +139,7 @@ std::string export_format_list(bool export_format::*has = nullptr, const char* s
 export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const export_info& info,
                           const std::string& path, const export_options& o = {});
 
-// The skeleton JSON document (DESIGN §6) as text.
+// The skeleton JSON document (docs/design/10-files.md, "Exports") as text.
 std::string skeleton_json(const tree_skeleton& t, const export_info& info, int step = -1);
 
 }  // namespace sylva

@@ -1,4 +1,5 @@
-// Preset JSON (DESIGN §6) driven by visit_params (`--set`: preset_set.cpp; file writes: file_io.cpp).
+// Preset JSON (docs/design/10-files.md) driven by visit_params (`--set`: preset_set.cpp; file
+// writes: render/files.cpp).
 #include "render/io/preset.h"
 #include "render/io/preset_detail.h"
 

@@ -1,5 +1,5 @@
-// The preset format (DESIGN §6): the preset struct, its JSON and `--set`, and safe file writing.
-// Core I/O returns errors as values, never throws.
+// The preset format (docs/design/10-files.md): the preset struct, its JSON and `--set`, and safe
+// file writing. Core I/O returns errors as values, never throws.
 #pragma once
 
 #include <cstddef>

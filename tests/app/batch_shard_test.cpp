@@ -27,10 +27,8 @@ std::vector<std::string> lines_of(const fs::path& p) {
   return out;
 }
 
-struct batch_dir {
-  fs::path dir = fs::temp_directory_path() / ("sylva_shard_test_" + std::to_string(::getpid()));
-  batch_dir() { fs::remove_all(dir); fs::create_directories(dir); }
-  ~batch_dir() { std::error_code ec; fs::remove_all(dir, ec); }
+struct batch_dir : sylva_test::scratch_dir {
+  batch_dir() : scratch_dir("sylva_shard_test") {}
 };
 
 const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";

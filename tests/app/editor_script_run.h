@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "../gl/gl_test_context.h"   // have_display
+#include "../scratch_dir.h"
 
 namespace sylva_test {
 
@@ -29,30 +30,9 @@ inline ::testing::AssertionResult script_passed(const run_result& r) {
   return ::testing::AssertionFailure() << "exit " << r.code << "\n" << r.output;
 }
 
-// The folders test_dir has named, removed when the test process exits: a session test reads its
-// log and files until it ends (a failure prints the log), so none goes sooner, and none is left
-// in TMPDIR after the run.
-struct test_dirs {
-  std::vector<std::filesystem::path> named;
-  ~test_dirs() {
-    for (const std::filesystem::path& d : named) {
-      std::error_code ec;
-      std::filesystem::remove_all(d, ec);
-    }
-  }
-};
-inline test_dirs& named_test_dirs() {
-  static test_dirs dirs;
-  return dirs;
-}
-
-// A folder of this test process's own, so that parallel runs do not share files.
-inline std::filesystem::path test_dir(const std::string& name) {
-  std::filesystem::path d = std::filesystem::temp_directory_path() / ("sylva_editor_" + name + "_" + std::to_string(getpid()));
-  std::vector<std::filesystem::path>& named = named_test_dirs().named;
-  if (std::find(named.begin(), named.end(), d) == named.end()) named.push_back(d);
-  return d;
-}
+// A path of this test process's own (tests/scratch_dir.h), so that parallel runs do not share files;
+// it stays until the process exits, since a session test reads its log and files until it ends.
+inline std::filesystem::path test_dir(const std::string& name) { return scratch_path("sylva_editor_" + name); }
 
 // The editor in an 800x500 window with `preset`, its home in test_dir(name)/home, driven by
 // `script`; `env` goes before the command ("XDG_CACHE_HOME='/tmp/x' ").

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "app/editor/editor_settings.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -34,13 +35,6 @@ void expect_ignored(const std::string& text, const std::string& why) {
   EXPECT_NE(notes[0].find("line 1: "), std::string::npos) << notes[0];
   EXPECT_NE(notes[0].find(why), std::string::npos) << notes[0];
   EXPECT_NE(notes[0].find("; ignored"), std::string::npos) << notes[0];
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("sylva_settings_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
 }
 
 }  // namespace
@@ -122,7 +116,8 @@ TEST(EditorSettings, SavedTextReadsBackExactly) {
 }
 
 TEST(EditorSettings, UnreadableFilesGiveDefaultsAndSaySo) {
-  const fs::path home = scratch("load");
+  const sylva_test::scratch_dir scratch("sylva_settings_load");
+  const fs::path& home = scratch.dir;
   std::vector<std::string> notes;
   EXPECT_EQ(load_settings(home.string(), &notes), editor_settings{});   // none yet: no message
   EXPECT_TRUE(notes.empty());
@@ -142,7 +137,6 @@ TEST(EditorSettings, UnreadableFilesGiveDefaultsAndSaySo) {
   EXPECT_EQ(load_settings(home.string(), &notes).node_budget, 3000);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_EQ(notes[0].rfind((home / "settings.ini").string() + ": line 1: window height 0", 0), 0u) << notes[0];
-  fs::remove_all(home);
 }
 
 TEST(EditorSettings, RecoveryFilesAreChecked) {
@@ -168,7 +162,8 @@ TEST(EditorSettings, RecoveryFilesAreChecked) {
 TEST(EditorSettings, EditorStartsWhateverIsInItsFolder) {
   const char* d = std::getenv("DISPLAY");
   if (!d || !*d) GTEST_SKIP() << "no DISPLAY";
-  const fs::path home = scratch("editor");
+  const sylva_test::scratch_dir scratch("sylva_settings_editor");
+  const fs::path& home = scratch.dir;
   std::ofstream(home / "settings.ini") << "window 10 10 800 -5 0\nwindow 10 10 800\nnode_budget -1\nrecent \x01\n";
   std::ofstream(home / ".recovery.json") << "{\"sylva_preset\": 1, \"generator\": [";
   const std::string log = (home.parent_path() / (home.filename().string() + ".log")).string();
@@ -184,6 +179,5 @@ TEST(EditorSettings, EditorStartsWhateverIsInItsFolder) {
   EXPECT_NE(out.str().find("line 2: window expects"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("line 4: recent file: the path holds a control character"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find(".recovery.json cannot be offered back"), std::string::npos) << out.str();
-  fs::remove_all(home);
   fs::remove(log);
 }

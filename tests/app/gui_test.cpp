@@ -15,6 +15,7 @@
 
 #include "app/common/gl_window.h"
 #include "render/gl/renderer.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 
@@ -47,8 +48,14 @@ picture load(const std::string& path) {
   return im;
 }
 
+// A file in this process's scratch folder (tests/scratch_dir.h), removed when the process exits.
 std::string temp_path(const char* name) {
-  return (std::filesystem::temp_directory_path() / (std::string("sylva_gui_") + name)).string();
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path d = sylva_test::scratch_path("sylva_gui");
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return (dir / name).string();
 }
 
 preset honda_a() {

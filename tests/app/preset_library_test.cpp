@@ -8,6 +8,7 @@
 
 #include "app/editor/preset_library.h"
 #include "render/io/preset.h"
+#include "tests/scratch_dir.h"
 
 namespace sylva {
 namespace {
@@ -67,9 +68,8 @@ TEST(PresetLibrary, ThumbnailKeyFollowsContentAndSize) {
 }
 
 TEST(PresetLibrary, ThumbnailKeyChangesWhenAPresetFileIsEdited) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sylva_preset_library_test";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_preset_library_test");
+  const std::filesystem::path& dir = scratch.dir;
   preset p = default_preset();
   p.name = "Edited";
   p.description = "A preset written by the test";
@@ -83,13 +83,11 @@ TEST(PresetLibrary, ThumbnailKeyChangesWhenAPresetFileIsEdited) {
   EXPECT_NE(after[0].thumbnail_key, before);
   EXPECT_EQ(after[0].name, "Edited");
   EXPECT_EQ(after[0].generator, "lsystem");
-  std::filesystem::remove_all(dir);
 }
 
 TEST(PresetLibrary, BrokenFilesAreListedWithTheirError) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sylva_preset_library_broken";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_preset_library_broken");
+  const std::filesystem::path& dir = scratch.dir;
   ASSERT_EQ(write_file_atomic((dir / "bad.json").string(), "{ \"sylva_preset\": 1, "), "");
   ASSERT_EQ(write_file_atomic((dir / "notes.txt").string(), "not a preset"), "");
   const std::vector<preset_entry> entries = scan_preset_folder(dir.string(), 128);
@@ -97,7 +95,6 @@ TEST(PresetLibrary, BrokenFilesAreListedWithTheirError) {
   EXPECT_FALSE(entries[0].error.empty());
   EXPECT_EQ(entries[0].name, "bad");   // the file stem stands in for the name
   EXPECT_TRUE(scan_preset_folder((dir / "missing").string(), 128).empty());
-  std::filesystem::remove_all(dir);
 }
 
 // The binary's tree and the working folder both ship presets/: a file with the same name and bytes
@@ -105,8 +102,8 @@ TEST(PresetLibrary, BrokenFilesAreListedWithTheirError) {
 // differs (an edited copy) or has another name keeps its own card.
 TEST(PresetLibrary, APresetShippedInTwoFoldersIsOneCard) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "sylva_preset_library_twice";
-  fs::remove_all(dir);
+  const sylva_test::scratch_dir scratch("sylva_preset_library_twice");
+  const fs::path& dir = scratch.dir;
   fs::create_directories(dir / "bin" / "presets");
   fs::create_directories(dir / "work" / "presets");
   preset p = default_preset();
@@ -121,7 +118,6 @@ TEST(PresetLibrary, APresetShippedInTwoFoldersIsOneCard) {
   std::vector<std::string> paths;
   for (const preset_entry& e : entries) paths.push_back(fs::relative(e.path, dir).string());
   EXPECT_EQ(paths, (std::vector<std::string>{"bin/presets/oak.json", "work/presets/edited.json", "work/presets/oak_copy.json"}));
-  fs::remove_all(dir);
 }
 
 TEST(PresetLibrary, SearchMatchesEveryWordCaseInsensitivelyAndRequiresEveryTag) {

@@ -15,6 +15,7 @@
 #include <stb/stb_image.h>
 
 #include "tests/run_sylva.h"
+#include "tests/scratch_dir.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -22,23 +23,15 @@ using json = nlohmann::json;
 namespace {
 
 
+// This process's scratch folder (tests/scratch_dir.h), removed when the process exits.
 fs::path scratch() {
   static const fs::path d = [] {
-    fs::path p = fs::temp_directory_path() / ("sylva_cli_test_" + std::to_string(::getpid()));
+    fs::path p = sylva_test::scratch_path("sylva_cli_test");
     fs::create_directories(p);
     return p;
   }();
   return d;
 }
-
-// Removes the scratch folder once every test has run.
-struct scratch_cleanup : testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(scratch(), ec);
-  }
-};
-const auto* const cleanup_env = testing::AddGlobalTestEnvironment(new scratch_cleanup);
 
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "render/io/preset.h"
+#include "tests/scratch_dir.h"
 
 namespace {
 
@@ -48,8 +49,8 @@ double halves_differ(const std::string& png, int* width = nullptr) {
 
 TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_ab_" + std::to_string(getpid()));
-  fs::remove_all(dir);
+  const sylva_test::scratch_dir scratch("sylva_editor_ab");
+  const fs::path& dir = scratch.dir;
   fs::create_directories(dir / "home");
   sylva::preset bush;
   ASSERT_TRUE(sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/self_organizing_seed001_bush.json", bush).ok);
@@ -84,14 +85,13 @@ TEST(EditorABSession, SideBySideShowsBothSlotsAndEditsOnlyB) {
   EXPECT_GE(d_same, 0);
   EXPECT_LT(d_same, 0.002) << "A and B are the same tree: the halves should match";
   EXPECT_GT(d_differ, 0.01) << "B was edited: the halves should differ";
-  fs::remove_all(dir);
 }
 
 // Slot B's unsaved work has its own recovery file, and comes back as slot B on the next start.
 TEST(EditorABSession, SlotBsUnsavedWorkIsRecoveredAsSlotB) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
-  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_ab_recovery_" + std::to_string(getpid()));
-  fs::remove_all(dir);
+  const sylva_test::scratch_dir scratch("sylva_editor_ab_recovery");
+  const fs::path& dir = scratch.dir;
   fs::create_directories(dir / "home");
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
   auto run = [&](const std::string& script) {
@@ -115,5 +115,4 @@ TEST(EditorABSession, SlotBsUnsavedWorkIsRecoveredAsSlotB) {
                            "expect_modified 0\n");
   EXPECT_EQ(code2, 0) << out2;
   EXPECT_EQ(out2.find("FAIL"), std::string::npos) << out2;
-  fs::remove_all(dir);
 }

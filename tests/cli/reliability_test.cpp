@@ -13,18 +13,12 @@
 
 #include "render/io/preset.h"
 #include "tests/run_sylva.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path scratch_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("sylva_reliability_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 [[maybe_unused]] void write_text(const fs::path& p, const std::string& s) {
   std::ofstream f(p, std::ios::binary);
@@ -82,9 +76,9 @@ TEST(Utf8, SetRefusesBadBytesAndSaveNeverThrows) {
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(valid_utf8(q.name));
   EXPECT_EQ(q.name, "bad \xEF\xBF\xBD");
-  const fs::path dir = scratch_dir("utf8");
+  const sylva_test::scratch_dir scratch("sylva_reliability_utf8");
+  const fs::path& dir = scratch.dir;
   EXPECT_EQ(save_preset_file(p, (dir / "p.json").string()), "");
-  fs::remove_all(dir);
 }
 
 TEST(Utf8, LoaderRejectsBadBytesWithAClearError) {
@@ -101,7 +95,8 @@ TEST(InputFiles, DevicesAndFifosAreRefusedAtOnce) {
   const auto t0 = std::chrono::steady_clock::now();
   std::string e = read_file("/dev/zero", text);
   EXPECT_NE(e.find("not a regular file"), std::string::npos) << e;
-  const fs::path dir = scratch_dir("fifo");
+  const sylva_test::scratch_dir scratch("sylva_reliability_fifo");
+  const fs::path& dir = scratch.dir;
   const fs::path fifo = dir / "pipe.json";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   e = read_file(fifo.string(), text);  // no writer: must neither block nor read
@@ -121,11 +116,11 @@ TEST(InputFiles, DevicesAndFifosAreRefusedAtOnce) {
   }
   EXPECT_LT(seconds_since(t0), 2.0);
   EXPECT_EQ(text, "kept");
-  fs::remove_all(dir);
 }
 
 TEST(InputFiles, SizeLimitsAreEnforced) {
-  const fs::path dir = scratch_dir("size");
+  const sylva_test::scratch_dir scratch("sylva_reliability_size");
+  const fs::path& dir = scratch.dir;
   const fs::path big = dir / "big.json";
   {  // sparse: the size is there without writing the bytes
     std::ofstream f(big, std::ios::binary);
@@ -146,7 +141,6 @@ TEST(InputFiles, SizeLimitsAreEnforced) {
   sc.envelope = envelope_shape::mesh;
   sc.envelope_mesh = big.string();
   EXPECT_NE(sample_envelope(sc, 1).error.find("256 MB limit"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 TEST(InputFiles, EnvelopeObjParsesFromText) {
@@ -175,20 +169,21 @@ TEST(Sweep, OutOfRangeValueRefusesTheWholeSweep) {
 }
 
 TEST(Sweep, CliWritesNothingWhenAnyValueIsBad) {
-  const fs::path dir = scratch_dir("sweep");
+  const sylva_test::scratch_dir scratch("sylva_reliability_sweep");
+  const fs::path& dir = scratch.dir;
   const std::string preset_path = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
   const sylva_run r = run_sylva("", "export '" + preset_path + "' -o '" + (dir / "t.json").string() +
                                         "' --set derivations=0:30:4");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("derivations"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::is_empty(dir));
-  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------- item 6: symlinks and permissions
 
 TEST(AtomicWrite, KeepsPermissionsAndWritesThroughSymlinks) {
-  const fs::path dir = scratch_dir("links");
+  const sylva_test::scratch_dir scratch("sylva_reliability_links");
+  const fs::path& dir = scratch.dir;
   const fs::path file = dir / "private.obj";
   write_text(file, "old");
   ASSERT_EQ(::chmod(file.c_str(), 0600), 0);
@@ -221,7 +216,6 @@ TEST(AtomicWrite, KeepsPermissionsAndWritesThroughSymlinks) {
   for (const auto& e : fs::recursive_directory_iterator(dir))
     temporaries += e.path().filename().string().find(".tmp-") != std::string::npos;
   EXPECT_EQ(temporaries, 0u);
-  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------- items 7, 8: versions and caps
@@ -276,7 +270,8 @@ TEST(PresetLimits, TagsListsAndTextAreCapped) {
 // ---------------------------------------------------------------- item 3: bench and bad names
 
 TEST(BenchCli, NonUtf8FileNameIsReportedAndTheRunGoesOn) {
-  const fs::path dir = scratch_dir("bench");
+  const sylva_test::scratch_dir scratch("sylva_reliability_bench");
+  const fs::path& dir = scratch.dir;
   const std::string source = read_text(fs::path(SYLVA_SOURCE_DIR) / "presets" / "lsystem_honda_a.json");
   const fs::path bad = dir / "tree_\xFF\xFE.json", good = dir / "tree_good.json";
   write_text(bad, source);
@@ -294,7 +289,6 @@ TEST(BenchCli, NonUtf8FileNameIsReportedAndTheRunGoesOn) {
   EXPECT_EQ(lines[0]["preset"], "tree_\xEF\xBF\xBD\xEF\xBF\xBD");
   EXPECT_EQ(lines[1]["preset"], "tree_good");
   EXPECT_GT(lines[1]["nodes"].get<int>(), 0);
-  fs::remove_all(dir);
 }
 
 TEST(BenchCli, MissingFileMessageNamesTheProgram) {
@@ -306,7 +300,8 @@ TEST(BenchCli, MissingFileMessageNamesTheProgram) {
 // An export whose file name is not UTF-8: the glTF's URIs are percent-encoded, the JSON never
 // throws, and every file it names is there.
 TEST(Utf8, GltfExportToANonUtf8NameWritesValidJson) {
-  const fs::path dir = scratch_dir("gltf_name");
+  const sylva_test::scratch_dir scratch("sylva_reliability_gltf_name");
+  const fs::path& dir = scratch.dir;
   const std::string preset_path = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
   const std::string name = std::string("tr\xFF") + "e.gltf";
   const sylva_run r = run_sylva("", "export '" + preset_path + "' -o '" + (dir / name).string() + "'");
@@ -317,5 +312,4 @@ TEST(Utf8, GltfExportToANonUtf8NameWritesValidJson) {
   ASSERT_TRUE(j.contains("buffers"));
   EXPECT_NE(j["buffers"][0]["uri"].get<std::string>().find("%FF"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / (std::string("tr\xFF") + "e.bin")));
-  fs::remove_all(dir);
 }

@@ -15,6 +15,7 @@
 #include "generators/self_organizing.h"
 #include "render/io/preset.h"
 #include "tests/run_sylva.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 
@@ -58,8 +59,8 @@ TEST(MemoryBound, RequestsStayUnderTheirBound) {
       {"ls_modules", "lsystem",
        R"({"mode": "text", "source": "#axiom F\nF -> FF\n", "derivations": 23, "module_cap": 5000000, "node_cap": 300000})"},
   };
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sylva_membound_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_membound");
+  const std::filesystem::path& dir = scratch.dir;
   for (const bound_case& c : cases) {
     const std::string path = (dir / (std::string(c.name) + ".json")).string();
     {
@@ -81,8 +82,6 @@ TEST(MemoryBound, RequestsStayUnderTheirBound) {
     std::printf("%-12s peak %7.1f MiB, bound %7.1f MiB\n", c.name, grow_mib, bound_mib);
     if (std::string(c.name) == "so_runaway") { EXPECT_NE(r.err.find("shadow grid memory cap reached"), std::string::npos) << r.err; }
   }
-  std::error_code ec;
-  std::filesystem::remove_all(dir, ec);
 }
 
 TEST(MemoryBound, MarkerCapSaysSo) {

@@ -105,8 +105,8 @@ double iou(const std::vector<bool>& a, const std::vector<bool>& b) {
 // The outline of a mask: a morphological closing (dilate, then erode) with a (2 radius + 1)^2
 // square, which fills gaps up to 2 radius pixels wide between leaves and keeps the crown's edge
 // where it is. At a level's takeover distance the crown's gaps are one or two pixels wide and turn
-// change with small changes of view (LOD0 against itself turned by 2 degrees: oak 0.79 / 0.79 / 0.85,
-// DISABLED_Lod0AgainstItselfTurned), so the strict mask IoU measures that speckle as much as the
+// change with small changes of view (LOD0 against itself turned by 2 degrees: oak 0.89 / 0.89 / 0.93,
+// Lod0AgainstItselfTurned), so the strict mask IoU measures that speckle as much as the
 // shape; the outline IoU is the shape alone. Both are printed and both have floors.
 std::vector<bool> outline(const std::vector<bool>& m, int radius) {
   // One pass of a square filter: along x, then along y (the square is separable).
@@ -160,7 +160,7 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       // Issue 17 asks for 0.9. Measured with baked cluster cards (docs/LOD.md): oak 0.958 / 0.797 /
       // 0.818, pine 0.973 / 0.892 / 0.885, maple_cards 0.946 / 0.944 / 0.945 (0.950 / 0.943 / 0.926 on `maple_spray` cards since round 20); each floor is that
       // less about 0.02, so that it guards what exists. LOD0 against itself turned by half a degree
-      // scores oak 0.89 / 0.88 / 0.93, pine 0.97 (DISABLED_Lod0AgainstItselfTurned below): the oak's
+      // scores oak 0.95 / 0.95 / 0.97, pine 0.89 / 0.92 / 0.96 (Lod0AgainstItselfTurned below): the oak's
       // LOD2 and LOD3 miss the goal by more than view noise. Issue 23's finer pine needles (sky
       // between them) are harder for baked cards to keep texel for texel: pine measured 0.946 /
       // 0.829 / 0.831 (outline 0.972 / 0.906 / 0.903); with the wood pass's sympodial forks on top,
@@ -283,11 +283,12 @@ TEST_F(LodRender, ImpostorCardKeepsLod0SilhouetteWhereItTakesOver) {
   EXPECT_GE(score, 0.77);
 }
 
-// The metric's own noise floor (run with --gtest_also_run_disabled_tests; docs/LOD.md): LOD0 against
-// itself with the camera turned by 0.5 and 2 degrees about the tree, at each takeover coverage. The
-// crown's gaps are a pixel or two wide there, so a shift of one pixel changes many of them.
-
-TEST_F(LodRender, DISABLED_Lod0AgainstItselfTurned) {
+// The metric's own noise floor (docs/LOD.md): LOD0 against itself with the camera turned by 0.5 and
+// 2 degrees about the tree, at each takeover coverage. The crown's gaps are a pixel or two wide
+// there, so a shift of one pixel changes many of them: the strict IoU drops (measured oak 0.89-0.93,
+// pine 0.82-0.92 at 2 degrees), while the outline IoU, the shape alone, keeps the 0.9 the levels are
+// held to (oak 0.96-0.99, pine 0.93-0.98). So the outline floor measures the levels, not view noise.
+TEST_F(LodRender, Lod0AgainstItselfTurned) {
   for (const char* name : {"species_oak.json", "species_pine.json"}) {
     preset p;
     ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name, p).ok);
@@ -301,8 +302,13 @@ TEST_F(LodRender, DISABLED_Lod0AgainstItselfTurned) {
         view.cam.yaw += dy;
         view.rebase();   // the sky turns with the camera: its empty frame is taken again
         const std::vector<bool> turned = view.mask(m, t);
+        const double strict = iou(full, turned), shape = iou(outline(full, 1), outline(turned, 1));
         std::printf("%s LOD0 vs LOD0 turned %.1f deg at coverage %.3f: IoU %.3f, outline IoU %.3f\n", name, double(dy),
-                    double(c.coverage[size_t(k) - 1]), iou(full, turned), iou(outline(full, 1), outline(turned, 1)));
+                    double(c.coverage[size_t(k) - 1]), strict, shape);
+        SCOPED_TRACE(std::string(name) + " turned " + std::to_string(dy) + " deg, LOD" + std::to_string(k) + "'s coverage");
+        EXPECT_GE(shape, 0.9) << "a small turn alone takes the outline under the levels' floor";
+        EXPECT_GE(shape, strict) << "the outline fills the speckle, so it changes less than the mask";
+        if (dy > 1.0f) EXPECT_LT(strict, 0.99) << "a 2-degree turn must move the speckle, or the view did not turn";
       }
     }
   }

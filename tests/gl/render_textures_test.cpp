@@ -15,6 +15,7 @@
 #include "render/gl/renderer.h"
 #include "tests/gl/gl_test_context.h"
 #include "render/assets/textures.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 using sylva_test::gl_context;
@@ -88,8 +89,14 @@ orbit_camera facing() {
   return cam;
 }
 
+// A file in this process's scratch folder (tests/scratch_dir.h), removed when the process exits.
 std::string temp_file(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("sylva_render_textures_test_" + name)).string();
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path d = sylva_test::scratch_path("sylva_render_textures_test");
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return (dir / name).string();
 }
 
 }  // namespace

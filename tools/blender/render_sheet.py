@@ -2,7 +2,7 @@
 # (Blender's own glTF importer, factory settings), under a sun and a sky-coloured world, and
 # measures "black leaves": the share of leaf pixels darker than a threshold. Issue 23 asks that
 # every species renders in Cycles without black leaves; scripts/blender-sheet.sh runs this and
-# montages the contact sheet (docs/blender_species.png).
+# montages the contact sheet (out/blender_species.png by default).
 #
 #   blender -b --factory-startup --python tools/blender/render_sheet.py -- \
 #       OUT_DIR [--size 320] [--samples 24] [--transparent-bounces N] [--control] TREE.glb [TREE.glb ...]

@@ -3,8 +3,8 @@
 // of the crown hull, and writes the pictures and numbers. Run by scripts/compare-trees.sh, which
 // exports the GLBs first.
 //
-//   node tools/viewer/compare.mjs --glb-dir DIR --preset-dir presets --out-dir docs/compare
-//        --grid docs/side_by_side.png [--ez "Oak Medium,Pine Medium,..."] [--size 768] [--azimuths 45,135,225,315]
+//   node tools/viewer/compare.mjs --glb-dir DIR --preset-dir presets --out-dir out/compare
+//        --grid out/side_by_side.png [--ez "Oak Medium,Pine Medium,..."] [--size 768] [--azimuths 45,135,225,315]
 //
 // DIR holds species_NAME.glb for each exported preset; presets/species_NAME.json gives the
 // tags (a "conifer" tag picks the conifer goal).
@@ -18,7 +18,7 @@ const DEFAULT_EZ = ['Oak Medium', 'Pine Medium', 'Aspen Medium', 'Ash Medium'];
 const GOAL = { broadleaf: 0.55, conifer: 0.45 };
 
 const args = process.argv.slice(2);
-const opt = { size: 768, ez: DEFAULT_EZ, glbDir: null, presetDir: 'presets', outDir: 'docs/compare', grid: 'docs/side_by_side.png', binary: '', azimuths: [45, 135, 225, 315] };
+const opt = { size: 768, ez: DEFAULT_EZ, glbDir: null, presetDir: 'presets', outDir: 'out/compare', grid: 'out/side_by_side.png', binary: '', azimuths: [45, 135, 225, 315] };
 for (let i = 0; i < args.length; i++) {
   const a = args[i];
   const next = () => args[++i];
@@ -169,7 +169,7 @@ try {
   process.stderr.write(`compare: montage failed: ${e.message}\n`);
 }
 
-// Every Sylva species in one more grid (docs/compare/all_species.png), six to a row.
+// Every Sylva species in one more grid (out/compare/all_species.png), six to a row.
 const allSylva = trees.filter((t) => t.source === 'sylva');
 if (gridOk && allSylva.length) {
   const a = [];

@@ -13,6 +13,7 @@
 #include "render/assets/textures.h"
 #include "render/mesh/season.h"
 #include "tests/run_sylva.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 
@@ -82,8 +83,14 @@ void expect_unit_normals(const image& nm, const std::string& what) {
   EXPECT_GT(tilted, size_t(nm.width) * nm.height / 50) << what << ": almost flat, no relief";
 }
 
+// A file in this process's scratch folder (tests/scratch_dir.h), removed when the process exits.
 std::string temp_file(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("sylva_textures_test_" + name)).string();
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path d = sylva_test::scratch_path("sylva_textures_test");
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return (dir / name).string();
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "render/io/export.h"
 #include "tests/fixtures.h"
 #include "tests/run_sylva.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -32,8 +33,8 @@ TEST(ExportFormats, TheTableFindsEachRowInAnyCaseAndNothingElse) {
 
 // Every format that is not a render is written by export_tree itself (a render needs GL).
 TEST(ExportFormats, EveryFileFormatInTheTableIsWritten) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva_formats_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_formats_test");
+  const fs::path& dir = scratch.dir;
   const sylva_test::honda_export h = sylva_test::honda_for_export(4, 64);
   const tree_skeleton& t = h.t;
   const tree_mesh& m = h.m;
@@ -46,8 +47,6 @@ TEST(ExportFormats, EveryFileFormatInTheTableIsWritten) {
     EXPECT_TRUE(fs::is_regular_file(path)) << f.ext;
     EXPECT_GT(r.bytes, 0u) << f.ext;
   }
-  std::error_code ec;
-  fs::remove_all(dir, ec);
 }
 
 // The CLI's messages come from the table, so a new row shows in them.

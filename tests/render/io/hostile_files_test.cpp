@@ -21,25 +21,15 @@
 #include "render/io/preset.h"
 #include "render/assets/textures.h"
 #include "tests/run_sylva.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct scratch {
-  fs::path dir;
-  explicit scratch(const std::string& name)
-      : dir(fs::temp_directory_path() / ("sylva_hostile_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~scratch() {
-    std::error_code ec;
-    fs::permissions(dir, fs::perms::owner_all, ec);
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+struct scratch : sylva_test::scratch_dir {
+  explicit scratch(const std::string& name) : scratch_dir("sylva_hostile_" + name) {}
 };
 
 void write_text(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }

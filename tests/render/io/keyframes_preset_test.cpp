@@ -11,6 +11,7 @@
 #include "tests/run_sylva.h"
 
 #include "render/io/preset.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 using nlohmann::json;
@@ -106,8 +107,8 @@ TEST(KeyframePresets, SetWithAStepRefusesBadInputAndLeavesThePresetAsItWas) {
 // last, is a usage error that writes nothing.
 TEST(KeyframePresets, CliSetsKeyframesAndRefusesContradictions) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("sylva_keyframes_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_keyframes");
+  const fs::path& dir = scratch.dir;
   const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
   const std::string plain = (dir / "plain.json").string(), keyed = (dir / "keyed.json").string();
   ASSERT_EQ(run_sylva("", "export '" + preset + "' -o '" + plain + "'").code, 0);
@@ -124,7 +125,6 @@ TEST(KeyframePresets, CliSetsKeyframesAndRefusesContradictions) {
   EXPECT_EQ(beyond.code, 2);
   EXPECT_NE(beyond.err.find("beyond the most steps a growth can have (24)"), std::string::npos) << beyond.err;
   EXPECT_FALSE(fs::exists(twice));
-  fs::remove_all(dir);
 }
 
 TEST(KeyframePresets, CutsSaveLoadAndRefuseBadInput) {

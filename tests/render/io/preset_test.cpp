@@ -1,14 +1,13 @@
 // Parameter schema, preset JSON round trips, tolerant loading, --set parsing and atomic writes.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "render/io/preset.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -59,12 +58,6 @@ void perturb(T& v, const param_info& info) {
 template <class P>
 void perturb_all(P& p) {
   visit_params(p, [](auto& value, const param_info& info) { perturb(value, info); });
-}
-
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("sylva_preset_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
 }
 
 preset sentinel() {
@@ -347,7 +340,8 @@ TEST(PresetSet, SweepsExpand) {
 }
 
 TEST(Files, AtomicWriteAndRead) {
-  const fs::path dir = scratch_dir();
+  const sylva_test::scratch_dir scratch("sylva_preset_test");
+  const fs::path& dir = scratch.dir;
   const std::string path = (dir / "p.json").string();
   EXPECT_EQ(write_file_atomic(path, "first"), "");
   EXPECT_EQ(write_file_atomic(path, "second, longer"), "");
@@ -369,7 +363,6 @@ TEST(Files, AtomicWriteAndRead) {
   EXPECT_EQ(save_preset_file(p, path), "");
   ASSERT_TRUE(load_preset_file(path, q).ok);
   EXPECT_EQ(p, q);
-  fs::remove_all(dir);
 }
 
 TEST(Preset, UnknownArchetypeLoadsWithAWarningAndTheDefault) {

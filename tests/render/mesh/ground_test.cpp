@@ -17,6 +17,7 @@
 #include "render/io/export.h"
 #include "render/mesh/mesh.h"
 #include "render/io/preset.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -48,8 +49,8 @@ float lowest_leaf_y(const tinygltf::Model& model, size_t& vertices) {
 }  // namespace
 
 TEST(Ground, NoSpeciesPutsALeafBelowTheGroundOrAStemAlongIt) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva_ground_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_ground_test");
+  const fs::path& dir = scratch.dir;
   int species = 0;
   for (const auto& entry : fs::directory_iterator(SYLVA_SOURCE_DIR "/presets")) {
     const std::string name = entry.path().filename().string();
@@ -89,8 +90,6 @@ TEST(Ground, NoSpeciesPutsALeafBelowTheGroundOrAStemAlongIt) {
     EXPECT_GE(lo, -0.001f);
   }
   EXPECT_GE(species, 15);   // the fifteen and species_maple_cards
-  std::error_code ec;
-  fs::remove_all(dir, ec);
 }
 
 TEST(Ground, ALeafThatWouldReachBelowIsTurnedUpOrDropped) {

@@ -127,9 +127,8 @@ TEST(LodCards, ExportsCarryTheBakedTextures) {
   o.texture_size = 32;
   o.lod0_coverage = c.coverage[0];
   for (int k = 1; k < lod_levels; ++k) o.lods.push_back({&c.level[size_t(k) - 1], c.coverage[size_t(k)], c.target[size_t(k)]});
-  const fs::path dir = fs::temp_directory_path() / ("sylva-lod-cards-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva-lod-cards");
+  const fs::path& dir = scratch.dir;
   ASSERT_EQ(export_tree(t, m, {"palm", 1}, (dir / "tree.gltf").string(), o).error, "");
   const nlohmann::json j = nlohmann::json::parse(slurp((dir / "tree.gltf").string()));
   size_t card_materials = 0;
@@ -150,7 +149,6 @@ TEST(LodCards, ExportsCarryTheBakedTextures) {
   const std::string file = mtl.substr(at + 7, mtl.find('\n', at) - at - 7);
   EXPECT_TRUE(fs::exists(dir / file)) << file;
   EXPECT_NE(slurp((dir / "tree_lod3.obj").string()).find("usemtl leaves_lod_card"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 TEST(LodCards, BadLeavesBakeNothingAndNeverCrash) {
@@ -183,9 +181,8 @@ TEST(LodCards, ConesStayOnLod0AndExportUntinted) {
   apply_render_params(o, p.render);
   o.mesh = p.mesh;
   o.texture_size = 64;
-  const fs::path dir = fs::temp_directory_path() / ("sylva-fruit-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva-fruit");
+  const fs::path& dir = scratch.dir;
   ASSERT_EQ(export_tree(t, m, {"fir", 1}, (dir / "tree.gltf").string(), o).error, "");
   const nlohmann::json j = nlohmann::json::parse(slurp((dir / "tree.gltf").string()));
   bool found = false;
@@ -208,5 +205,4 @@ TEST(LodCards, ConesStayOnLod0AndExportUntinted) {
     EXPECT_LT(diff / (3 * opaque), 1.5) << "the cone's own colours, untinted";
   }
   EXPECT_TRUE(found);
-  fs::remove_all(dir);
 }

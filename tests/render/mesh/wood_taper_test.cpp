@@ -18,6 +18,7 @@
 #include "render/mesh/mesh.h"
 #include "render/io/preset.h"
 #include "tests/fixtures.h"
+#include "tests/scratch_dir.h"
 
 using namespace sylva;
 namespace fs = std::filesystem;
@@ -155,8 +156,8 @@ TEST(WoodTaper, TaperIsAParameterAndZeroIsThePlainPipeModel) {
 }
 
 TEST(WoodTaper, TheTrunkStandsInTheGroundWithItsFlareInEveryExport) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva_wood_taper_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const sylva_test::scratch_dir scratch("sylva_wood_taper");
+  const fs::path& dir = scratch.dir;
   for (const char* name : {"oak", "pine", "palm"}) {
     SCOPED_TRACE(name);
     const preset p = load(name);
@@ -205,8 +206,6 @@ TEST(WoodTaper, TheTrunkStandsInTheGroundWithItsFlareInEveryExport) {
     std::fclose(f);
     EXPECT_LT(obj_min, -0.5 * p.mesh.root_depth);
   }
-  std::error_code ec;
-  fs::remove_all(dir, ec);
 }
 
 TEST(WoodTaper, ARootDepthOfZeroLeavesTheFootOnTheGround) {
