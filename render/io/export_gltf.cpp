@@ -399,13 +399,19 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
     // EXT_mesh_gpu_instancing: one leaf card per material, one instance per leaf alive at `step`.
     std::array<std::vector<glm::vec3>, leaf_slots> tr, sc, grey;
     std::array<std::vector<glm::vec4>, leaf_slots> rot;
-    for (const leaf_instance& l : v.mesh->leaves) {
+    const leaf_look look = mats.src.leaf_looks();
+    for (size_t i = 0; i < v.mesh->leaves.size(); ++i) {
+      const leaf_instance& l = v.mesh->leaves[i];
       if (!(l.born <= step && step < l.died)) continue;
       const size_t slot = size_t(leaf_slot(l, one));
       tr[slot].push_back(l.position);
       rot[slot].push_back(l.orientation / std::max(glm::length(l.orientation), 1e-12f));
       sc[slot].push_back(glm::vec3(std::max(l.size, 1e-6f)));
-      grey[slot].push_back(glm::vec3(float(l.occlusion) / 255.0f));   // crown occlusion per instance
+      // Crown occlusion per instance, times the leaf's colour factor (leaf_color_factor) but for fruit
+      // and baked cards, which keep their own colours.
+      const bool plain = slot >= size_t(leaf_archetype_count) || (!one && archetype_is_fruit(leaf_archetype(slot)));
+      const glm::vec3 factor = plain ? glm::vec3(1) : leaf_color_factor(l.node, uint32_t(i), float(l.occlusion) / 255.0f, look.variation, look.sun_tone);
+      grey[slot].push_back(glm::min(glm::vec3(float(l.occlusion) / 255.0f) * factor, glm::vec3(1.0f)));
     }
     for (int slot = 0; slot < leaf_slots; ++slot) {
       const size_t s = size_t(slot);
