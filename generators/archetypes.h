@@ -42,7 +42,8 @@ namespace sylva {
   X(cone_barrel, fruit)  /* true cedar (Cedrus): a squat upright barrel, flat-topped (fruit card) */ \
   X(acorns, fruit)       /* pedunculate oak: acorns in scaly cups on a long stalk (fruit card) */ \
   X(horse_chestnut, leaf) /* horse chestnut: seven obovate leaflets fanned from a long petiole */ \
-  X(cypress_cones, fruit) /* Italian cypress: three round cones of shield-shaped scales on a twig (fruit card) */
+  X(cypress_cones, fruit) /* Italian cypress: three round cones of shield-shaped scales on a twig (fruit card) */ \
+  X(birch, leaf)         /* silver birch: triangular-ovate, doubly serrate, long-pointed, slender petiole */
 
 // X(name): bark tiles.
 #define SYLVA_BARK_ARCHETYPES(X)                                              \

@@ -79,6 +79,7 @@ const glm::vec3 leaf_tints[] = {
     {1, 1, 1},              // acorns
     {0.24f, 0.46f, 0.12f},  // horse chestnut: the sapling
     {1, 1, 1},              // cypress_cones
+    {0.30f, 0.54f, 0.15f},  // birch: silver birch
 };
 static_assert(std::size(leaf_tints) == size_t(leaf_archetype_count));
 const glm::vec3 bark_tints[] = {
@@ -141,7 +142,7 @@ const char* const leaf_labels[] = {"ovate (birch)",       "lobed (oak)",        
                                    "cone_ovoid (pine)",   "beechnuts (beech)",  "coconuts (palm)",
                                    "maple_spray (maple)", "ash_keys (ash)", "cone_barrel (cedar)",
                                    "acorns (oak)", "horse_chestnut (sapling)",
-                                   "cypress_cones (cypress)"};
+                                   "cypress_cones (cypress)", "birch (birch)"};
 static_assert(std::size(leaf_labels) == size_t(leaf_archetype_count));
 const char* const bark_labels[] = {"furrowed (oak)", "plated (pine)",  "smooth (birch)",  "peeling",
                                    "ringed (palm)",  "mottled (fir)", "fissured (ash)", "fibrous (cypress)",

@@ -330,6 +330,7 @@ void draw_poplar_spray(leaf_canvas& c, rng& g);
 void draw_maple_spray(leaf_canvas& c, rng& g);
 void draw_horse_chestnut(leaf_canvas& c, rng& g);
 void draw_cypress_cones(leaf_canvas& c, rng& g);
+void draw_birch(leaf_canvas& c, rng& g);
 // Fruit cards (render/assets/archetype_fruits.cpp), drawn in their final colours.
 void draw_cone_hanging(leaf_canvas& c, rng& g);
 void draw_cone_upright(leaf_canvas& c, rng& g);

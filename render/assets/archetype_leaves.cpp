@@ -15,6 +15,21 @@ void draw_ovate(leaf_canvas& c, rng&) {
   blade(c, {0.5f, 0.13f}, 90, 0.84f, 0.35f, [](float t, int) { return ovate_profile(t); }, st);
 }
 
+// Silver birch (Betula pendula): a triangular-ovate blade, broadest about a quarter of the way up
+// over a broad, nearly truncate base, straight sides to a long-pointed tip, and doubly serrate: a
+// larger tooth every few small ones; a slender petiole a third of the blade's length.
+void draw_birch(leaf_canvas& c, rng&) {
+  stroke(c, {0.5f, 0.0f}, {0.5f, 0.24f}, 0.005f, 0.0045f, petiole_style);
+  blade_style st;
+  st.serration = 0.05f, st.teeth = 34, st.vein_angle = 42, st.veins = 7;
+  blade(c, {0.5f, 0.22f}, 90, 0.76f, 0.38f, [](float t, int) {
+    const float base = std::min(1.0f, std::sqrt(t / 0.2f));
+    const float taper = t < 0.26f ? 1.0f : std::pow((1 - t) / 0.74f, 1.15f);
+    const float saw = t * 8.5f - std::floor(t * 8.5f);   // the larger teeth of the double serration
+    return base * taper * (1 - 0.1f * (1 - saw));
+  }, st);
+}
+
 void draw_lobed(leaf_canvas& c, rng&) {
   stroke(c, {0.5f, 0.0f}, {0.5f, 0.09f}, 0.0075f, 0.0065f, petiole_style);
   blade_style st;

@@ -61,6 +61,7 @@ const leaf_entry leaf_table[] = {
     {draw_acorns, {{116, 98, 66}, {172, 150, 76}}, 1},           // Quercus: grey-brown cups, ripening olive-tan nuts
     {draw_horse_chestnut, {{172, 190, 150}, {200, 204, 156}}, 1},  // Aesculus: deep, slightly yellow veins
     {draw_cypress_cones, {{78, 80, 62}, {150, 132, 102}}, 1},      // Cupressus: dark seams, grey-brown shields
+    {draw_birch, {{180, 196, 154}, {208, 210, 158}}, 0},           // Betula: fresh, slightly yellow
 };
 static_assert(std::size(leaf_table) == size_t(leaf_archetype_count), "one leaf_table row per leaf archetype");
 

@@ -179,6 +179,7 @@ TEST(ArchetypeTextures, LeafCardsCoverAPlausibleShareOfTheCard) {
       {0.06, 0.30},  // acorns: three acorns on a long stalk
       {0.25, 0.60},  // horse chestnut: seven leaflets fanned on a long petiole, sky between them
       {0.15, 0.45},  // cypress cones: three balls on a short twig
+      {0.18, 0.55},  // birch: a triangular blade on a long petiole
   };
   static_assert(std::size(expected) == size_t(leaf_archetype_count), "a range per archetype");
   for (int i = 0; i < leaf_archetype_count; ++i) {
