@@ -15,7 +15,7 @@ namespace {
 // The leaf vertex shader's blade table sizes (render/mesh/leaf_blade.h), after its #version line.
 std::string with_blade_sizes(std::string s) {
   const size_t eol = s.find('\n');
-  const std::string sizes = "const int BLADE_VERTICES = " + std::to_string(blade_vertices) +
+  const std::string sizes = "const int BLADE_VERTICES = " + std::to_string(coarse_blade_vertices) +
                             ";\nconst int BLADE_PROTOTYPES = " + std::to_string(blade_prototypes) + ";\n";
   return eol == std::string::npos ? s : s.substr(0, eol + 1) + sizes + s.substr(eol + 1);
 }

@@ -146,12 +146,12 @@ void draw_leaves(renderer_gpu& r) {
   ++r.counts.draw_calls;
   ++r.counts.leaf_draw_calls;
   glBindVertexArray(r.leaf_vao.id);
-  // Every leaf is its archetype's blade grid (render/mesh/leaf_blade.h); when none bends, the flat
+  // Every leaf is its archetype's coarse blade grid (render/mesh/leaf_blade.h); when none bends, the flat
   // card's two triangles after the grid's in the same index buffer.
   if (r.blade_shown.on && !r.blade_flat_shown)
-    glDrawElementsInstanced(GL_TRIANGLES, 3 * blade_triangles, GL_UNSIGNED_SHORT, nullptr, GLsizei(n));
+    glDrawElementsInstanced(GL_TRIANGLES, 3 * coarse_blade_triangles, GL_UNSIGNED_SHORT, nullptr, GLsizei(n));
   else
-    glDrawElementsInstanced(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, (void*)(sizeof(uint16_t) * 3 * blade_triangles), GLsizei(n));
+    glDrawElementsInstanced(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, (void*)(sizeof(uint16_t) * 3 * coarse_blade_triangles), GLsizei(n));
 }
 
 // ---------------------------------------------------------------- passes of the frame

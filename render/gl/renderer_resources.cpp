@@ -179,11 +179,11 @@ void upload_blades(renderer_gpu& r, const leaf_blade_shape& shape) {
   const bool flat = r.user_leaf;
   if (r.blade_uploaded && shape == r.blade_shown && flat == r.blade_flat_shown) return;
   std::vector<glm::vec4> table;
-  table.reserve(size_t(2 * blade_prototypes * blade_vertices));
+  table.reserve(size_t(2 * blade_prototypes * coarse_blade_vertices));
   for (int k = 0; k < blade_prototypes; ++k) {
     const bool card = flat || k == leaf_archetype_count || archetype_is_fruit(leaf_archetype(k));
-    const auto grid = card ? blade_prototype(full_card_outline(), leaf_blade_shape{})
-                           : blade_prototype(shape.on ? archetype_outline(leaf_archetype(k)) : full_card_outline(), shape);
+    const auto grid = card ? coarse_blade(full_card_outline(), leaf_blade_shape{})
+                           : coarse_blade(shape.on ? archetype_outline(leaf_archetype(k)) : full_card_outline(), shape);
     for (const blade_vertex& v : grid) table.emplace_back(v.position, v.uv.x), table.emplace_back(v.normal, v.uv.y);
   }
   glBindBuffer(GL_TEXTURE_BUFFER, r.blade_table.id);

@@ -81,16 +81,16 @@ bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
   glVertexAttribPointer(4, 1, GL_FLOAT, GL_FALSE, 0, nullptr);   // enabled when a mesh brings its occlusion
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.bark_index.id);
 
-  // Leaves: the blade grid's triangles plus one leaf_instance per instance; the leaf shader looks
+  // Leaves: the coarse blade grid's triangles plus one leaf_instance per instance; the leaf shader looks
   // each grid vertex up in the blade table. Attribute 0 is the unit quad's corners for the impostor's
   // atlas pass (render/gl/impostor.cpp), padded to the grid's vertex count.
-  float corners[2 * blade_vertices] = {-0.5f, 0, 0.5f, 0, -0.5f, 1, 0.5f, 1};
+  float corners[2 * coarse_blade_vertices] = {-0.5f, 0, 0.5f, 0, -0.5f, 1, 0.5f, 1};
   glBindVertexArray(r.leaf_vao.id);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.blade_index.id);
   // The grid's triangles, then the flat card's two from the grid's corners (drawn when no leaf bends).
-  std::vector<uint16_t> grid(blade_indices().begin(), blade_indices().end());
-  constexpr uint16_t tip = blade_rows * blade_row_vertices;
-  grid.insert(grid.end(), {0, blade_columns, tip + blade_columns, 0, tip + blade_columns, tip});
+  std::vector<uint16_t> grid(coarse_blade_indices().begin(), coarse_blade_indices().end());
+  constexpr uint16_t tip = coarse_blade_rows * (coarse_blade_columns + 1);
+  grid.insert(grid.end(), {0, coarse_blade_columns, tip + coarse_blade_columns, 0, tip + coarse_blade_columns, tip});
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(sizeof(uint16_t) * grid.size()), grid.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_corner.id);
   glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);

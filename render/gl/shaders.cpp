@@ -121,7 +121,7 @@ layout(location = 1) in vec3 i_position; layout(location = 2) in vec4 i_rotation
 layout(location = 4) in uvec2 i_born_died; layout(location = 5) in uint i_texture; layout(location = 6) in float i_ao;
 layout(location = 7) in uint i_node;
 uniform mat4 u_viewproj; uniform int u_step; uniform float u_variation; uniform float u_sun_tone; uniform int u_layers; uniform samplerBuffer u_radius;
-// The blade grids (render/mesh/leaf_blade.h): per archetype, then the flat card, BLADE_VERTICES
+// The coarse blade grids (render/mesh/leaf_blade.h): per archetype, then the flat card, BLADE_VERTICES
 // vertices of two texels each, (position xyz, u) and (normal xyz, v), in card units.
 uniform samplerBuffer u_blade;
 uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (render/gl/impostor.h) instead of its camera card

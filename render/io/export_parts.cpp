@@ -51,9 +51,9 @@ blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool f
     b.vertex.assign(grid.begin(), grid.end());
     b.index.assign(blade_indices().begin(), blade_indices().end());
   } else {
-    const auto grid = export_blade(o, s);
+    const auto grid = coarse_blade(o, s);
     b.vertex.assign(grid.begin(), grid.end());
-    b.index.assign(export_blade_indices().begin(), export_blade_indices().end());
+    b.index.assign(coarse_blade_indices().begin(), coarse_blade_indices().end());
   }
   return b;
 }

@@ -144,8 +144,8 @@ const std::array<uint16_t, 3 * blade_triangles>& blade_indices() {
   return indices;
 }
 
-std::array<blade_vertex, export_blade_vertices> export_blade(const blade_outline& o, const leaf_blade_shape& s) {
-  static_assert(blade_rows == 2 * export_blade_rows && blade_columns == 2 * export_blade_columns);
+std::array<blade_vertex, coarse_blade_vertices> coarse_blade(const blade_outline& o, const leaf_blade_shape& s) {
+  static_assert(blade_rows == 2 * coarse_blade_rows && blade_columns == 2 * coarse_blade_columns);
   // Each kept row widened to its skipped neighbours' spans, so the longer straight edges still
   // never cut into the picture; then the same fold and curl.
   blade_outline wide = o;
@@ -156,15 +156,15 @@ std::array<blade_vertex, export_blade_vertices> export_blade(const blade_outline
       wide.right[size_t(r)] = std::max(wide.right[size_t(r)], o.right[size_t(n)]);
     }
   const auto full = blade_prototype(wide, s);
-  std::array<blade_vertex, export_blade_vertices> out{};
-  for (int r = 0; r <= export_blade_rows; ++r)
-    for (int c = 0; c <= export_blade_columns; ++c)
-      out[size_t(r * (export_blade_columns + 1) + c)] = full[size_t(2 * r * blade_row_vertices + 2 * c)];
+  std::array<blade_vertex, coarse_blade_vertices> out{};
+  for (int r = 0; r <= coarse_blade_rows; ++r)
+    for (int c = 0; c <= coarse_blade_columns; ++c)
+      out[size_t(r * (coarse_blade_columns + 1) + c)] = full[size_t(2 * r * blade_row_vertices + 2 * c)];
   return out;
 }
 
-const std::array<uint16_t, 3 * export_blade_triangles>& export_blade_indices() {
-  static const auto indices = grid_indices<export_blade_rows, export_blade_columns>();
+const std::array<uint16_t, 3 * coarse_blade_triangles>& coarse_blade_indices() {
+  static const auto indices = grid_indices<coarse_blade_rows, coarse_blade_columns>();
   return indices;
 }
 

@@ -1,9 +1,10 @@
 // Leaf blades as geometry (issue 52): each leaf archetype's card becomes a small grid mesh cut to
 // the outline of its picture, folded along the midrib and curled along its length, so a close look
-// shows a bent blade with depth instead of a flat cut-out square. The viewport draws every leaf as
-// this grid (one instanced call: the grid's vertices are looked up per archetype), and the exporters
-// bake a coarser subset of the same grid. Fruit, a LOD level's baked cards and the impostor keep the
-// flat card (the full-card outline, unfolded).
+// shows a bent blade with depth instead of a flat cut-out square. The viewport and the baked exports
+// draw the coarse grid (3 x 2 cells, 12 triangles: the fine grid's every second row and column), the
+// viewport in one instanced call whose vertices are looked up per archetype; glTF's instanced
+// prototype, written once, is the fine grid (6 x 4, 48 triangles). Fruit, a LOD level's baked cards
+// and the impostor keep the flat card (the full-card outline, unfolded).
 #pragma once
 
 #include <array>
@@ -60,17 +61,18 @@ std::array<blade_vertex, blade_vertices> blade_prototype(const blade_outline& o,
 // Triangles of the grid, counter-clockwise seen from +Z: 3 * blade_triangles vertex numbers.
 const std::array<uint16_t, 3 * blade_triangles>& blade_indices();
 
-// The renderer's table: one grid per leaf archetype, then the flat card (fruit, baked cards, the
-// impostor, and every leaf when the user's picture replaces the archetypes).
+// The renderer's table: one coarse grid per leaf archetype, then the flat card (fruit, baked cards,
+// the impostor, and every leaf when the user's picture replaces the archetypes).
 inline constexpr int blade_prototypes = leaf_archetype_count + 1;
 
-// The exporters' subset: every second vertex row and column (4 rows of 3: the edges and the
-// midrib at the petiole, a third, two thirds and the tip), 12 vertices and 12 triangles a face,
-// so a baked blade costs three times a card's two triangles, not the viewport's 48.
-inline constexpr int export_blade_rows = 3, export_blade_columns = 2;
-inline constexpr int export_blade_vertices = (export_blade_rows + 1) * (export_blade_columns + 1);
-inline constexpr int export_blade_triangles = 2 * export_blade_rows * export_blade_columns;
-std::array<blade_vertex, export_blade_vertices> export_blade(const blade_outline& o, const leaf_blade_shape& s);
-const std::array<uint16_t, 3 * export_blade_triangles>& export_blade_indices();
+// The coarse grid: every second vertex row and column of the fine one (4 rows of 3: the edges and
+// the midrib at the petiole, a third, two thirds and the tip), 12 vertices and 12 triangles a face,
+// so a blade costs six times a card's two triangles, not the fine grid's 48. On llvmpipe the fine
+// grid made species_oak's frame 3.4 times slower (docs/design/03-foliage.md).
+inline constexpr int coarse_blade_rows = 3, coarse_blade_columns = 2;
+inline constexpr int coarse_blade_vertices = (coarse_blade_rows + 1) * (coarse_blade_columns + 1);
+inline constexpr int coarse_blade_triangles = 2 * coarse_blade_rows * coarse_blade_columns;
+std::array<blade_vertex, coarse_blade_vertices> coarse_blade(const blade_outline& o, const leaf_blade_shape& s);
+const std::array<uint16_t, 3 * coarse_blade_triangles>& coarse_blade_indices();
 
 }  // namespace sylva

@@ -73,7 +73,7 @@ TEST(LeafBlade, OutlinesHoldEveryCoveredTexelOfEveryArchetype) {
     const image& im = leaf_archetype_textures(leaf_archetype(k), 512).color;
     const blade_outline& o = archetype_outline(leaf_archetype(k));
     EXPECT_EQ(texels_outside(im, blade_prototype(o, flat), blade_rows, blade_columns), size_t(0));
-    EXPECT_EQ(texels_outside(im, export_blade(o, flat), export_blade_rows, export_blade_columns), size_t(0));
+    EXPECT_EQ(texels_outside(im, coarse_blade(o, flat), coarse_blade_rows, coarse_blade_columns), size_t(0));
     for (int r = 0; r <= blade_rows; ++r) {
       EXPECT_LT(o.left[size_t(r)], 0.0f);
       EXPECT_GT(o.right[size_t(r)], 0.0f);
@@ -146,8 +146,8 @@ TEST(LeafBlade, FoldAndCurl) {
     const glm::vec3 a = flat[ix[t]].position, b = flat[ix[t + 1]].position, c = flat[ix[t + 2]].position;
     EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f);
   }
-  const auto& ex = export_blade_indices();
-  const auto coarse = export_blade(o, {});
+  const auto& ex = coarse_blade_indices();
+  const auto coarse = coarse_blade(o, {});
   for (size_t t = 0; t < ex.size(); t += 3) {
     const glm::vec3 a = coarse[ex[t]].position, b = coarse[ex[t + 1]].position, c = coarse[ex[t + 2]].position;
     EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f);

@@ -138,8 +138,8 @@ TEST(LeafShading, ExportedCardsHaveAFacePerSideLitFromTheirSide) {
         }
       }
     }
-    // Two faces of 2 triangles per card, of export_blade_triangles per blade.
-    EXPECT_EQ(faces, (blades ? 2 * size_t(export_blade_triangles) : 4) * alive);
+    // Two faces of 2 triangles per card, of coarse_blade_triangles per blade.
+    EXPECT_EQ(faces, (blades ? 2 * size_t(coarse_blade_triangles) : 4) * alive);
     // One side of every card looks out (a folded, curled blade's triangles nearly so).
     EXPECT_NEAR(double(outer), double(faces) / 2, double(faces) / (blades ? 20 : 100));
     if (blend == 0 && !blades) EXPECT_EQ(bent, size_t(0));   // a blade's normals are smooth across its fold
