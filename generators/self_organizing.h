@@ -59,6 +59,7 @@ struct self_organizing_params {
   // Allocation.
   so_allocation allocation = so_allocation::borchert_honda;
   float alpha = 2, lambda = 0.55f;
+  float season_variation = 0;         // years differ: step k's α is α·exp(a·z_k) (generators/history.h)
   float w_max = 1.0f, w_min = 0.006f, kappa = 0.5f;
   int terminal_priority_steps = 8;
   so_priority_rank priority_rank = so_priority_rank::average;
@@ -106,6 +107,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.upkeep_form, param_info{"upkeep_form", "Upkeep form", "", 0, 1, "relative: BM·(r/r₀)^BE; seed001: the seed's printed BM·r^BE/r₀ with r in metres (= r₀^(BE−1)·relative)", 0, nullptr, so_upkeep_form_names});
   v(p.allocation, param_info{"allocation", "Allocation model", "", 0, 1, "borchert_honda: split at each branch point; priority: sort the buds of each axis (Palubicki 2009 §5)", 0, "Allocation", so_allocation_names});
   v(p.alpha, param_info{"alpha", "Resource factor", "α", 0, 20, "v_base = α·Q_base"});
+  v(p.season_variation, param_info{"season_variation", "Season variation", "a", 0, 1, "Years differ: year k's resource is v_base = α·exp(a·z_k)·Q_base, z_k a seeded run of good and poor seasons (AR(1), ρ = 0.5, as tree rings show: Fritts 1976), so a good year's shoots are long and many, a poor year's short and few (0: every year alike, as Palubicki 2009)"});
   v(p.lambda, param_info{"lambda", "Apical bias", "λ", 0, 1, "Borchert–Honda: share of resource sent to the main axis"});
   v(p.w_max, param_info{"w_max", "Top priority weight", "w_max", 0, 2, "Priority model: weight of the best-lit bud of an axis"});
   v(p.w_min, param_info{"w_min", "Low priority weight", "w_min", 0, 2, "Priority model: weight of the buds ranked at or after κN"});
