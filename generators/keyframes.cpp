@@ -38,6 +38,8 @@ constexpr refusal so_refusals[] = {
     {"pipe_exponent", whole},
     {"pipe_taper", whole},
     {"tip_radius", whole},
+    {"live_crown", whole},
+    {"stub_length", whole},
     {"tree_count", once},
     {"placement", once},
     {"spacing", once},

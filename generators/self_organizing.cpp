@@ -664,6 +664,15 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     debug->node_flow = last_flow;
     debug->node_flow.resize(t.size(), 0.0f);
   }
+  // Lower limbs shaded out by the crown above die and leave stubs (generators/history.h).
+  if (const std::vector<int32_t> kept = self_prune(t, p.live_crown, p.stub_length); !kept.empty()) {
+    apply_pipe_radii(t, p.pipe_exponent, p.tip_radius, p.pipe_taper);
+    if (debug) {
+      for (size_t j = 0; j < kept.size(); ++j)
+        debug->node_fate[j] = debug->node_fate[size_t(kept[j])], debug->node_flow[j] = debug->node_flow[size_t(kept[j])];
+      debug->node_fate.resize(kept.size()), debug->node_flow.resize(kept.size());
+    }
+  }
   return t;
 }
 
