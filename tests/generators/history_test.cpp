@@ -10,6 +10,7 @@
 #include "generators/history.h"
 #include "generators/leaves.h"
 #include "generators/lsystem.h"
+#include "generators/self_organizing.h"
 #include "generators/space_colonization.h"
 
 using namespace sylva;
@@ -238,4 +239,33 @@ TEST(GrowthHistory, LsystemSeasonsAndSelfPruningShapeAWhorledTree) {
     }
   }
   EXPECT_GE(stubs, 2 * 5);   // both limbs of each of the lower five nodes
+}
+
+TEST(GrowthHistory, SelfOrganizingLowerLimbsDieAsTheCrownRises) {
+  self_organizing_params p;
+  p.steps = 18;
+  grow_options o;
+  o.seed = 4;
+  const tree_skeleton plain = grow_self_organizing(p, o);
+  p.live_crown = 0.5f;
+  p.stub_length = 0.2f;
+  const tree_skeleton t = grow_self_organizing(p, o);
+  EXPECT_EQ(validate_skeleton(t), "");
+  ASSERT_EQ(t.dead.size(), t.size());
+  // Every limb leaving the trunk below half the final height has died (its base stands as a stub);
+  // without the pass most of them were alive.
+  auto low_limbs = [](const tree_skeleton& s, bool living) {
+    float top = 0;
+    for (const glm::vec3& q : s.position) top = std::max(top, q.y);
+    int n = 0;
+    for (size_t i = 1; i < s.size(); ++i) {
+      const int32_t par = s.parent[i];
+      if (par < 0 || s.order[size_t(par)] != 0 || s.order[i] == 0 || s.position[size_t(par)].y >= 0.5f * top) continue;
+      n += living == (s.died[i] == never_died && s.dead_from(i) == never_died);
+    }
+    return n;
+  };
+  EXPECT_GT(low_limbs(plain, true), 5);
+  EXPECT_EQ(low_limbs(t, true), 0);
+  EXPECT_GT(low_limbs(t, false), 5);
 }
