@@ -518,6 +518,15 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
   };
 
+  // Leader damage (frost, browsing, insects): an apex dies in a step with probability leader_damage,
+  // seeded by node and step, and the buds below it take over as a fork (reiteration: Hallé,
+  // Oldeman & Tomlinson 1978). No draw at all while it is 0.
+  auto damaged = [&](int32_t v, int k) {
+    if (!(p.leader_damage > 0)) return false;
+    rng r(o.seed * 0xA24BAED4963EE407ull ^ (uint64_t(v) * 0x9FB21C651E98DF25ull + uint64_t(k)));
+    return r.uniform() < p.leader_damage;
+  };
+
   // Crown: Runions 2007 §3, one iteration per growth step.
   std::vector<int32_t> touched;
   std::vector<uint8_t> stuck;
@@ -588,7 +597,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       // points beside it would otherwise curl round into a loop). Laterals branch off freely.
       if (apex && par >= 0 && p.max_turn < 180.0f) dir = limit_turn(prev, dir, glm::radians(std::max(p.max_turn, 1.0f)));
       last_count[size_t(v)] = acc_count[size_t(v)];
-      if (apex && p.fork_length > 0 && axis_since_fork(v) + Dk >= p.fork_length) {
+      if (apex && ((p.fork_length > 0 && axis_since_fork(v) + Dk >= p.fork_length) || damaged(v, step))) {
         fork_apex(v, dir, step);
         continue;
       }

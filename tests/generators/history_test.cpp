@@ -135,6 +135,31 @@ TEST(GrowthHistory, UnequalForksKeepTheLeaderCloserToItsCourse) {
   EXPECT_GT(side - lead, glm::radians(35.0));
 }
 
+TEST(GrowthHistory, DamagedLeadersForkAtSeededPlaces) {
+  // Forks: nodes whose two children were added together (a node grows one child a step otherwise).
+  auto forks = [](const tree_skeleton& t) {
+    int n = 0;
+    for (size_t i = 1; i + 1 < t.size(); ++i)
+      if (t.parent[i] >= 0 && t.parent[i + 1] == t.parent[i] && t.born[i + 1] == t.born[i]) ++n;
+    return n;
+  };
+  space_colonization_params p = small_crown();
+  grow_options o;
+  o.seed = 6;
+  EXPECT_EQ(forks(grow_space_colonization(p, o)), 0);   // monopodial without damage or fork length
+  p.leader_damage = 0.1f;
+  const tree_skeleton t = grow_space_colonization(p, o);
+  const int n = forks(t);
+  // About one apex in ten forks each step: many forks, far fewer than the apices' growth steps.
+  size_t apex_steps = 0;
+  for (size_t i = 1; i < t.size(); ++i) apex_steps += t.order[i] == t.order[size_t(t.parent[i])];
+  EXPECT_GT(n, 10);
+  EXPECT_LT(size_t(n), apex_steps / 4);
+  EXPECT_EQ(forks(grow_space_colonization(p, o)), n);   // seeded
+  o.seed = 7;
+  EXPECT_NE(grow_space_colonization(p, o).position, t.position);
+}
+
 TEST(GrowthHistory, SelfPruningLeavesStubsOfBoundedLength) {
   tree_skeleton t = whorled_pole();
   const tree_skeleton before = t;
