@@ -38,6 +38,8 @@ constexpr refusal so_refusals[] = {
     {"pipe_exponent", whole},
     {"pipe_taper", whole},
     {"tip_radius", whole},
+    {"live_crown", whole},
+    {"stub_length", whole},
     {"tree_count", once},
     {"placement", once},
     {"spacing", once},
@@ -70,6 +72,8 @@ constexpr refusal sc_refusals[] = {
     {"spiral_k", whole},
     {"spiral_e", whole},
     {"spiral_rounds", whole},
+    {"live_crown", whole},
+    {"stub_length", whole},
 };
 
 constexpr refusal gv_refusals[] = {
@@ -104,6 +108,9 @@ constexpr refusal honda_refusals[] = {
     {"pipe_taper", whole},
     {"tip_radius", whole},
     {"module_cap", cap},
+    {"season_variation", "it acts in text mode only, which takes no keyframes"},
+    {"live_crown", whole},
+    {"stub_length", whole},
 };
 
 template <size_t N>

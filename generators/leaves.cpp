@@ -149,7 +149,8 @@ foliage place_shoot_leaves(const tree_skeleton& t, const leaf_params& p, uint64_
       const float e1len = glm::length(e1);
       e1 = e1len > 1e-3f ? e1 / e1len : glm::vec3(1, 0, 0);
       const glm::vec3 e2 = glm::cross(d, e1);
-      const uint16_t died = retention_end(t.born[i], p.retention, t.died[i]);
+      // Dead wood (a self-pruned limb's stub, generators/history.h) drops its leaves when it dies.
+      const uint16_t died = retention_end(t.born[i], p.retention, std::min(t.died[i], t.dead_from(i)));
       const int above = std::clamp(int(t.order[i]) - p.min_order, 0, 8);
       const float size = base_size * taper_pow[above] * card_scale;
       float az = divergence * std::floor(arc[par] / (spacing * float(cluster)));
@@ -204,7 +205,7 @@ std::vector<leaf> place_tip_leaves(const tree_skeleton& t, const leaf_params& p,
   const glm::quat tilt = glm::angleAxis(spread, glm::vec3(1, 0, 0));   // the same for every leaf
   for (size_t i = 0; i < n; ++i) {
     if (!carries_leaves(i)) continue;
-    const uint16_t died = std::min(t.died[i], first_child[i]);
+    const uint16_t died = std::min({t.died[i], first_child[i], t.dead_from(i)});
     glm::vec3 dir = t.position[i] - t.position[t.parent[i]];
     const float len = glm::length(dir);
     dir = len > 1e-12f ? dir / len : glm::vec3(0, 1, 0);

@@ -39,6 +39,10 @@ struct lsystem_params {
   lsystem_widths widths = lsystem_widths::turtle;
   float pipe_exponent = 2.0f, tip_radius = 0.004f;
   float pipe_taper = 0.0f;   // disused pipes per metre (skeleton.h), pipe widths only
+  // Growth history (generators/history.h), text mode, off by default.
+  float season_variation = 0.0f;  // amplitude a: an F of derivation k is exp(a·z_k) times as long
+  float live_crown = 1.0f;        // limbs below (1 − this)·height die (1: none do)
+  float stub_length = 0.3f;       // metres of a dead limb that stay as a stub
   int node_cap = 2000000;
   int module_cap = 4000000;
   bool operator==(const lsystem_params&) const = default;
@@ -69,6 +73,9 @@ void visit_params(P& p, V&& visitor) {
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model exponent (pipe widths): 2 keeps the cross-section area, larger gives thinner trunks"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of the youngest segments in metres (pipe widths)", param_log});
   v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (pipe widths; per metre)"});
+  v(p.season_variation, param_info{"season_variation", "Season variation", "a", 0, 1, "Years differ: every F written by derivation k is exp(a·z_k) times as long, z_k a seeded run of good and poor seasons (AR(1), ρ = 0.5, as tree rings show: Fritts 1976), so a good year's leader internode and laterals are long together and a poor year's short: uneven tiers (0: every derivation alike)", 0, "Growth history"});
+  v(p.live_crown, param_info{"live_crown", "Live crown", "c", 0.05f, 1, "Natural pruning: a limb leaving the trunk below (1 − c) of the tree's height at a derivation dies in that derivation, and only a short dead stub stays (Wilson 1984; the foresters' live crown ratio) (1: no limb dies)"});
+  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the trunk as a dead, leafless stub (0: it falls whole)"});
   v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
 }
 
@@ -79,7 +86,9 @@ inline bool param_relevant(const lsystem_params& p, const void* field, const par
                           field == &p.r2 || field == &p.q || field == &p.e;
   const bool text_only = field == &p.source || field == &p.leaf_size || field == &p.module_cap ||
                          field == &p.widths || field == &p.pipe_exponent || field == &p.tip_radius ||
-                         field == &p.pipe_taper;
+                         field == &p.pipe_taper || field == &p.season_variation || field == &p.live_crown ||
+                         field == &p.stub_length;
+  if (field == &p.stub_length && p.live_crown >= 1) return false;
   if (honda_only) return p.mode == lsystem_mode::honda;
   if (text_only) return p.mode == lsystem_mode::text;
   return true;

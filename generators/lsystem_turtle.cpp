@@ -4,6 +4,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "generators/history.h"
 #include "generators/lsystem_engine.h"
 
 namespace sylva {
@@ -66,6 +67,12 @@ tree_skeleton interpret_lsystem(const lsystem_program& prog, const lsystem_strin
   const glm::vec3 T = prog.tropism;
   const float e = prog.susceptibility;
   bool bad_position = false;
+  // Seasons (generators/history.h): an F written by derivation k grows exp(a·z_k) times as long.
+  std::vector<float> season;
+  if (p.season_variation > 0 && o) {
+    season = season_anomalies(o->seed, steps);
+    for (float& z : season) z = season_vigour(p.season_variation, z);
+  }
   auto arg = [&](const lsystem_module& m, float fallback) { return m.count ? s.params[m.param] : fallback; };
   auto ensure_node = [&](uint16_t born) {
     if (tu.node >= 0) return;
@@ -83,7 +90,8 @@ tree_skeleton interpret_lsystem(const lsystem_program& prog, const lsystem_strin
     const lsystem_module& m = s.modules[i];
     const uint8_t c = m.symbol;
     if (c == 'F' || prog.draws[c]) {
-      const glm::vec3 next = tu.pos + tu.frame[0] * arg(m, prog.step);
+      const float length = arg(m, prog.step) * (season.empty() ? 1.0f : season[std::min<size_t>(m.born, season.size() - 1)]);
+      const glm::vec3 next = tu.pos + tu.frame[0] * length;
       if (!std::isfinite(next.x) || !std::isfinite(next.y) || !std::isfinite(next.z)) {
         bad_position = true;
         continue;
@@ -198,6 +206,7 @@ tree_skeleton grow_lsystem_text(const lsystem_params& p, const grow_options& o, 
   lsystem_derive_report dr;
   const lsystem_string s = derive_lsystem(prog, steps, o.seed, p.module_cap, o, dr);
   tree_skeleton t = interpret_lsystem(prog, s, p, dr.derivations, rep, &o);
+  self_prune(t, p.live_crown, p.stub_length);   // lower limbs shaded out leave stubs (history.h)
   if (p.widths == lsystem_widths::pipe) apply_pipe_radii(t, p.pipe_exponent, p.tip_radius, p.pipe_taper);
   rep.cancelled = rep.cancelled || dr.cancelled;
   if (dr.error || dr.hit_module_cap) {

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "generators/history.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
 #include "generators/resume.h"
@@ -300,8 +301,10 @@ struct so_state : so_vars {
   // the step's shoots in bud order (node, then k) into `shoots`. Under Borchert-Honda a node's
   // buds get their v when the pass reaches the node, so they are listed then; the priority model
   // sets them axis by axis, so they are listed after it.
-  void allocate(int step, const std::vector<int32_t>& roots, std::vector<planned_shoot>& shoots) {
-    for (int32_t root : roots) flow[root] = p.alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
+  // `vigour` is the step's season (generators/history.h): a good year has more resource to share.
+  void allocate(int step, const std::vector<int32_t>& roots, std::vector<planned_shoot>& shoots, float vigour) {
+    const float alpha = p.alpha * vigour;
+    for (int32_t root : roots) flow[root] = alpha * std::max(flow[root], 0.0f);  // v_base = α·Q_base
     if (p.allocation == so_allocation::borchert_honda) {
       for (size_t i = 0; i < t.size(); ++i) {
         if (t.died[i] != never_died) continue;
@@ -456,6 +459,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
   st.cone = make_perception_cone(p.perception_distance, p.voxel_size, st.grid.voxel_size);
 
   float div = glm::radians(p.divergence);
+  const std::vector<float> season = season_anomalies(o.seed, steps);   // years differ (history.h)
   // Opposite phyllotaxis needs a third bud a node; a growth that never uses it keeps two (8 bytes a
   // node less), and a snapshot kept with two cannot resume one that now needs three.
   bool opposite = p.phyllotaxis == so_phyllotaxis::opposite;
@@ -550,7 +554,7 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     st.shed(uint16_t(T));   // and the flow again where it sheds
     if (debug) last_flow = st.flow;
     shoots.clear();
-    st.allocate(T, roots, shoots);
+    st.allocate(T, roots, shoots, season_vigour(p.season_variation, season[size_t(T)]));
 
     // Bud fate and shoots; the environment stays as it was at the step's start, so the result
     // does not depend on the order in which buds are visited.
@@ -659,6 +663,15 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
     }
     debug->node_flow = last_flow;
     debug->node_flow.resize(t.size(), 0.0f);
+  }
+  // Lower limbs shaded out by the crown above die and leave stubs (generators/history.h).
+  if (const std::vector<int32_t> kept = self_prune(t, p.live_crown, p.stub_length); !kept.empty()) {
+    apply_pipe_radii(t, p.pipe_exponent, p.tip_radius, p.pipe_taper);
+    if (debug) {
+      for (size_t j = 0; j < kept.size(); ++j)
+        debug->node_fate[j] = debug->node_fate[size_t(kept[j])], debug->node_flow[j] = debug->node_flow[size_t(kept[j])];
+      debug->node_fate.resize(kept.size()), debug->node_flow.resize(kept.size());
+    }
   }
   return t;
 }

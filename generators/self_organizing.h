@@ -59,6 +59,9 @@ struct self_organizing_params {
   // Allocation.
   so_allocation allocation = so_allocation::borchert_honda;
   float alpha = 2, lambda = 0.55f;
+  float season_variation = 0;         // years differ: step k's α is α·exp(a·z_k) (generators/history.h)
+  float live_crown = 1;               // limbs below (1 − this)·height die and leave stubs (1: none do)
+  float stub_length = 0.3f;           // metres of a dead limb that stay as a stub
   float w_max = 1.0f, w_min = 0.006f, kappa = 0.5f;
   int terminal_priority_steps = 8;
   so_priority_rank priority_rank = so_priority_rank::average;
@@ -106,6 +109,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.upkeep_form, param_info{"upkeep_form", "Upkeep form", "", 0, 1, "relative: BM·(r/r₀)^BE; seed001: the seed's printed BM·r^BE/r₀ with r in metres (= r₀^(BE−1)·relative)", 0, nullptr, so_upkeep_form_names});
   v(p.allocation, param_info{"allocation", "Allocation model", "", 0, 1, "borchert_honda: split at each branch point; priority: sort the buds of each axis (Palubicki 2009 §5)", 0, "Allocation", so_allocation_names});
   v(p.alpha, param_info{"alpha", "Resource factor", "α", 0, 20, "v_base = α·Q_base"});
+  v(p.season_variation, param_info{"season_variation", "Season variation", "a", 0, 1, "Years differ: year k's resource is v_base = α·exp(a·z_k)·Q_base, z_k a seeded run of good and poor seasons (AR(1), ρ = 0.5, as tree rings show: Fritts 1976), so a good year's shoots are long and many, a poor year's short and few (0: every year alike, as Palubicki 2009)"});
   v(p.lambda, param_info{"lambda", "Apical bias", "λ", 0, 1, "Borchert–Honda: share of resource sent to the main axis"});
   v(p.w_max, param_info{"w_max", "Top priority weight", "w_max", 0, 2, "Priority model: weight of the best-lit bud of an axis"});
   v(p.w_min, param_info{"w_min", "Low priority weight", "w_min", 0, 2, "Priority model: weight of the buds ranked at or after κN"});
@@ -119,6 +123,8 @@ void visit_params(P& p, V&& visitor) {
   v(p.branch_angle, param_info{"branch_angle", "Branching angle", "β", 0, 120, "Angle between an axis and its lateral buds", param_degrees});
   v(p.divergence, param_info{"divergence", "Divergence", "φ", 0, 360, "Phyllotactic angle between successive lateral buds (opposite phyllotaxis: between successive pairs)", param_degrees});
   v(p.phyllotaxis, param_info{"phyllotaxis", "Phyllotaxis", "", 0, 2, "spiral: one lateral bud per node, turned by φ from the last; planar: seed 000's ±β in one plane (flat trees); opposite: a pair of lateral buds on opposite sides of each node, each pair turned by φ from the last (φ = 90°: decussate, as in maples and ashes)", 0, nullptr, so_phyllotaxis_names});
+  v(p.live_crown, param_info{"live_crown", "Live crown", "c", 0.05f, 1, "Natural pruning: a limb leaving a stem below (1 − c) of the tree's height at a step dies in that step, and only a short dead stub stays (Wilson 1984; the foresters' live crown ratio) (1: no limb dies)", 0, "Growth history"});
+  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the stem as a dead, leafless stub (0: it falls whole)"});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1.5f, 4, "Pipe model r^n = Σ r_i^n", 0, "Radii"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of a branch tip in metres", param_log});
   v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});

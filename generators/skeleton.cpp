@@ -31,7 +31,7 @@ void tree_skeleton::reserve(size_t n) {
 std::string validate_skeleton(const tree_skeleton& s) {
   const size_t n = s.position.size();
   if (s.parent.size() != n || s.radius.size() != n || s.born.size() != n || s.died.size() != n ||
-      s.order.size() != n)
+      s.order.size() != n || (!s.dead.empty() && s.dead.size() != n))
     return "array sizes differ";
   for (size_t i = 0; i < n; ++i) {
     const auto& p = s.position[i];
@@ -44,6 +44,7 @@ std::string validate_skeleton(const tree_skeleton& s) {
     if (par < -1) return "node " + std::to_string(i) + " has a negative parent";
     if (s.died[i] <= s.born[i]) return "node " + std::to_string(i) + " dies before it is born";
     if (s.born[i] > s.steps) return "node " + std::to_string(i) + " is born after the last step";
+    if (s.dead_from(i) <= s.born[i]) return "node " + std::to_string(i) + " is dead wood before it is born";
     if (par >= 0) {
       if (s.born[i] < s.born[par]) return "node " + std::to_string(i) + " is born before its parent";
       if (s.died[i] > s.died[par]) return "node " + std::to_string(i) + " outlives its parent";
@@ -117,7 +118,7 @@ std::vector<float> radii_at_step(const tree_skeleton& s, int step) {
 bool structurally_sound(const tree_skeleton& t) {
   const size_t n = t.position.size();
   if (t.parent.size() != n || t.radius.size() != n || t.born.size() != n || t.died.size() != n ||
-      t.order.size() != n)
+      t.order.size() != n || (!t.dead.empty() && t.dead.size() != n))
     return false;
   for (size_t i = 0; i < n; ++i)
     if (t.parent[i] < -1 || t.parent[i] >= int32_t(i)) return false;

@@ -35,6 +35,9 @@ struct tree_skeleton {               // node i is the tip of the internode from 
   std::vector<uint16_t> born;        // growth step in which the node appeared (0 = seedling)
   std::vector<uint16_t> died;        // step in which it was shed, or never_died
   std::vector<uint8_t> order;        // branch order: 0 trunk, 1 first lateral, ...
+  // Step from which a node stands as dead wood: it stays, bare of leaves (a self-pruned limb's stub,
+  // generators/history.h); never_died while it lives. Empty when no node is dead wood.
+  std::vector<uint16_t> dead;
   std::vector<leaf> leaves;
   // When pipe_exponent > 0 the radii are pipe-model radii of the living tree, so they change over
   // time: the view at step s recomputes them from the nodes alive at s (O(n), DESIGN §2).
@@ -50,6 +53,8 @@ struct tree_skeleton {               // node i is the tip of the internode from 
 
   size_t size() const { return position.size(); }
   bool alive(size_t i, int step) const { return born[i] <= step && step < died[i]; }
+  // The step from which node i is dead wood (never_died: it lives while it stands).
+  uint16_t dead_from(size_t i) const { return dead.empty() ? never_died : dead[i]; }
   // Appends a node and returns its index.
   int32_t add_node(const glm::vec3& p, int32_t par, float r, uint16_t born_step, uint8_t ord);
   void reserve(size_t n);

@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "generators/history.h"
 #include "generators/job_pool.h"
 #include "generators/keyframes.h"
 #include "generators/pruning.h"
@@ -353,7 +354,9 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   const int steps = std::min(o.steps >= 0 ? o.steps : p.steps, int(never_died) - 1);
   float D = p.segment_length;
   const float d_i = p.influence_radius;
-
+  // Seasons (generators/history.h): crown step k grows segments of Dk = D·exp(a·z_k).
+  const std::vector<float> season = season_anomalies(o.seed, steps);
+  float Dk = D;
 
   tree_skeleton t;
   std::vector<uint8_t> has_child;
@@ -488,7 +491,9 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // apex ends and laterals continue the axis).
   auto axis_since_fork = [&](int32_t v) {
     float len = 0;
-    const int most = int(p.fork_length / D) + 2;
+    // Enough nodes to cover fork_length in the shortest segments any season grows.
+    const float shortest = p.season_variation > 0 ? D * season_vigour(p.season_variation, -4.0f) : D;
+    const int most = int(p.fork_length / shortest) + 2;
     for (int k = 0; k < most && v > 0 && !forked[size_t(t.parent[size_t(v)])]; ++k) {
       len += glm::length(t.position[size_t(v)] - t.position[size_t(t.parent[size_t(v)])]);
       v = t.parent[size_t(v)];
@@ -502,13 +507,24 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     forked[size_t(v)] = 1;
     for (float sgn : {1.0f, -1.0f}) {
       if (!room()) return;
-      glm::vec3 d = rotate_by(dir, side * (sgn * half));
+      // An unequal fork: the first shoot (which keeps the axis' order) turns less, the second more.
+      const float turn = p.fork_asymmetry > 0 ? half * (1.0f - sgn * p.fork_asymmetry) : half;
+      glm::vec3 d = rotate_by(dir, side * (sgn * turn));
       if (crook > 0) {
         const glm::vec3 across = rotate_by(any_perpendicular(d), d * r.uniform(0.0f, 6.2831853f));
         d = rotate_by(d, across * (crook * r.uniform(-1.0f, 1.0f)));
       }
-      add(t.position[size_t(v)] + D * glm::normalize(d), v, k);
+      add(t.position[size_t(v)] + Dk * glm::normalize(d), v, k);
     }
+  };
+
+  // Leader damage (frost, browsing, insects): an apex dies in a step with probability leader_damage,
+  // seeded by node and step, and the buds below it take over as a fork (reiteration: Hallé,
+  // Oldeman & Tomlinson 1978). No draw at all while it is 0.
+  auto damaged = [&](int32_t v, int k) {
+    if (!(p.leader_damage > 0)) return false;
+    rng r(o.seed * 0xA24BAED4963EE407ull ^ (uint64_t(v) * 0x9FB21C651E98DF25ull + uint64_t(k)));
+    return r.uniform() < p.leader_damage;
   };
 
   // Crown: Runions 2007 §3, one iteration per growth step.
@@ -541,6 +557,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     }
     ++step;
     key_step(step);
+    Dk = D * season_vigour(p.season_variation, season[size_t(step)]);
     if (debug) debug->lines.clear(), debug->line_color.clear(), debug->line_kind.clear();
     touched.clear();
     for (int32_t i : s.active) {
@@ -580,11 +597,11 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       // points beside it would otherwise curl round into a loop). Laterals branch off freely.
       if (apex && par >= 0 && p.max_turn < 180.0f) dir = limit_turn(prev, dir, glm::radians(std::max(p.max_turn, 1.0f)));
       last_count[size_t(v)] = acc_count[size_t(v)];
-      if (apex && p.fork_length > 0 && axis_since_fork(v) + D >= p.fork_length) {
+      if (apex && ((p.fork_length > 0 && axis_since_fork(v) + Dk >= p.fork_length) || damaged(v, step))) {
         fork_apex(v, dir, step);
         continue;
       }
-      add(t.position[size_t(v)] + D * dir, v, step);  // Runions 2007 §3: v' = v + D·n̂
+      add(t.position[size_t(v)] + Dk * dir, v, step);  // Runions 2007 §3: v' = v + D·n̂
     }
     if (any_stuck)
       for (int32_t i : s.active)
@@ -609,6 +626,13 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
     std::snprintf(used, sizeof used, "%.3g", double(d_k));
     rep.message = "kill distance dₖ ≥ influence radius dᵢ: points would die before they could attract, so dₖ = 0.9·dᵢ = " +
                   std::string(used) + " m was used; lower dₖ below dᵢ";
+  }
+
+  // Lower limbs shaded out by the crown above die and leave stubs (generators/history.h).
+  if (!self_prune(t, p.live_crown, p.stub_length).empty()) {
+    has_child.assign(t.size(), 0);
+    for (size_t i = 1; i < t.size(); ++i)
+      if (t.parent[i] >= 0) has_child[size_t(t.parent[i])] = 1;
   }
 
   // Widths: pipe model r^n = Σ rᵢ^n, tips at W (seed 003's Da Vinci rule; Shinozaki 1964), capped at

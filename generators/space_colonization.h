@@ -46,6 +46,12 @@ struct space_colonization_params {
   float fork_angle = 50.0f;    // degrees between the two shoots of a fork
   float crook = 0.0f;          // degrees of seeded turn off course for each shoot of a fork
   float max_turn = 180.0f;     // degrees an axis' apex may turn off its last segment per segment (180: any)
+  float leader_damage = 0.0f;   // chance a step that an apex dies and forks (leader damage and recovery)
+  float fork_asymmetry = 0.0f;  // share by which a fork's leader turns less, and its other shoot more, than half the fork angle
+  // Growth history (generators/history.h), off by default.
+  float season_variation = 0.0f;  // amplitude a of the seasons: step k's segments are D·exp(a·z_k) long
+  float live_crown = 1.0f;        // limbs below (1 − this)·height die (1: none do)
+  float stub_length = 0.3f;       // metres of a dead limb that stay as a stub
   // Widths: pipe model (seed 003's "Da Vinci" rule).
   float pipe_exponent = 2.0f;
   float min_width = 0.01f;
@@ -88,6 +94,11 @@ void visit_params(P& p, V&& visitor) {
   v(p.fork_angle, param_info{"fork_angle", "Fork angle", "", 0, 150, "Angle between the two shoots that take over at a sympodial fork", param_degrees | param_on_release});
   v(p.crook, param_info{"crook", "Crook", "", 0, 60, "Each shoot of a fork turns off its course by up to this seeded angle, so limbs zig-zag at their forks (crooked oak limbs)", param_degrees | param_on_release});
   v(p.max_turn, param_info{"max_turn", "Apex turn limit", "", 1, 180, "Most an axis' apex turns off its last segment in one segment; a low limit keeps a shoot that chases points round it from curling into a loop (180: no limit, as Runions 2007)", param_degrees | param_on_release});
+  v(p.leader_damage, param_info{"leader_damage", "Leader damage", "", 0, 0.5f, "Chance each growth step that a shoot's apex dies (frost, browsing, insects) and two shoots below it take over as a fork, whatever the fork length: forks and reiterated limbs at seeded places, as on old trees (Hallé, Oldeman & Tomlinson 1978) (0: apices never die)", param_on_release});
+  v(p.fork_asymmetry, param_info{"fork_asymmetry", "Fork asymmetry", "", 0, 0.9f, "Unequal forks: the first shoot of a sympodial fork leaves its course by (1 − this) × half the fork angle and takes over the axis, the second by (1 + this) × half, so a limb forks into a leader and a side limb instead of a symmetric Y (0: symmetric)", param_on_release});
+  v(p.season_variation, param_info{"season_variation", "Season variation", "a", 0, 1, "Years differ: each crown step's segments are D·exp(a·z_k) long, z_k a seeded run of good and poor seasons (AR(1), ρ = 0.5, as tree rings show: Fritts 1976), so shoot lengths and the spacing of forks vary from step to step (0: every step alike)", param_on_release, "Growth history"});
+  v(p.live_crown, param_info{"live_crown", "Live crown", "c", 0.05f, 1, "Natural pruning: a limb leaving the trunk below (1 − c) of the tree's height at a step dies in that step, and only a short dead stub stays (Wilson 1984; the foresters' live crown ratio) (1: no limb dies)", param_on_release});
+  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the trunk as a dead, leafless stub (0: it falls whole)", param_on_release});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (seed 003's Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
   v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
@@ -108,6 +119,8 @@ inline bool param_relevant(const space_colonization_params& p, const void* field
   if (field == &p.slab_thickness) return p.envelope == envelope_shape::slab;
   if (field == &p.envelope_mesh) return p.envelope == envelope_shape::mesh;
   if (field == &p.envelope_dent_depth) return p.envelope_dents > 0;
+  if (field == &p.stub_length) return p.live_crown < 1;
+  if (field == &p.fork_asymmetry) return p.fork_length > 0 || p.leader_damage > 0;
   return true;
 }
 

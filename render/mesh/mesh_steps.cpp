@@ -84,6 +84,7 @@ tree_skeleton skeleton_at_step(const tree_skeleton& t, int step) {
     if (remap[i] < 0) continue;
     out.add_node(x[i], t.parent[i] < 0 ? -1 : remap[t.parent[i]], r[i], t.born[i], t.order[i]);
     out.died.back() = t.died[i];
+    if (!t.dead.empty()) out.dead.push_back(t.dead[i]);   // dead wood stays dead wood
   }
   for (const leaf& l : t.leaves) {
     if (l.node < 0 || size_t(l.node) >= t.size() || remap[l.node] < 0) continue;

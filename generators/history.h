@@ -1,0 +1,32 @@
+// Growth history shared by the generators: seasons of unequal vigour, and lower limbs that die in
+// the shade of the crown above and stay as short dead stubs (docs/design/02-generators.md, §2
+// "Growth history"). Both are off by default: a generator that does not ask for them keeps its bits.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "generators/skeleton.h"
+
+namespace sylva {
+
+// The seeded climate anomaly z_k of growth steps 0..steps (z_0 = 0): a first-order autoregressive
+// sequence z_k = ρ·z_{k−1} + √(1−ρ²)·ε_k with unit variance, ρ = 0.5 and ε_k uniform; ring-width
+// indices of trees show such year-to-year persistence (Fritts 1976, Tree Rings and Climate, ch. 5).
+// A generator scales step k's shoot growth by season_vigour(a, z_k).
+std::vector<float> season_anomalies(uint64_t seed, int steps);
+// exp(a·z): a good season (z > 0) lengthens the shoots of its step, a poor one shortens them; exactly
+// 1 when a = 0.
+float season_vigour(float amplitude, float anomaly);
+
+// Natural pruning of the lower limbs (Wilson 1984, The Growing Tree, ch. 8; foresters' live crown
+// ratio): a limb leaving an order-0 axis at height y dies at the first step k after its birth at
+// which y < (1 − live_crown)·H(k), where H(k) is the height of the tree at step k. Its wood within
+// `stub_length` metres of the axis stays as a dead stub (t.dead = k: it stands, bare of leaves); the
+// rest falls at k (died = k), and what the limb would have grown from k on is removed from the tree.
+// live_crown >= 1 changes nothing. Generator leaves on removed nodes go with them. Returns the old
+// index of every kept node (empty when nothing changed); the caller recomputes radii and whatever
+// else it keeps per node.
+std::vector<int32_t> self_prune(tree_skeleton& t, float live_crown, float stub_length);
+
+}  // namespace sylva
