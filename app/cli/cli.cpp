@@ -5,6 +5,7 @@
 #include "app/bench/bench_set.h"
 #include "app/cli/cli_batch.h"
 #include "app/cli/cli_lods.h"
+#include "app/cli/cli_options.h"
 #include "app/bench/editor_bench.h"
 
 #include <algorithm>
@@ -314,7 +315,7 @@ int run_export(const export_args& a) {
     std::string what = "seed " + std::to_string(v.seed);
     for (const std::string& set : v.sets) what += ", " + set;
 
-    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0 && std::isfinite(a.wind)))
+    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0))   // finite already: add_float_option
       return usage_error(cmd, "--wind needs a loop length (glTF) or a moment (.png) in seconds > 0");
     const bool wind = a.wind_opt && a.wind_opt->count();
     if (wind) {
@@ -443,10 +444,10 @@ int run_cli(int argc, char** argv) {
                 "opaque textures as JPEG");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
   exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as <name>_LOD0..3 nodes, OBJ one file per level");
-  exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
-  ex.wind_opt = exp->add_option("--wind", ex.wind,
-                                "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
-                                "(0.5-60); .png: render the wind's motion at SECONDS");
+  add_float_option(exp, "--seconds-per-step", ex.seconds_per_step, "glTF animation speed", 0.001f, 60.0f);
+  ex.wind_opt = add_float_option(exp, "--wind", ex.wind,
+                                 "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
+                                 "(0.5-60); .png: render the wind's motion at SECONDS");
 
   std::vector<std::string> bench_paths;
   int repeat = 5;

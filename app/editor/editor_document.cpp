@@ -313,6 +313,12 @@ void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>&
 // A completed edit that would leave a document the loader refuses (keyframes or cuts on a text
 // L-system) is taken back with the reason, so every document the editor holds saves and reopens.
 void record_undo(editor_state& e) {
+  // A number that is not finite (a field typed "1e999") is put back at once, while its field is
+  // still active too: the document is posted to the worker in this frame.
+  if (std::string why = non_finite_refusal(e.cur().doc); !why.empty() && non_finite_refusal(e.cur().undo_base).empty()) {
+    e.cur().doc = e.cur().undo_base;
+    return set_status(e, "Not applied: " + why, true);
+  }
   if (ImGui::IsAnyItemActive() || e.cur().doc == e.cur().undo_base) return;
   if (std::string why = document_refusal(e.cur().doc); !why.empty() && document_refusal(e.cur().undo_base).empty()) {
     e.cur().doc = e.cur().undo_base;

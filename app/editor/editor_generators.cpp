@@ -98,11 +98,15 @@ void draw_constants(lsystem_panel_state& s, std::string& source) {
     float v = c.value;
     // A value outside its comment's range widens the slider rather than being clamped on touch.
     const float lo = std::min(c.min, v), hi = std::max(c.max, v);
-    if (ImGui::SliderFloat(c.name.c_str(), &v, lo, hi, "%.4g")) set_lsystem_constant(source, c.name, v);
+    if (ImGui::SliderFloat(c.name.c_str(), &v, lo, hi, "%.4g")) {   // Ctrl+click types: "1e999" is inf
+      s.refused = finite_refusal(c.name, v);
+      if (s.refused.empty()) set_lsystem_constant(source, c.name, v);
+    }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("%s\n#define on line %d; dragging rewrites the text", c.help.empty() ? c.name.c_str() : c.help.c_str(), c.line);
     ImGui::PopID();
   }
+  if (!s.refused.empty()) ImGui::TextColored(error_colour, "Not applied: %s", s.refused.c_str());
 }
 
 void draw_inspector(lsystem_panel_state& s) {

@@ -89,6 +89,7 @@ struct lsystem_panel_state {
   lsystem_error error;
   std::vector<lsystem_error> warnings;   // lsystem_warnings(): unbalanced brackets, idle parameters, dead productions
   std::vector<lsystem_constant> constants;
+  std::string refused;                   // a constant typed as NaN or infinity: why it was not applied
   // The derivation inspector runs off the UI thread; the newest finished one is shown.
   std::future<lsystem_inspection> pending;
   std::string pending_source, inspected_source;
