@@ -197,19 +197,30 @@ struct variant {
   std::vector<std::string> sets;  // one value per --set, sweeps expanded
 };
 
-bool parse_seed_range(const std::string& s, uint64_t& a, uint64_t& b) {
+// A batch writes at most this many files (the product of --seeds and the --set sweeps).
+constexpr uint64_t max_batch_variants = 100000;
+
+// "" and the range, or why "A-B" is not one, the batch limit named when it is too long.
+std::string parse_seed_range(const std::string& s, uint64_t& a, uint64_t& b) {
+  const std::string form = "--seeds expects A-B with A <= B, got \"" + s + "\"";
   const size_t dash = s.find('-');
-  if (dash == std::string::npos || dash == 0 || dash + 1 >= s.size()) return false;
+  if (dash == std::string::npos || dash == 0 || dash + 1 >= s.size()) return form;
   try {
     size_t used = 0;
     a = std::stoull(s.substr(0, dash), &used);
-    if (used != dash) return false;
+    if (used != dash) return form;
     b = std::stoull(s.substr(dash + 1), &used);
-    if (used != s.size() - dash - 1) return false;
+    if (used != s.size() - dash - 1) return form;
   } catch (const std::exception&) {
-    return false;
+    return form;
   }
-  return a <= b && b - a < 100000;
+  if (a > b) return form;
+  if (b - a >= max_batch_variants) {
+    const std::string n = b - a == UINT64_MAX ? "18446744073709551616" : std::to_string(b - a + 1);
+    return "--seeds " + s + " is " + n + " seeds; a batch writes at most " + std::to_string(max_batch_variants) +
+           " files, so split it into ranges of at most that many";
+  }
+  return "";
 }
 
 int run_export(const export_args& a) {
@@ -232,8 +243,7 @@ int run_export(const export_args& a) {
   std::vector<uint64_t> seeds;
   if (!a.seeds.empty()) {
     uint64_t s0, s1;
-    if (!parse_seed_range(a.seeds, s0, s1))
-      return usage_error(cmd, "--seeds expects A-B with A <= B, got \"" + a.seeds + "\"");
+    if (std::string e = parse_seed_range(a.seeds, s0, s1); !e.empty()) return usage_error(cmd, e);
     for (uint64_t s = s0; s <= s1; ++s) seeds.push_back(s);
   } else {
     seeds.push_back(a.seed_opt->count() ? a.seed : base.spec.seed);
@@ -260,7 +270,9 @@ int run_export(const export_args& a) {
         next.back().sets.push_back(value);
       }
     variants = std::move(next);
-    if (variants.size() > 100000) return usage_error(cmd, "more than 100000 variants");
+    if (variants.size() > max_batch_variants)
+      return usage_error(cmd, std::to_string(variants.size()) + " variants; a batch writes at most " +
+                                  std::to_string(max_batch_variants) + " files (the seeds times every --set sweep's count)");
   }
   const bool batch = variants.size() > 1;
   // Every variant's values are applied once before anything is written (a keyframe may be past

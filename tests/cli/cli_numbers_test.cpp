@@ -1,5 +1,5 @@
 // Every float option of every command refuses NaN and infinity by name, before anything is written
-// (add_float_option, app/cli/cli_options.h).
+// (add_float_option, app/cli/cli_options.h); the batch limit is named when --seeds is too long.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -64,4 +64,26 @@ TEST(CliNumbers, EveryFloatOptionRefusesNanAndInfinityByName) {
   EXPECT_NE(r.err.find("--seconds-per-step"), std::string::npos) << r.err;
   std::error_code ec;
   fs::remove_all(dir, ec);
+}
+
+TEST(CliNumbers, SeedsPastTheBatchLimitSayWhatTheLimitIs) {
+  const fs::path out = fs::temp_directory_path() / ("sylva_cli_seeds_" + std::to_string(::getpid()) + ".json");
+  sylva_run r = sylva("export " + honda_a() + " -o " + out.string() + " --seeds 1-1000000000");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("1000000000 seeds"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at most 100000 files"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("A <= B"), std::string::npos) << r.err;   // the range is well formed
+  EXPECT_FALSE(fs::exists(out));
+  // The whole 64-bit range is counted without wrapping.
+  r = sylva("export " + honda_a() + " -o " + out.string() + " --seeds 0-18446744073709551615");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("18446744073709551616 seeds"), std::string::npos) << r.err;
+  // A reversed range is still told as such.
+  r = sylva("export " + honda_a() + " -o " + out.string() + " --seeds 5-2");
+  EXPECT_NE(r.err.find("A <= B"), std::string::npos) << r.err;
+  // Seeds times a sweep past the limit: the count and the limit.
+  r = sylva("export " + honda_a() + " -o " + out.string() + " --seeds 1-200 --set r1=0.5:0.9:1000");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("at most 100000 files"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
