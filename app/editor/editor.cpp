@@ -17,6 +17,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include "app/common/wake.h"
 #include "app/editor/editor_script.h"
 #include "app/editor/editor_settings.h"
 #include "app/editor/editor_state.h"
@@ -270,12 +271,22 @@ int run_editor(const editor_options& o) {
   int exit_code = 0, frames_with_tree = 0;
   auto started = std::chrono::steady_clock::now();
   auto last = started;
+  // An editor with nothing to do waits for events and draws nothing (docs/design/09-editor.md "An
+  // editor that idles"); work finishing on another thread wakes it (app/common/wake.h).
+  frame_pacer pacer;
+  ui_waker = +[] { glfwPostEmptyEvent(); };
   while (!glfwWindowShouldClose(window)) {
-    glfwPollEvents();
+    const bool busy = automated || (scripted && !script.idling()) || !drawing_reason(*e).empty();
+    const bool draw = next_frame(pacer, e->input, busy, 0.5);
     auto now = std::chrono::steady_clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;
-    e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
+    if (!draw) {   // nothing changed: no frame, but the autosave keeps its time
+      autosave(*e, dt);
+      continue;
+    }
+    ++e->frames_drawn;
+    if (!pacer.waited) e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading; a wait is no frame time
 
     if (e->rescale_to > 0 && !std::getenv("SYLVA_UI_SCALE")) {
       apply_ui_scale(e->rescale_to);
@@ -443,6 +454,7 @@ int run_editor(const editor_options& o) {
       e->script_shot.clear();
     }
     glfwSwapBuffers(window);
+    if (scripted) idle_mark_start(script, e->frames_drawn);
   }
 
   if (scripted && !script.finished && !script.failed)
@@ -459,6 +471,7 @@ int run_editor(const editor_options& o) {
     settings.recent = e->recent;
     save_settings(e->home, settings);
   }
+  ui_waker = nullptr;
   shutdown_export_dialog(e->exporter);
   ab_free_gl(e->ab);   // both slots: workers stopped, renderers freed
   shutdown_preset_browser(e->browser);

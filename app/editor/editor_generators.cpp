@@ -1,6 +1,8 @@
 // Generator-specific editor panels: L-system text, constants and inspector; per-step tables; overlay toggles.
 #include "app/editor/editor_generators.h"
 
+#include "app/common/wake.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -44,7 +46,9 @@ void refresh_inspection(lsystem_panel_state& s, const lsystem_params& p, uint64_
   s.pending_seed = seed;
   const int64_t cap = std::min<int64_t>(p.module_cap, 2000000);   // the inspector never outgrows the tree's own cap
   s.pending = std::async(std::launch::async, [src = p.source, n = p.derivations, first = s.first_n, seed, cap] {
-    return inspect_lsystem(src, n, first, seed, cap);
+    lsystem_inspection r = inspect_lsystem(src, n, first, seed, cap);
+    wake_ui();   // an idle editor shows it
+    return r;
   });
 }
 

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include <sys/resource.h>
+
 #include <GLFW/glfw3.h>
 
 namespace sylva::ed {
@@ -38,6 +40,22 @@ std::vector<std::string> words(const std::string& s) {
 }
 
 }  // namespace
+
+void idle_mark_start(script_state& sc, uint64_t frames_drawn) {
+  if (!sc.idle_pending) return;
+  sc.idle_pending = false;
+  sc.idle_started = true;
+  sc.idle_from = std::chrono::steady_clock::now();
+  sc.idle_until = sc.idle_from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(sc.idle_span));
+  sc.idle_cpu = process_cpu_seconds();
+  sc.idle_frames = frames_drawn;
+}
+
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 bool load_script(const std::string& path, script_state& sc, std::string& error) {
   std::string text;
@@ -332,6 +350,26 @@ bool run_script(editor_state& e, script_state& sc) {
         std::fflush(stdout);
         sc.frame_times.clear();
       }
+    } else if (cmd == "wait_quiet") {   // until nothing keeps the editor drawing (drawing_reason)
+      done = drawing_reason(e).empty();
+      if (!done && waited > 300) return fail("still drawing for " + drawing_reason(e) + " after 300 s");
+    } else if (cmd == "idle") {   // idle S [MAX]: the editor left alone; its CPU use measured
+      const double span = std::atof(arg.c_str());
+      if (!(span > 0)) return fail("idle needs seconds > 0");
+      if (!sc.idle_started && !sc.idle_pending) {   // measured from the end of this frame (idle_mark_start)
+        sc.idle_pending = true;
+        sc.idle_span = span;
+        return true;
+      }
+      if (sc.idling()) return true;
+      // This frame ends the wait and is not counted; the CPU it used up to here is (building the UI).
+      const double cpu = process_cpu_seconds() - sc.idle_cpu, idled = seconds_since(sc.idle_from), share = 100.0 * cpu / idled;
+      std::printf("sylva script: idle %.1f s: CPU %.3f s, %.1f %% of a core, %llu frames drawn%s%s\n", idled, cpu, share,
+                  (unsigned long long)(e.frames_drawn - 1 - sc.idle_frames), drawing_reason(e).empty() ? "" : "; drawing for ",
+                  drawing_reason(e).c_str());
+      sc.idle_started = false;
+      if (arg.find(' ') != std::string::npos && share > std::atof(arg.substr(arg.find(' ') + 1).c_str()))
+        return fail("the idle editor used " + std::to_string(share) + " % of a core");
     } else if (cmd == "budget") {
       e.cur().worker->node_budget = std::atoll(arg.c_str());
     } else if (cmd == "shot") {

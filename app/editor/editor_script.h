@@ -39,6 +39,10 @@ namespace sylva::ed {
 //   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
 //   expect_texture_loads N     the user texture files the renderer has read so far
 //   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
+//   wait_quiet                 until nothing keeps the editor drawing (no growth, LOD build, wind ...)
+//   idle S [MAX]               touches nothing for S seconds, so the editor may idle; prints the CPU
+//                              time the process used (every thread) as a share of one core and the
+//                              frames drawn meanwhile; with MAX, fails above MAX % of a core
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
@@ -50,7 +54,23 @@ struct script_state {
   std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
   bool failed = false, finished = false;
   std::vector<std::chrono::steady_clock::time_point> frame_times;   // frame_median: one per frame
+  // idle: asked for (it starts once the frame that asked is drawn), started; its span, its start and
+  // end, and the CPU seconds and frames drawn at its start.
+  bool idle_pending = false, idle_started = false;
+  double idle_span = 0;
+  std::chrono::steady_clock::time_point idle_from, idle_until;
+  double idle_cpu = 0;
+  uint64_t idle_frames = 0;
+  // The script touches nothing now: the frame loop may wait for events (editor.cpp).
+  bool idling() const { return idle_pending || (idle_started && std::chrono::steady_clock::now() < idle_until); }
 };
+
+// Starts an idle the script asked for in this frame, once the frame is drawn (editor.cpp): the
+// frame's own drawing is no part of the quiet it measures.
+void idle_mark_start(script_state& sc, uint64_t frames_drawn);
+
+// CPU seconds the process has used so far, every thread (getrusage).
+double process_cpu_seconds();
 
 // Reads the script at `path` into `sc`; false with `error` set when it cannot be read.
 bool load_script(const std::string& path, script_state& sc, std::string& error);

@@ -87,6 +87,7 @@ struct editor_state {
   std::vector<log_line> log;      // View > Messages
   bool show_log = false, show_shortcuts = false;
   double frame_ms = 0;
+  uint64_t frames_drawn = 0;      // since start (an idle editor draws none: the frame loop waits)
   bool screenshot_requested = false;   // F12: the 3D view to ~/Sylva/screenshots/
   std::string screenshot_to;            // Screenshot as...: this path
   std::string screenshot_path;
@@ -150,6 +151,10 @@ std::string elide_text(const std::string& text, float width, const std::function
 void draw_status(editor_state& e, float y, float w);
 void draw_toast(editor_state& e, float left, float top, float right);
 void draw_overlay_legend(editor_state& e, float left, float bottom);
+// Why the next frame is drawn without waiting for input: "wind", "playback", "growing",
+// "thumbnails", "export", "derivation", "levels of detail" or "a command"; "" when the editor may
+// wait for events (the frame loop in editor.cpp). The status bar names wind and playback.
+std::string drawing_reason(const editor_state& e);
 
 // Parameters (editor_params.cpp): the left panel.
 void draw_panel(editor_state& e, float top, float bottom);

@@ -163,6 +163,23 @@ void draw_toast(editor_state& e, float left, float top, float right) {
   ImGui::PopStyleColor();
 }
 
+std::string drawing_reason(const editor_state& e) {
+  const editor_slot& c = e.cur();
+  if (e.playing) return "playback";
+  if (c.doc.render.wind.enabled || (ab_showing(e.ab) && e.ab.other().doc.render.wind.enabled)) return "wind";
+  for (int i = 0; i < (e.ab.has_b ? 2 : 1); ++i)
+    if (e.ab.slots[i].growth == slot_growth::growing) return "growing";   // its progress bar
+  if (e.browser.open && !thumbnails_ready(e.browser)) return "thumbnails";   // rendered on this thread
+  if (e.exporter.running) return "export";
+  if (const auto& f = e.generator_panels.lsystem.pending; f.valid() && f.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return "derivation";
+  // A new tree's chain is asked for once the tree has settled on screen (editor_lod.cpp).
+  if (c.renderer.ok && c.shown && c.shown->skeleton && (c.lod.building || !c.lod.chain)) return "levels of detail";
+  if (e.close_requested || e.rescale_to > 0 || e.frame_now || e.screenshot_requested || !e.screenshot_to.empty())
+    return "a command";
+  return "";
+}
+
 void draw_status(editor_state& e, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(0, y));
   ImGui::SetNextWindowSize(ImVec2(w, status_height()));
@@ -239,6 +256,9 @@ void draw_status(editor_state& e, float y, float w) {
       piece(std::string("   ") + (e.ab.selected == 0 ? "B" : "A") + ": " + p, bad);
   }
   if (!e.message.empty()) piece("   " + e.message, e.message_is_error ? bad : ImVec4(0.75f, 0.85f, 0.75f, 1));
+  // What keeps the view drawing every frame, where the user can stop it (otherwise it waits for input).
+  if (const std::string why = drawing_reason(e); why == "wind" || why == "playback")
+    piece(why == "wind" ? "   drawing every frame: the wind blows" : "   drawing every frame: playback", plain);
   if (const std::string lod = editor_lod_status(e.cur().lod); !lod.empty()) piece("   " + lod, plain);
   if (r && !r->mesh.message.empty()) piece("   " + r->mesh.message, warn);   // the leaf cap: growth went on, the foliage stopped
   if (cut) {
