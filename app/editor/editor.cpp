@@ -14,6 +14,7 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
@@ -30,9 +31,30 @@ namespace {
 
 using namespace ed;
 
+// Esc closes what is on top: an open menu or popup (a modal dialog answers Esc itself, as Cancel),
+// else the library, the F1 list, the message log or the export dialog (unless it is writing).
+void close_on_escape(editor_state& e) {
+  const ImGuiContext& g = *GImGui;
+  if (!g.OpenPopupStack.empty()) {
+    const ImGuiWindow* top = g.OpenPopupStack.back().Window;
+    if (!top || !(top->Flags & ImGuiWindowFlags_Modal)) ImGui::ClosePopupsExceptModals();
+  } else if (e.browser.open) {
+    e.browser.open = false;
+  } else if (e.show_shortcuts) {
+    e.show_shortcuts = false;
+  } else if (e.show_log) {
+    e.show_log = false;
+  } else if (e.exporter.open && !e.exporter.running) {
+    e.exporter.open = false;
+  }
+}
+
 void handle_keys(editor_state& e) {
   ImGuiIO& io = ImGui::GetIO();
-  if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
+  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+    if (long_growth(e) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
+    else close_on_escape(e);
+  }
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
   // The windows' keys work while a text field has the keyboard too (the panel's or the library's
   // search box): they type nothing there, and a newcomer who clicked into one still gets them.

@@ -10,6 +10,7 @@
 #include <sys/resource.h>
 
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 namespace sylva::ed {
 
@@ -279,8 +280,12 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "expect_window") {   // expect_window shortcuts|library 0|1
       const std::string which = arg.substr(0, arg.find(' '));
       const bool want = arg.substr(arg.find(' ') + 1) == "1";
-      const bool open = which == "shortcuts" ? e.show_shortcuts : which == "library" ? e.browser.open : !want;
+      const bool open = which == "shortcuts" ? e.show_shortcuts : which == "library" ? e.browser.open
+                        : which == "export"  ? e.exporter.open : which == "messages" ? e.show_log : !want;
       if (open != want) return fail(which + (open ? " is open" : " is not open"));
+    } else if (cmd == "expect_popup") {   // expect_popup 0|1: a menu, popup or dialog is open
+      const bool open = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId);
+      if (open != (arg == "1")) return fail(open ? "a popup is open" : "no popup is open");
     } else if (cmd == "expect_message") {   // the status bar's text contains ARG ("" for an empty status)
       if (arg.empty() ? !e.message.empty() : e.message.find(arg) == std::string::npos) return fail("the status reads \"" + e.message + "\"");
     } else if (cmd == "step") {

@@ -33,7 +33,8 @@ namespace sylva::ed {
 //   click export_path | X Y    a move, a press and a release queued at once (a quick click on a slow frame)
 //   show_export 0|1 / export_path P / expect_export_path P   the Export dialog
 //   export_as P / expect_file P   Export as... with P chosen, which writes it; waits for the file
-//   expect_window shortcuts|library 0|1 / expect_message TEXT (contained; empty: no message)
+//   expect_window shortcuts|library|export|messages 0|1 / expect_message TEXT (contained; empty: no message)
+//   expect_popup 0|1           whether a menu, popup or dialog is open
 //   step N / expect_step N     the timeline's step
 //   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
 //   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field

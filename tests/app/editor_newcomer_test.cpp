@@ -197,6 +197,30 @@ expect_export_path tree.glb
   EXPECT_NE(r.output.find("ok expect_window library 0"), std::string::npos) << r.output;
 }
 
+// Esc closes what is on top, as the F1 list says: an open menu, then the library, then the list.
+TEST(EditorNewcomer, EscClosesAMenuTheLibraryAndTheHelp) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string bush = leafless("self_organizing_seed001_bush.json", test_dir("esc_fixture"), "bush.json");
+  const std::string script = R"(wait_tree
+click 20 10
+expect_popup 1
+key escape
+expect_popup 0
+key ctrl+l
+key f1
+expect_window library 1
+expect_window shortcuts 1
+key escape
+expect_window library 0
+expect_window shortcuts 1
+key escape
+expect_window shortcuts 0
+)";
+  run_result r = run_script("esc", script, bush);
+  EXPECT_TRUE(script_passed(r));
+  EXPECT_NE(r.output.find("ok expect_window shortcuts 0"), std::string::npos) << r.output;
+}
+
 // Side by side in a small window, a long preset name is cut with "…" so that each label fits its
 // half and the selected slot's still ends "(selected)" (it was clipped off).
 TEST(EditorNewcomer, ABLabelsFitTheirHalvesAndKeepSelected) {
