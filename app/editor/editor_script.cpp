@@ -283,6 +283,8 @@ bool run_script(editor_state& e, script_state& sc) {
       const bool open = which == "shortcuts" ? e.show_shortcuts : which == "library" ? e.browser.open
                         : which == "export"  ? e.exporter.open : which == "messages" ? e.show_log : !want;
       if (open != want) return fail(which + (open ? " is open" : " is not open"));
+    } else if (cmd == "expect_search_matches") {   // the panel's search matches N parameters in all tabs
+      if (e.search_matches != std::atoi(arg.c_str())) return fail("the search matches " + std::to_string(e.search_matches));
     } else if (cmd == "expect_popup") {   // expect_popup 0|1: a menu, popup or dialog is open
       const bool open = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId);
       if (open != (arg == "1")) return fail(open ? "a popup is open" : "no popup is open");

@@ -38,6 +38,7 @@ namespace sylva::ed {
 //   step N / expect_step N     the timeline's step
 //   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
 //   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
+//   expect_search_matches N    the search matches N parameters and #define constants over all tabs
 //   expect_texture_loads N     the user texture files the renderer has read so far
 //   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
 //   wait_quiet                 until nothing keeps the editor drawing (no growth, LOD build, wind ...)

@@ -63,6 +63,9 @@ struct editor_state {
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   std::string panel_search;       // the parameter panel's search box
+  std::string searched;           // the search the panel last drew (a new one may open another tab)
+  int search_matches = -1;        // parameters the search matches in every tab (-1: no search)
+  int panel_tab_shown = 0;        // the panel's open tab (panel_tab)
   path_field_edit path_edit;      // a file path being typed in the panel (app/editor/editor_sliders.h)
   std::map<std::string, std::array<float, 2>> path_field_at;   // where each path field was drawn (the scripted test's click)
   // Dialogs.

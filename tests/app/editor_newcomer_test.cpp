@@ -197,6 +197,24 @@ expect_export_path tree.glb
   EXPECT_NE(r.output.find("ok expect_window library 0"), std::string::npos) << r.output;
 }
 
+// The search box keeps the tabs and the generator selector; it says when nothing matches, and it
+// finds a text L-system's #define constants by their comment ("angle of the limbs from the trunk").
+TEST(EditorNewcomer, SearchSaysWhenNothingMatchesAndFindsDefineConstants) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string pine = leafless("species_pine.json", test_dir("search_fixture"), "pine.json");
+  const std::string script = R"(wait_tree
+search lambda
+expect_search_matches 0
+search limbs from the trunk
+expect_search_matches 1
+search
+expect_search_matches -1
+)";
+  run_result r = run_script("search", script, pine);
+  EXPECT_TRUE(script_passed(r));
+  EXPECT_NE(r.output.find("ok expect_search_matches -1"), std::string::npos) << r.output;
+}
+
 // Esc closes what is on top, as the F1 list says: an open menu, then the library, then the list.
 TEST(EditorNewcomer, EscClosesAMenuTheLibraryAndTheHelp) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
