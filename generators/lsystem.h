@@ -68,7 +68,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.widths, param_info{"widths", "Widths", "", 0, 1, "turtle: widths from !(w) and #width; pipe: the pipe model r^n = Σ r_i^n from thin tips (Shinozaki 1964)", 0, nullptr, lsystem_widths_names});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model exponent (pipe widths): 2 keeps the cross-section area, larger gives thinner trunks"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of the youngest segments in metres (pipe widths)", param_log});
-  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (pipe widths; per metre)"});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (pipe widths; per metre)"});
   v(p.module_cap, param_info{"module_cap", "Module cap", "", 1000, 50000000, "Derivation stops at this many modules and says so", param_log | param_advanced});
 }
 

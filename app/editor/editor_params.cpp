@@ -198,7 +198,7 @@ struct param_drawer {
       ImGui::BeginTooltip();
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30);
       ImGui::Text("%s\n%s%s(drag; Shift: fine; Ctrl+click: type; right-click: reset to default)", info.help,
-                  source ? "Source: " : "", source ? source : "");
+                  source ? "Model: " : "", source ? source : "");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }

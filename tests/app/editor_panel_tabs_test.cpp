@@ -54,7 +54,7 @@ TEST(EditorPanelTabs, EverySharedGroupHasItsTab) {
 }
 
 TEST(EditorPanelTabs, SearchFindsByNameSymbolKeyAndHelp) {
-  // Seed 001's names: its tropism factor is τ.
+  // The tropism weight's symbol is τ.
   self_organizing_params p{};
   std::set<std::string> by_tau, by_word, by_two;
   visit_params(p, [&](auto&, const param_info& info) {
