@@ -74,7 +74,8 @@ std::string set_preset_param(preset& p, std::string_view assignment);
 // set_preset_param would, so a sweep is refused whole before anything is grown. Returns "" or the error.
 std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out);
 
-// The tree `sylva` shows when started without a preset: Honda's tree a (lsystem_params defaults).
+// Honda's tree a (lsystem_params defaults): the editor's tree when no preset is named and the oak
+// (presets/species_oak.json) is not found, and the scripted sessions' starting document.
 preset default_preset();
 
 }  // namespace sylva
