@@ -51,8 +51,12 @@ void open_preset(editor_state& e, const std::string& path) {
   e.cur().path = path;
   note_saved(e, path);
   note_recent(e.recent, path);
-  e.frame_new = true;
-  std::string m = "Opened " + path;
+  // The camera stays where it is once a tree is on screen, so that a preset reopened (or another
+  // one) compares from the same view; F frames it. The first tree is framed.
+  const bool tree_on_screen = e.cur().shown && e.cur().shown->skeleton;
+  e.frame_new = !tree_on_screen;
+  e.keep_view = tree_on_screen;
+  std::string m = "Opened " + path + (tree_on_screen ? " (the view is kept: F frames the tree)" : "");
   if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
   set_status(e, m, false);
 }

@@ -274,7 +274,35 @@ int draw_params(P& p, const char* section, editor_state& e, const tree_spec* key
 }
 
 
+// The parameters of `p` in `groups` back to their defaults (the struct's own, as the panel's reset).
+template <class P>
+void reset_groups(P& p, std::initializer_list<const char*> groups) {
+  static const P defaults{};
+  static const std::vector<const void*> pointers = default_pointers(defaults);
+  size_t i = 0;
+  const char* group = nullptr;
+  visit_params(p, [&](auto& value, const param_info& info) {
+    using T = std::remove_reference_t<decltype(value)>;
+    const T& def = *static_cast<const T*>(pointers[i++]);
+    if (info.group) group = info.group;
+    if (group && std::any_of(groups.begin(), groups.end(), [&](const char* g) { return std::strcmp(g, group) == 0; })) value = def;
+  });
+}
+
 }  // namespace
+
+void switch_generator(editor_state& e, int g) {
+  preset& doc = e.cur().doc;
+  doc.spec.params = default_params(g);
+  doc.spec.keyframes.clear();   // they name the old generator's parameters
+  reset_groups(doc.mesh, {"Leaves", "Cones and fruit"});
+  reset_groups(doc.render, {"Materials", "Textures"});
+  const std::string label = generator_labels[g];
+  doc.name = "New " + label.substr(0, label.find(" ("));   // "New Self-organizing" (the A/B labels)
+  doc.description.clear();
+  doc.tags.clear();
+  e.frame_new = true;
+}
 
 namespace {
 
@@ -285,11 +313,8 @@ int draw_tree_tab(editor_state& e, std::string& key_error, bool searching, bool 
   tree_spec& spec = e.cur().doc.spec;
   if (!count_only) {
     int g = int(spec.params.index());
-    if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
-      spec.params = default_params(g);
-      spec.keyframes.clear();   // they name the old generator's parameters
-      e.frame_new = true;
-    }
+    if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index()))
+      switch_generator(e, g);
   }
   if (!searching) {
     int seed = int(spec.seed & 0x7fffffff);

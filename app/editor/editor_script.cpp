@@ -285,6 +285,18 @@ bool run_script(editor_state& e, script_state& sc) {
       if (open != want) return fail(which + (open ? " is open" : " is not open"));
     } else if (cmd == "expect_search_matches") {   // the panel's search matches N parameters in all tabs
       if (e.search_matches != std::atoi(arg.c_str())) return fail("the search matches " + std::to_string(e.search_matches));
+    } else if (cmd == "generator") {   // generator NAME: the panel's Generator selector
+      const int g = generator_index(arg);
+      if (g < 0) return fail("no generator " + arg);
+      switch_generator(e, g);
+      sc.frames_left = 2;
+    } else if (cmd == "remember_camera") {
+      sc.camera = e.camera;
+    } else if (cmd == "expect_camera") {   // expect_camera kept|moved: against remember_camera
+      const orbit_camera& c = e.camera;
+      const bool kept = c.target == sc.camera.target && c.distance == sc.camera.distance && c.yaw == sc.camera.yaw &&
+                        c.pitch == sc.camera.pitch;
+      if (kept != (arg == "kept")) return fail(kept ? "the camera did not move" : "the camera moved");
     } else if (cmd == "expect_popup") {   // expect_popup 0|1: a menu, popup or dialog is open
       const bool open = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId);
       if (open != (arg == "1")) return fail(open ? "a popup is open" : "no popup is open");

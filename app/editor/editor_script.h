@@ -38,6 +38,8 @@ namespace sylva::ed {
 //   step N / expect_step N     the timeline's step
 //   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
 //   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
+//   generator NAME             the Generator selector (a name of `sylva params`: lsystem, ...)
+//   remember_camera / expect_camera kept|moved   the view against the one remembered
 //   expect_search_matches N    the search matches N parameters and #define constants over all tabs
 //   expect_texture_loads N     the user texture files the renderer has read so far
 //   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
@@ -52,6 +54,7 @@ struct script_state {
   std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
   int frames_left = -1;
   int programs = 0;   // remember_programs
+  orbit_camera camera;   // remember_camera
   const tree_skeleton* remembered = nullptr;
   std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
   bool failed = false, finished = false;

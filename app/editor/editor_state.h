@@ -59,6 +59,7 @@ struct editor_state {
   float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
+  bool keep_view = false;         // the next request is an opened preset: the camera stays (F frames)
   bool framed_side_by_side = false;   // the A/B view was side by side when the tree was last framed
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
@@ -161,6 +162,10 @@ std::string drawing_reason(const editor_state& e);
 
 // Parameters (editor_params.cpp): the left panel.
 void draw_panel(editor_state& e, float top, float bottom);
+// The Generator selector: a new generator is a new tree, with that generator's defaults and no
+// keyframes, and none of the previous species' look (leaves, cones and fruit, bark materials and
+// textures) or name; it is framed when it arrives.
+void switch_generator(editor_state& e, int generator);
 
 // The document (editor_document.cpp): presets, saving, unsaved work, recovery and undo.
 std::vector<fs::path> preset_dirs();

@@ -215,6 +215,32 @@ expect_search_matches -1
   EXPECT_NE(r.output.find("ok expect_search_matches -1"), std::string::npos) << r.output;
 }
 
+// Opening a preset again keeps the view (F frames it), so before and after compare from one place;
+// a new generator is a new tree: the pine's needles, plated bark and name do not carry over.
+TEST(EditorNewcomer, ReopeningKeepsTheViewAndANewGeneratorDropsTheSpeciesLook) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string pine = leafless("species_pine.json", test_dir("reopen_fixture"), "pine.json");
+  const std::string script = "wait_tree\nkey 1\nset radial_segments=5\nwait_tree\nremember_camera\nopen " + pine + R"(
+expect_prompt Unsaved changes
+answer Discard
+wait_tree
+frames 3
+expect_camera kept
+key f
+expect_camera moved
+expect_param leaf_archetype=needles
+expect_param bark_archetype=plated
+generator lsystem
+wait_tree
+expect_doc_name New L-system
+expect_param leaf_archetype=ovate
+expect_param bark_archetype=furrowed
+)";
+  run_result r = run_script("reopen", script, pine);
+  EXPECT_TRUE(script_passed(r));
+  EXPECT_NE(r.output.find("ok expect_param bark_archetype=furrowed"), std::string::npos) << r.output;
+}
+
 // Esc closes what is on top, as the F1 list says: an open menu, then the library, then the list.
 TEST(EditorNewcomer, EscClosesAMenuTheLibraryAndTheHelp) {
   if (!have_display()) GTEST_SKIP() << "no DISPLAY";
