@@ -154,6 +154,7 @@ void run_worker(worker_state& w) {
                                  ? edit_class(last->spec, last->mesh_settings, req.spec, req.mesh_settings)
                                  : param_class::regrow;
     result->edit = need;
+    w.meshing = need != param_class::regrow;
     if (need != param_class::regrow) {
       // Nothing the generator reads changed: the tree is the same, so skip growth.
       result->skeleton = last->skeleton;
@@ -230,6 +231,7 @@ void run_worker(worker_state& w) {
       result->skeleton = std::move(skeleton);   // its overlays follow once it is out (late_overlays)
       result->debug = std::move(debug);
     }
+    w.meshing = true;
     auto t0 = std::chrono::steady_clock::now();
     try {
       if (need == param_class::render) {   // nothing the mesh reads changed either: keep it

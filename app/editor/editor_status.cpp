@@ -213,17 +213,22 @@ void draw_status(editor_state& e, float y, float w) {
   // One state: growing (with progress and Cancel once it takes a while), done, cancelled or failed.
   using g = slot_growth;
   switch (e.cur().growth) {
-    case g::growing:
+    case g::growing: {
+      // A re-mesh (or a preset whose tree needs no growth) has no growth to show progress for.
+      const bool meshing = e.cur().worker->meshing.load();
       if (long_growth(e)) {
-        ImGui::TextUnformatted("growing");
-        ImGui::SameLine();
-        ImGui::ProgressBar(e.cur().worker->progress.load(), ImVec2(160, 0));
+        ImGui::TextUnformatted(meshing ? "meshing (the growth is kept)" : "growing");
+        if (!meshing) {
+          ImGui::SameLine();
+          ImGui::ProgressBar(e.cur().worker->progress.load(), ImVec2(160, 0));
+        }
         ImGui::SameLine();
         if (ImGui::SmallButton("Cancel (Esc)")) cancel_request(e);
       } else {
-        ImGui::TextUnformatted("growing...");
+        ImGui::TextUnformatted(meshing ? "meshing..." : "growing...");
       }
       break;
+    }
     case g::asking: piece(e.cur().growth_text, warn, 0.45f * w); break;
     case g::done: piece("done: " + e.cur().growth_text, ImVec4(0.6f, 0.9f, 0.6f, 1), 0.45f * w); break;
     case g::cancelled: piece("cancelled: " + e.cur().growth_text, warn, 0.45f * w); break;
@@ -248,8 +253,12 @@ void draw_status(editor_state& e, float y, float w) {
     std::snprintf(text, sizeof text, "   %s   frame %.1f ms", ab_compare_text(c[0], c[1]).c_str(), e.frame_ms);
     piece(text, plain, 1e9f, keep);
   } else {
-    std::snprintf(text, sizeof text, "   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e),
-                  e.cur().renderer.leaves_drawn, e.cur().renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
+    // Triangles as the LOD panel counts them (bark, and two per leaf card), so LOD0's figure there
+    // is this one at the last step; an export's file may hold more (its dialog says "in the file").
+    const renderer_gpu& g = e.cur().renderer;
+    std::snprintf(text, sizeof text, "   nodes %zu   leaves %zu   triangles %zu (bark %zu)   %s   frame %.1f ms", nodes_at_step(e),
+                  g.leaves_drawn, g.triangles_drawn + 2 * g.leaves_drawn, g.triangles_drawn,
+                  edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
     piece(text, plain, 1e9f, keep);
     // The hidden slot's failure still shows (A/B view off).
     if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other().growth, e.ab.other().growth_text) : ""; !p.empty())
