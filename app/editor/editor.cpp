@@ -316,7 +316,7 @@ int run_editor(const editor_options& o) {
       ImGui_ImplOpenGL3_CreateFontsTexture();
     }
     e->rescale_to = 0;
-    feed_imgui(e->input, ImGui::GetIO());
+    const int keys_fed = feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     feed_mouse(e->input, ImGui::GetIO());   // after the backend's poll: buttons and position in order
@@ -435,7 +435,21 @@ int run_editor(const editor_options& o) {
         editor_lod_update(o.lod, o.renderer, o.shown, o.doc.render, e->camera, std::min(e->step, o.shown->skeleton->steps));
       ab_draw(e->ab, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
     } else if (c.renderer.ok) {
-      draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
+      // While the user drags, orbits or types, a cheaper picture (app/editor/view_quality.h); the
+      // settling frames after the release draw the full one.
+      // A frame whose picture would not change shows the last one again (a menu, a hover).
+      const overlay_view* ov = e->show_overlays ? &e->overlays : nullptr;
+      const bool cheap = !e->full_quality && interacting(ImGui::GetIO(), ImGui::IsAnyItemActive(), keys_fed) &&
+                         draw_interactive(e->quick_view, c.renderer, c.doc.render, e->camera, vx, vy, vw, vh, ov);
+      if (cheap) {
+        ++e->cheap_frames;
+        e->kept_view.valid = false;
+      } else if (!e->full_quality && show_kept_view(e->kept_view, view_key_of(c.renderer, e->camera, c.doc.render, ov, vx, vy, vw, vh))) {
+        ++e->kept_frames;
+      } else {
+        draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, ov, {vx, vy});
+        keep_view(e->kept_view, view_key_of(c.renderer, e->camera, c.doc.render, ov, vx, vy, vw, vh));
+      }
     }
     if (c.renderer.texture_message != e->texture_message) {
       e->texture_message = c.renderer.texture_message;
@@ -494,6 +508,8 @@ int run_editor(const editor_options& o) {
     save_settings(e->home, settings);
   }
   ui_waker = nullptr;
+  free_interactive(e->quick_view);
+  free_view_cache(e->kept_view);
   shutdown_export_dialog(e->exporter);
   ab_free_gl(e->ab);   // both slots: workers stopped, renderers freed
   shutdown_preset_browser(e->browser);

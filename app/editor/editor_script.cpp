@@ -369,6 +369,41 @@ bool run_script(editor_state& e, script_state& sc) {
         std::fflush(stdout);
         sc.frame_times.clear();
       }
+    } else if (cmd == "orbit") {   // orbit N: a left drag across the 3D view, one move a frame for N frames
+      const int n = std::max(1, std::atoi(arg.c_str()));
+      int w = 0, h = 0;
+      glfwGetWindowSize(e.window, &w, &h);
+      const float x0 = panel_width() + 0.3f * (float(w) - panel_width()), y0 = 0.5f * float(h);
+      const clock::time_point now = clock::now();
+      if (sc.orbit_step == 0) {
+        e.input.push_move(x0, y0);
+        e.input.push_button(0, true, x0, y0);
+        sc.frame_times.clear();
+        sc.orbit_cheap = e.cheap_frames;
+      } else if (sc.orbit_step <= n + 1) {
+        if (sc.orbit_step > 1) sc.frame_times.push_back(now);   // from the first frame that drags
+        e.input.push_move(x0 + 6.0f * float(sc.orbit_step), y0);
+      }
+      done = sc.orbit_step > n + 1;
+      ++sc.orbit_step;
+      if (done) {
+        e.input.push_button(0, false, x0 + 6.0f * float(n + 1), y0);
+        std::vector<double> ms;
+        for (size_t i = 1; i < sc.frame_times.size(); ++i)
+          ms.push_back(std::chrono::duration<double, std::milli>(sc.frame_times[i] - sc.frame_times[i - 1]).count());
+        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+        std::printf("sylva script: orbit: frame median %.1f ms over %zu frames, %llu drawn cheaper\n", ms.empty() ? 0.0 : ms[ms.size() / 2],
+                    ms.size(), (unsigned long long)(e.cheap_frames - sc.orbit_cheap));
+        sc.orbit_step = 0;
+        sc.frame_times.clear();
+        sc.frames_left = 6;
+      }
+    } else if (cmd == "full_quality") {   // full_quality 0|1: every frame drawn in full (a baseline to measure against)
+      e.full_quality = arg == "1";
+    } else if (cmd == "expect_kept_frames_over") {   // expect_kept_frames_over N: more than N frames showed the kept picture
+      if (e.kept_frames <= uint64_t(std::atoll(arg.c_str()))) return fail(std::to_string(e.kept_frames) + " frames showed the kept picture");
+    } else if (cmd == "expect_cheap_frames") {   // expect_cheap_frames N: frames drawn cheaper so far
+      if (e.cheap_frames != uint64_t(std::atoll(arg.c_str()))) return fail(std::to_string(e.cheap_frames) + " frames drawn cheaper");
     } else if (cmd == "wait_quiet") {   // until nothing keeps the editor drawing (drawing_reason)
       done = drawing_reason(e).empty();
       if (!done && waited > 300) return fail("still drawing for " + drawing_reason(e) + " after 300 s");

@@ -43,6 +43,11 @@ namespace sylva::ed {
 //   expect_search_matches N    the search matches N parameters and #define constants over all tabs
 //   expect_texture_loads N     the user texture files the renderer has read so far
 //   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
+//   orbit N                    a left drag across the 3D view, one move a frame for N frames; prints
+//                              the frames' median and how many were drawn cheaper (view_quality.h)
+//   expect_cheap_frames N      the frames drawn cheaper so far
+//   expect_kept_frames_over N  more than N frames showed the last picture again (nothing in it changed)
+//   full_quality 0|1           every frame drawn in full: the baseline for orbit and frame_median
 //   wait_quiet                 until nothing keeps the editor drawing (no growth, LOD build, wind ...)
 //   idle S [MAX]               touches nothing for S seconds, so the editor may idle; prints the CPU
 //                              time the process used (every thread) as a share of one core and the
@@ -55,6 +60,8 @@ struct script_state {
   int frames_left = -1;
   int programs = 0;   // remember_programs
   orbit_camera camera;   // remember_camera
+  int orbit_step = 0;    // orbit: the moves made so far
+  uint64_t orbit_cheap = 0;
   const tree_skeleton* remembered = nullptr;
   std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
   bool failed = false, finished = false;

@@ -23,6 +23,7 @@
 #include "app/editor/export_dialog.h"
 #include "app/editor/input_queue.h"
 #include "app/editor/preset_browser.h"
+#include "app/editor/view_quality.h"
 #include "app/common/worker.h"
 #include "render/io/preset.h"
 #include "render/gl/renderer.h"
@@ -92,6 +93,11 @@ struct editor_state {
   bool show_log = false, show_shortcuts = false;
   double frame_ms = 0;
   uint64_t frames_drawn = 0;      // since start (an idle editor draws none: the frame loop waits)
+  uint64_t cheap_frames = 0;      // of them, drawn cheaper while the user interacted (view_quality.h)
+  interactive_view quick_view;    // the cheaper view's half-resolution target
+  uint64_t kept_frames = 0;       // frames that showed the last picture again (nothing in it changed)
+  view_cache kept_view;           // that picture (view_quality.h)
+  bool full_quality = false;      // every frame drawn in full (the scripted measurement's baseline)
   bool screenshot_requested = false;   // F12: the 3D view to ~/Sylva/screenshots/
   std::string screenshot_to;            // Screenshot as...: this path
   std::string screenshot_path;

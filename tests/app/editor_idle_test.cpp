@@ -1,6 +1,8 @@
 // An editor with nothing to do waits for events and draws nothing; wind and playback keep it
 // drawing, and the status bar says so (docs/design/09-editor.md "An editor that idles"). Measured
 // end to end under Xvfb (SYLVA_SCRIPT's `idle S MAX`: CPU time of every thread over S seconds).
+// While the user drags, the view is drawn cheaper, and an unchanged view is not drawn again
+// ("Responsive on software GL").
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -64,4 +66,26 @@ idle 2 5
   // Wind off: quiet again.
   EXPECT_EQ(idle[4].frames, 0) << r.output;
   EXPECT_LT(idle[4].share, 5.0) << r.output;
+}
+
+// While the user orbits, the view is drawn cheaper (half resolution, no shafts, the last shadow
+// map) and the camera moves; frames in which nothing in the picture changed (the script stepping,
+// a hover, a menu) show the last full picture again instead of drawing it.
+TEST(EditorIdle, AnOrbitDrawsCheaperAndAnUnchangedViewIsShownAgain) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string script = R"(wait_tree
+wait_quiet
+frame_median 5
+expect_kept_frames_over 3
+expect_cheap_frames 0
+remember_camera
+orbit 6
+expect_camera moved
+)";
+  const run_result r = run_script("orbit", script, std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json");
+  ASSERT_TRUE(script_passed(r));
+  const std::regex re(R"(orbit: frame median [0-9.]+ ms over [0-9]+ frames, ([0-9]+) drawn cheaper)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, re)) << r.output;
+  EXPECT_GE(std::atoi(m[1].str().c_str()), 6) << r.output;   // every frame of the drag
 }
