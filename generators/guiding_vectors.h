@@ -83,7 +83,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.volume_inner, param_info{"volume_inner", "Inner radius", "", 0, 50, "annulus: inner radius (metres); a large one gives a wide tree"});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ r_i^n at branch points", 0, "Branch radii"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "", 0.0005f, 0.1f, "Radius of every branch tip (metres)", param_log});
-  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
 }
 

@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -124,6 +126,42 @@ bool clamp_param(T& value, const param_info& info) {
   } else {
     return true;  // bool, string
   }
+}
+
+// The one check of a number that comes from outside: the CLI's options (app/cli/cli_numbers.h),
+// `--set`, the editor's fields and documents (non_finite_refusal, render/io/preset.h) and the
+// export options. NaN passes every range check, since each comparison with it is false, so
+// finiteness is checked first and on its own. "" when v is finite, else
+// "NAME: VALUE is not a finite number" (VALUE as printf's %g writes it: nan, inf, -inf).
+inline std::string finite_refusal(std::string_view name, double v) {
+  if (std::isfinite(v)) return "";
+  char text[16];
+  std::snprintf(text, sizeof text, "%g", v);
+  return std::string(name) + (name.empty() ? "" : ": ") + text + " is not a finite number";
+}
+
+// The first number of p that is NaN or infinite (a float, a vec3's component, a list's entry), as
+// finite_refusal names it with the parameter's label; "" when every number is finite.
+template <class P>
+std::string non_finite_param(const P& p) {
+  std::string why;
+  visit_params(p, [&](const auto& value, const param_info& info) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    auto check = [&](float f) {
+      if (why.empty()) why = finite_refusal(info.label, f);
+    };
+    if constexpr (std::is_same_v<T, float>) {
+      check(value);
+    } else if constexpr (std::is_same_v<T, glm::vec3>) {
+      for (int i = 0; i < 3; ++i) check(value[i]);
+    } else if constexpr (std::is_same_v<T, std::vector<float>>) {
+      for (float f : value) check(f);
+    } else if constexpr (std::is_same_v<T, std::vector<glm::vec3>>) {
+      for (const glm::vec3& c : value)
+        for (int i = 0; i < 3; ++i) check(c[i]);
+    }
+  });
+  return why;
 }
 
 // Clamps every parameter of a params struct; returns the keys that were changed.

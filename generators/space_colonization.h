@@ -76,7 +76,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.points, param_info{"points", "Attraction points", "N", 0, 2000000, "Number of attraction points sampled in the envelope (seeded)", param_log | param_on_release});
   v(p.size, param_info{"size", "Size", "", 0.01f, 1000, "Bounding box of the envelope in metres (x, y up, z); a sphere uses x as its diameter, a slab x and y", param_on_release});
   v(p.offset, param_info{"offset", "Offset", "", -1000, 1000, "Centre of the envelope's bounding box in metres; the root stands at the origin", param_on_release});
-  v(p.slab_thickness, param_info{"slab_thickness", "Slab thickness", "", 0.001f, 100, "Depth (z) of the slab envelope, for planar trees (seed 003)", param_log | param_on_release});
+  v(p.slab_thickness, param_info{"slab_thickness", "Slab thickness", "", 0.001f, 100, "Depth (z) of the slab envelope, for planar trees", param_log | param_on_release});
   v(p.envelope_mesh, param_info{"envelope_mesh", "Envelope mesh", "", 0, 0, "Path of a closed OBJ mesh; it is scaled to fill the size box", param_path | param_on_release});
   v(p.envelope_dents, param_info{"envelope_dents", "Dents", "", 0, 64, "Seeded bays cut into the envelope from outside (0: none), so the crown grows as uneven limb masses with gaps between them instead of a smooth dome", param_on_release});
   v(p.envelope_dent_depth, param_info{"envelope_dent_depth", "Dent depth", "", 0, 0.9f, "How far each dent reaches in, as a share of the envelope's radius in its direction", param_on_release});
@@ -86,7 +86,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.trunk_length, param_info{"trunk_length", "Trunk length", "", 0, 100, "The root grows straight up this far, and on until the crown's points reach it", param_on_release});
   v(p.tropism, param_info{"tropism", "Tropism", "g", -1, 1, "Direction blended into every growth direction (gravity, light)", param_direction | param_on_release});
   v(p.tropism_weight, param_info{"tropism_weight", "Tropism weight", "", 0, 1, "Blend: direction = normalize((1−w)·n̂ + w·ĝ)", param_on_release});
-  v(p.max_branches, param_info{"max_branches", "Max branches", "", 1, 10000000, "Growth stops cleanly at this many internodes (seed 003's -b)", param_log | param_on_release});
+  v(p.max_branches, param_info{"max_branches", "Max branches", "", 1, 10000000, "Growth stops cleanly at this many internodes", param_log | param_on_release});
   v(p.steps, param_info{"steps", "Growth steps", "", 0, 20000, "Iterations; each one is a scrubbable growth step (trunk internodes included)", param_on_release});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
   v(p.bud_life, param_info{"bud_life", "Bud life", "", 0, 400, "Apical control: a node can sprout a lateral only this many growth steps after it appears; older wood stays bare and drops the points only it could reach, so limbs branch near their tips instead of as spokes from the trunk (0: always, as in Runions 2007)", param_on_release, "Branching habit"});
@@ -99,10 +99,10 @@ void visit_params(P& p, V&& visitor) {
   v(p.season_variation, param_info{"season_variation", "Season variation", "a", 0, 1, "Years differ: each crown step's segments are D·exp(a·z_k) long, z_k a seeded run of good and poor seasons (AR(1), ρ = 0.5, as tree rings show: Fritts 1976), so shoot lengths and the spacing of forks vary from step to step (0: every step alike)", param_on_release, "Growth history"});
   v(p.live_crown, param_info{"live_crown", "Live crown", "c", 0.05f, 1, "Natural pruning: a limb leaving the trunk below (1 − c) of the tree's height at a step dies in that step, and only a short dead stub stays (Wilson 1984; the foresters' live crown ratio) (1: no limb dies)", param_on_release});
   v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the trunk as a dead, leafless stub (0: it falls whole)", param_on_release});
-  v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (seed 003's Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
+  v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (the Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
-  v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (seed 003 suggests 50)", param_log});
-  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
+  v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (50 is a usual cap)", param_log});
+  v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
   v(p.leaves_min, param_info{"leaves_min", "Leaves per segment (min)", "", 0, 64, "Fewest leaves on a terminal segment (used when the leaf mode is generator)", param_own_leaves, "Own leaves (leaf mode: generator)"});
   v(p.leaves_max, param_info{"leaves_max", "Leaves per segment (max)", "", 0, 64, "Most leaves on a terminal segment; 0 for a bare tree", param_own_leaves});
   v(p.leaf_size_min, param_info{"leaf_size_min", "Leaf size (min)", "", 0.001f, 2, "Smallest leaf blade length in metres", param_log | param_own_leaves});

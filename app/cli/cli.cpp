@@ -5,6 +5,7 @@
 #include "app/bench/bench_set.h"
 #include "app/cli/cli_batch.h"
 #include "app/cli/cli_lods.h"
+#include "app/cli/cli_options.h"
 #include "app/bench/editor_bench.h"
 
 #include <algorithm>
@@ -196,19 +197,30 @@ struct variant {
   std::vector<std::string> sets;  // one value per --set, sweeps expanded
 };
 
-bool parse_seed_range(const std::string& s, uint64_t& a, uint64_t& b) {
+// A batch writes at most this many files (the product of --seeds and the --set sweeps).
+constexpr uint64_t max_batch_variants = 100000;
+
+// "" and the range, or why "A-B" is not one, the batch limit named when it is too long.
+std::string parse_seed_range(const std::string& s, uint64_t& a, uint64_t& b) {
+  const std::string form = "--seeds expects A-B with A <= B, got \"" + s + "\"";
   const size_t dash = s.find('-');
-  if (dash == std::string::npos || dash == 0 || dash + 1 >= s.size()) return false;
+  if (dash == std::string::npos || dash == 0 || dash + 1 >= s.size()) return form;
   try {
     size_t used = 0;
     a = std::stoull(s.substr(0, dash), &used);
-    if (used != dash) return false;
+    if (used != dash) return form;
     b = std::stoull(s.substr(dash + 1), &used);
-    if (used != s.size() - dash - 1) return false;
+    if (used != s.size() - dash - 1) return form;
   } catch (const std::exception&) {
-    return false;
+    return form;
   }
-  return a <= b && b - a < 100000;
+  if (a > b) return form;
+  if (b - a >= max_batch_variants) {
+    const std::string n = b - a == UINT64_MAX ? "18446744073709551616" : std::to_string(b - a + 1);
+    return "--seeds " + s + " is " + n + " seeds; a batch writes at most " + std::to_string(max_batch_variants) +
+           " files, so split it into ranges of at most that many";
+  }
+  return "";
 }
 
 int run_export(const export_args& a) {
@@ -231,8 +243,7 @@ int run_export(const export_args& a) {
   std::vector<uint64_t> seeds;
   if (!a.seeds.empty()) {
     uint64_t s0, s1;
-    if (!parse_seed_range(a.seeds, s0, s1))
-      return usage_error(cmd, "--seeds expects A-B with A <= B, got \"" + a.seeds + "\"");
+    if (std::string e = parse_seed_range(a.seeds, s0, s1); !e.empty()) return usage_error(cmd, e);
     for (uint64_t s = s0; s <= s1; ++s) seeds.push_back(s);
   } else {
     seeds.push_back(a.seed_opt->count() ? a.seed : base.spec.seed);
@@ -259,7 +270,9 @@ int run_export(const export_args& a) {
         next.back().sets.push_back(value);
       }
     variants = std::move(next);
-    if (variants.size() > 100000) return usage_error(cmd, "more than 100000 variants");
+    if (variants.size() > max_batch_variants)
+      return usage_error(cmd, std::to_string(variants.size()) + " variants; a batch writes at most " +
+                                  std::to_string(max_batch_variants) + " files (the seeds times every --set sweep's count)");
   }
   const bool batch = variants.size() > 1;
   // Every variant's values are applied once before anything is written (a keyframe may be past
@@ -314,7 +327,7 @@ int run_export(const export_args& a) {
     std::string what = "seed " + std::to_string(v.seed);
     for (const std::string& set : v.sets) what += ", " + set;
 
-    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0 && std::isfinite(a.wind)))
+    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0))   // finite already: add_float_option
       return usage_error(cmd, "--wind needs a loop length (glTF) or a moment (.png) in seconds > 0");
     const bool wind = a.wind_opt && a.wind_opt->count();
     if (wind) {
@@ -443,10 +456,10 @@ int run_cli(int argc, char** argv) {
                 "opaque textures as JPEG");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
   exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as <name>_LOD0..3 nodes, OBJ one file per level");
-  exp->add_option("--seconds-per-step", ex.seconds_per_step, "glTF animation speed")->check(CLI::Range(0.001, 60.0));
-  ex.wind_opt = exp->add_option("--wind", ex.wind,
-                                "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
-                                "(0.5-60); .png: render the wind's motion at SECONDS");
+  add_float_option(exp, "--seconds-per-step", ex.seconds_per_step, "glTF animation speed", 0.001f, 60.0f);
+  ex.wind_opt = add_float_option(exp, "--wind", ex.wind,
+                                 "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
+                                 "(0.5-60); .png: render the wind's motion at SECONDS");
 
   std::vector<std::string> bench_paths;
   int repeat = 5;

@@ -1,5 +1,6 @@
 // Growth worker: grows and meshes off the UI thread; publishes immutable results.
 #include "app/common/worker.h"
+#include "app/common/wake.h"
 
 #include <algorithm>
 #include <chrono>
@@ -61,6 +62,7 @@ void publish_failure(worker_state& w, const std::shared_ptr<const grow_result>& 
   std::lock_guard<std::mutex> lock(w.mutex);
   if (keep) w.published = std::move(keep);
   w.busy = false;
+  wake_ui();
 }
 
 // The largest class of the parameters of one params struct that differ between a and b, or
@@ -136,6 +138,7 @@ void run_worker(worker_state& w) {
         lock.lock();
         w.late_overlays = std::move(geo);
         w.late_overlays_from = last->debug;
+        wake_ui();
         continue;
       }
       req = std::move(*w.pending);
@@ -151,6 +154,7 @@ void run_worker(worker_state& w) {
                                  ? edit_class(last->spec, last->mesh_settings, req.spec, req.mesh_settings)
                                  : param_class::regrow;
     result->edit = need;
+    w.meshing = need != param_class::regrow;
     if (need != param_class::regrow) {
       // Nothing the generator reads changed: the tree is the same, so skip growth.
       result->skeleton = last->skeleton;
@@ -227,6 +231,7 @@ void run_worker(worker_state& w) {
       result->skeleton = std::move(skeleton);   // its overlays follow once it is out (late_overlays)
       result->debug = std::move(debug);
     }
+    w.meshing = true;
     auto t0 = std::chrono::steady_clock::now();
     try {
       if (need == param_class::render) {   // nothing the mesh reads changed either: keep it
@@ -252,6 +257,7 @@ void run_worker(worker_state& w) {
       w.published = std::move(result);
       w.busy = false;
     }
+    wake_ui();
   }
 }
 
@@ -325,6 +331,7 @@ void run_lod_worker(lod_worker& w) {
       w.published = std::move(r);
     }
     w.built.notify_all();
+    wake_ui();
   }
 }
 

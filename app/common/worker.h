@@ -64,6 +64,7 @@ struct worker_state {
   std::atomic<uint32_t> generation{0};            // moves on with every edit; cancels older growth
   std::atomic<bool> busy{false};
   std::atomic<float> progress{0};                 // of the growth in progress, 0..1 (grow_options::progress)
+  std::atomic<bool> meshing{false};               // the request in progress grows nothing (a re-mesh) or is past its growth
   std::atomic<int64_t> node_budget{default_node_budget};   // larger requests ask first
   // The growth overlays of the newest published result that came without them, built once that
   // result is out and no request waits (some 5 ms on self_organizing_default), and the growth

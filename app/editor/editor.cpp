@@ -14,9 +14,11 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include "app/common/wake.h"
 #include "app/editor/editor_script.h"
 #include "app/editor/editor_settings.h"
 #include "app/editor/editor_state.h"
@@ -29,9 +31,30 @@ namespace {
 
 using namespace ed;
 
+// Esc closes what is on top: an open menu or popup (a modal dialog answers Esc itself, as Cancel),
+// else the library, the F1 list, the message log or the export dialog (unless it is writing).
+void close_on_escape(editor_state& e) {
+  const ImGuiContext& g = *GImGui;
+  if (!g.OpenPopupStack.empty()) {
+    const ImGuiWindow* top = g.OpenPopupStack.back().Window;
+    if (!top || !(top->Flags & ImGuiWindowFlags_Modal)) ImGui::ClosePopupsExceptModals();
+  } else if (e.browser.open) {
+    e.browser.open = false;
+  } else if (e.show_shortcuts) {
+    e.show_shortcuts = false;
+  } else if (e.show_log) {
+    e.show_log = false;
+  } else if (e.exporter.open && !e.exporter.running) {
+    e.exporter.open = false;
+  }
+}
+
 void handle_keys(editor_state& e) {
   ImGuiIO& io = ImGui::GetIO();
-  if (long_growth(e) && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
+  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
+    if (long_growth(e) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
+    else close_on_escape(e);
+  }
   const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
   // The windows' keys work while a text field has the keyboard too (the panel's or the library's
   // search box): they type nothing there, and a newcomer who clicked into one still gets them.
@@ -270,12 +293,22 @@ int run_editor(const editor_options& o) {
   int exit_code = 0, frames_with_tree = 0;
   auto started = std::chrono::steady_clock::now();
   auto last = started;
+  // An editor with nothing to do waits for events and draws nothing (docs/design/09-editor.md "An
+  // editor that idles"); work finishing on another thread wakes it (app/common/wake.h).
+  frame_pacer pacer;
+  ui_waker = +[] { glfwPostEmptyEvent(); };
   while (!glfwWindowShouldClose(window)) {
-    glfwPollEvents();
+    const bool busy = automated || (scripted && !script.idling()) || !drawing_reason(*e).empty();
+    const bool draw = next_frame(pacer, e->input, busy, 0.5);
     auto now = std::chrono::steady_clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;
-    e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading
+    if (!draw) {   // nothing changed: no frame, but the autosave keeps its time
+      autosave(*e, dt);
+      continue;
+    }
+    ++e->frames_drawn;
+    if (!pacer.waited) e->frame_ms += (dt * 1000.0 - e->frame_ms) * 0.1;   // smoothed for reading; a wait is no frame time
 
     if (e->rescale_to > 0 && !std::getenv("SYLVA_UI_SCALE")) {
       apply_ui_scale(e->rescale_to);
@@ -283,7 +316,7 @@ int run_editor(const editor_options& o) {
       ImGui_ImplOpenGL3_CreateFontsTexture();
     }
     e->rescale_to = 0;
-    feed_imgui(e->input, ImGui::GetIO());
+    const int keys_fed = feed_imgui(e->input, ImGui::GetIO());
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     feed_mouse(e->input, ImGui::GetIO());   // after the backend's poll: buttons and position in order
@@ -402,7 +435,21 @@ int run_editor(const editor_options& o) {
         editor_lod_update(o.lod, o.renderer, o.shown, o.doc.render, e->camera, std::min(e->step, o.shown->skeleton->steps));
       ab_draw(e->ab, e->camera, vx, vy, vw, vh, e->show_overlays ? &e->overlays : nullptr);
     } else if (c.renderer.ok) {
-      draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, e->show_overlays ? &e->overlays : nullptr, {vx, vy});
+      // While the user drags, orbits or types, a cheaper picture (app/editor/view_quality.h); the
+      // settling frames after the release draw the full one.
+      // A frame whose picture would not change shows the last one again (a menu, a hover).
+      const overlay_view* ov = e->show_overlays ? &e->overlays : nullptr;
+      const bool cheap = !e->full_quality && interacting(ImGui::GetIO(), ImGui::IsAnyItemActive(), keys_fed) &&
+                         draw_interactive(e->quick_view, c.renderer, c.doc.render, e->camera, vx, vy, vw, vh, ov);
+      if (cheap) {
+        ++e->cheap_frames;
+        e->kept_view.valid = false;
+      } else if (!e->full_quality && show_kept_view(e->kept_view, view_key_of(c.renderer, e->camera, c.doc.render, ov, vx, vy, vw, vh))) {
+        ++e->kept_frames;
+      } else {
+        draw_frame(c.renderer, c.doc.render, e->camera, vw, vh, {}, ov, {vx, vy});
+        keep_view(e->kept_view, view_key_of(c.renderer, e->camera, c.doc.render, ov, vx, vy, vw, vh));
+      }
     }
     if (c.renderer.texture_message != e->texture_message) {
       e->texture_message = c.renderer.texture_message;
@@ -443,6 +490,7 @@ int run_editor(const editor_options& o) {
       e->script_shot.clear();
     }
     glfwSwapBuffers(window);
+    if (scripted) idle_mark_start(script, e->frames_drawn);
   }
 
   if (scripted && !script.finished && !script.failed)
@@ -459,6 +507,9 @@ int run_editor(const editor_options& o) {
     settings.recent = e->recent;
     save_settings(e->home, settings);
   }
+  ui_waker = nullptr;
+  free_interactive(e->quick_view);
+  free_view_cache(e->kept_view);
   shutdown_export_dialog(e->exporter);
   ab_free_gl(e->ab);   // both slots: workers stopped, renderers freed
   shutdown_preset_browser(e->browser);

@@ -209,7 +209,7 @@ void draw_shortcuts(editor_state& e) {
         {"Ctrl+Z", "undo"}, {"Ctrl+Shift+Z, Ctrl+Y", "redo"}, {"Ctrl+S", "save (Save as for shipped presets)"},
         {"Ctrl+O", "open a preset"}, {"Ctrl+L", "preset library"}, {"Ctrl+Q", "quit (asks about unsaved changes)"},
         {"Space", "play / pause the growth"}, {"Home, End", "first / last step"}, {"Left, Right", "one step back / forward"},
-        {"Esc", "cancel a long regrow; close a dialog"}, {"F12", "screenshot of the 3D view"}, {"F1", "this list"},
+        {"Esc", "cancel a long regrow; else close the open menu, dialog, library or this list"}, {"F12", "screenshot of the 3D view"}, {"F1", "this list"},
         {"Numpad 1, 3, 7 (or 1, 3, 7)", "front, right, top view (Ctrl: the opposite side)"},
         {"Click the axis gizmo", "view along that axis"},
         {"Drag a slider", "change it; Shift: fine steps; Ctrl+click: type a value"},

@@ -51,8 +51,12 @@ void open_preset(editor_state& e, const std::string& path) {
   e.cur().path = path;
   note_saved(e, path);
   note_recent(e.recent, path);
-  e.frame_new = true;
-  std::string m = "Opened " + path;
+  // The camera stays where it is once a tree is on screen, so that a preset reopened (or another
+  // one) compares from the same view; F frames it. The first tree is framed.
+  const bool tree_on_screen = e.cur().shown && e.cur().shown->skeleton;
+  e.frame_new = !tree_on_screen;
+  e.keep_view = tree_on_screen;
+  std::string m = "Opened " + path + (tree_on_screen ? " (the view is kept: F frames the tree)" : "");
   if (!r.warnings.empty()) m += " (" + std::to_string(r.warnings.size()) + " warning(s): " + r.warnings.front() + ")";
   set_status(e, m, false);
 }
@@ -313,6 +317,12 @@ void apply_undo(editor_state& e, std::vector<preset>& from, std::vector<preset>&
 // A completed edit that would leave a document the loader refuses (keyframes or cuts on a text
 // L-system) is taken back with the reason, so every document the editor holds saves and reopens.
 void record_undo(editor_state& e) {
+  // A number that is not finite (a field typed "1e999") is put back at once, while its field is
+  // still active too: the document is posted to the worker in this frame.
+  if (std::string why = non_finite_refusal(e.cur().doc); !why.empty() && non_finite_refusal(e.cur().undo_base).empty()) {
+    e.cur().doc = e.cur().undo_base;
+    return set_status(e, "Not applied: " + why, true);
+  }
   if (ImGui::IsAnyItemActive() || e.cur().doc == e.cur().undo_base) return;
   if (std::string why = document_refusal(e.cur().doc); !why.empty() && document_refusal(e.cur().undo_base).empty()) {
     e.cur().doc = e.cur().undo_base;

@@ -1,6 +1,9 @@
 // Generator-specific editor panels: L-system text, constants and inspector; per-step tables; overlay toggles.
 #include "app/editor/editor_generators.h"
 
+#include "app/common/wake.h"
+#include "app/editor/editor_panel_tabs.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -44,7 +47,9 @@ void refresh_inspection(lsystem_panel_state& s, const lsystem_params& p, uint64_
   s.pending_seed = seed;
   const int64_t cap = std::min<int64_t>(p.module_cap, 2000000);   // the inspector never outgrows the tree's own cap
   s.pending = std::async(std::launch::async, [src = p.source, n = p.derivations, first = s.first_n, seed, cap] {
-    return inspect_lsystem(src, n, first, seed, cap);
+    lsystem_inspection r = inspect_lsystem(src, n, first, seed, cap);
+    wake_ui();   // an idle editor shows it
+    return r;
   });
 }
 
@@ -88,21 +93,27 @@ void draw_error(const lsystem_error& err, const std::string& source) {
   ImGui::TextColored(error_colour, "^");
 }
 
+void draw_constant(lsystem_panel_state& s, const lsystem_constant& c, std::string& source) {
+  ImGui::PushID(c.name.c_str());
+  float v = c.value;
+  // A value outside its comment's range widens the slider rather than being clamped on touch.
+  const float lo = std::min(c.min, v), hi = std::max(c.max, v);
+  if (ImGui::SliderFloat(c.name.c_str(), &v, lo, hi, "%.4g")) {   // Ctrl+click types: "1e999" is inf
+    s.refused = finite_refusal(c.name, v);
+    if (s.refused.empty()) set_lsystem_constant(source, c.name, v);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s\n#define on line %d; dragging rewrites the text", c.help.empty() ? c.name.c_str() : c.help.c_str(), c.line);
+  ImGui::PopID();
+}
+
 void draw_constants(lsystem_panel_state& s, std::string& source) {
   if (s.constants.empty()) {
     ImGui::TextDisabled("No #define constants (\"#define NAME value // [min,max] help\" makes a slider).");
     return;
   }
-  for (const lsystem_constant& c : s.constants) {
-    ImGui::PushID(c.name.c_str());
-    float v = c.value;
-    // A value outside its comment's range widens the slider rather than being clamped on touch.
-    const float lo = std::min(c.min, v), hi = std::max(c.max, v);
-    if (ImGui::SliderFloat(c.name.c_str(), &v, lo, hi, "%.4g")) set_lsystem_constant(source, c.name, v);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s\n#define on line %d; dragging rewrites the text", c.help.empty() ? c.name.c_str() : c.help.c_str(), c.line);
-    ImGui::PopID();
-  }
+  for (const lsystem_constant& c : std::vector<lsystem_constant>(s.constants)) draw_constant(s, c, source);
+  if (!s.refused.empty()) ImGui::TextColored(error_colour, "Not applied: %s", s.refused.c_str());
 }
 
 void draw_inspector(lsystem_panel_state& s) {
@@ -164,6 +175,24 @@ void draw_lsystem_text(lsystem_panel_state& s, lsystem_params& p, uint64_t seed,
 }
 
 }  // namespace
+
+int draw_matching_constants(generator_panel_state& s, tree_spec& spec, const std::string& filter, bool count_only) {
+  auto* p = std::get_if<lsystem_params>(&spec.params);
+  if (!p || p->mode != lsystem_mode::text) return 0;
+  refresh_check(s.lsystem, p->source);
+  int n = 0;
+  for (const lsystem_constant& c : std::vector<lsystem_constant>(s.lsystem.constants)) {
+    const param_info as_param{c.name.c_str(), c.name.c_str(), "", c.min, c.max, c.help.c_str()};
+    if (!param_matches(as_param, "Constants (#define)", filter)) continue;
+    if (!count_only && n == 0) {
+      ImGui::Separator();
+      ImGui::TextDisabled("Constants (#define)");
+    }
+    ++n;
+    if (!count_only) draw_constant(s.lsystem, c, p->source);
+  }
+  return n;
+}
 
 void draw_generator_panel(generator_panel_state& s, tree_spec& spec, const grow_result* shown) {
   if (auto* p = std::get_if<lsystem_params>(&spec.params); p && p->mode == lsystem_mode::text)

@@ -89,6 +89,7 @@ struct lsystem_panel_state {
   lsystem_error error;
   std::vector<lsystem_error> warnings;   // lsystem_warnings(): unbalanced brackets, idle parameters, dead productions
   std::vector<lsystem_constant> constants;
+  std::string refused;                   // a constant typed as NaN or infinity: why it was not applied
   // The derivation inspector runs off the UI thread; the newest finished one is shown.
   std::future<lsystem_inspection> pending;
   std::string pending_source, inspected_source;
@@ -107,6 +108,9 @@ struct generator_panel_state {
 // source editor with its error, the #define sliders and the inspector. `shown` is the tree on
 // screen (for evaluation errors). Edits are noticed by comparing documents, not returned.
 void draw_generator_panel(generator_panel_state& s, tree_spec& spec, const grow_result* shown);
+// While the panel is searched: a text L-system's #define constants whose name or help comment
+// matches `filter` (param_matches), as sliders; none drawn with `count_only`. Returns how many match.
+int draw_matching_constants(generator_panel_state& s, tree_spec& spec, const std::string& filter, bool count_only);
 
 // The per-step table of `cols`; `hold` is set while an apply-on-release cell is dragged.
 void draw_step_table(std::vector<step_column>& cols, bool& hold);

@@ -65,8 +65,9 @@ void post_if_changed(editor_state& e) {
     if (render_changed) e.last_edit = param_class::render;   // nothing to grow or mesh: drawn next frame
     return;
   }
-  // A new generator (switched, opened or undone) is a new tree: frame it. Edits keep the camera.
-  if (s.posted_once && s.doc.spec.params.index() != s.posted_spec.params.index()) e.frame_new = true;
+  // A new generator (switched or undone) is a new tree: frame it. Edits and opened presets keep the camera.
+  if (s.posted_once && s.doc.spec.params.index() != s.posted_spec.params.index() && !e.keep_view) e.frame_new = true;
+  e.keep_view = false;
   s.posted_spec = s.doc.spec;
   s.posted_mesh = s.doc.mesh;
   s.posted_once = true;

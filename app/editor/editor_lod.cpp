@@ -153,9 +153,9 @@ std::string editor_lod_status(const editor_lod& s) {
   char buf[200];
   const auto& n = s.chain->triangles;
   if (s.uploaded == lod_levels)
-    std::snprintf(buf, sizeof buf, "Impostor (2 triangles)   LOD0-3 triangles %zu / %zu / %zu / %zu", n[0], n[1], n[2], n[3]);
+    std::snprintf(buf, sizeof buf, "Impostor (2 triangles)   LOD0-3 triangles (bark + 2 per leaf) %zu / %zu / %zu / %zu", n[0], n[1], n[2], n[3]);
   else
-    std::snprintf(buf, sizeof buf, "LOD%d%s   LOD0-3 triangles %zu / %zu / %zu / %zu", std::max(s.uploaded, 0),
+    std::snprintf(buf, sizeof buf, "LOD%d%s   LOD0-3 triangles (bark + 2 per leaf) %zu / %zu / %zu / %zu", std::max(s.uploaded, 0),
                   s.wanted >= lod_levels ? " (impostor distance; no impostor)" : "", n[0], n[1], n[2], n[3]);
   // Clamped budgets or a tree too small to reduce (build_lods says which).
   std::string out(buf);

@@ -35,10 +35,14 @@ panel_tab tab_of_group(const char* group, bool* known) {
 
 namespace {
 
+// Whether `word` begins a word of `text`, ignoring ASCII case: "angle" finds "angle" and "angles",
+// not "triangles". A word that starts with a non-ASCII byte (a symbol such as "τ") matches anywhere.
 bool contains_nocase(const char* text, const std::string& word) {
   if (!text || word.empty()) return word.empty();
   const size_t n = std::strlen(text);
+  const bool anywhere = static_cast<unsigned char>(word[0]) >= 0x80;
   for (size_t i = 0; i + word.size() <= n; ++i) {
+    if (!anywhere && i > 0 && std::isalnum(static_cast<unsigned char>(text[i - 1]))) continue;
     size_t k = 0;
     while (k < word.size() && std::tolower(static_cast<unsigned char>(text[i + k])) ==
                                   std::tolower(static_cast<unsigned char>(word[k])))

@@ -17,8 +17,9 @@ const char* panel_tab_label(panel_tab t);
 // table complete), which then shows under Scene.
 panel_tab tab_of_group(const char* group, bool* known = nullptr);
 
-// Whether a parameter matches the search text: every word of `filter` occurs, ignoring ASCII
-// case, in its label, symbol, key, help or group. An empty filter matches everything.
+// Whether a parameter matches the search text: every word of `filter` begins a word, ignoring
+// ASCII case, of its label, symbol, key, help or group ("angle" finds "Branch angle", not
+// "triangles"; a symbol matches anywhere). An empty filter matches everything.
 bool param_matches(const param_info& info, const char* group, const std::string& filter);
 
 }  // namespace sylva

@@ -79,6 +79,8 @@ struct param_drawer {
   const std::string* filter = nullptr;         // the search box's text (nullptr or empty: no search)
   path_field_edit* path_edit = nullptr;        // the path being typed, if any
   std::map<std::string, std::array<float, 2>>* path_at = nullptr;   // where path fields are drawn
+  int matched = 0;                             // parameters shown (or, count_only, that would be)
+  bool count_only = false;                     // count the search's matches, draw nothing
 
   // "symbol  label##key" in a fixed buffer: building the panel allocates nothing per frame.
   char buffer[256];
@@ -103,6 +105,8 @@ struct param_drawer {
       return;
     const bool searching = filter && !filter->empty();
     if (searching && !param_matches(info, group_now, *filter)) return;
+    ++matched;
+    if (count_only) return;
     // A group that continues the one just drawn (nested structs may both name "Leaves") gets no
     // second header.
     if (pending_header && last_header && std::strcmp(pending_header, last_header) == 0) pending_header = nullptr;
@@ -194,7 +198,7 @@ struct param_drawer {
       ImGui::BeginTooltip();
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30);
       ImGui::Text("%s\n%s%s(drag; Shift: fine; Ctrl+click: type; right-click: reset to default)", info.help,
-                  source ? "Source: " : "", source ? source : "");
+                  source ? "Model: " : "", source ? source : "");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }
@@ -245,12 +249,14 @@ const char* param_source() {
 }
 
 // Edits are noticed by comparing documents (record_undo, post_if_changed), so drawers return nothing.
+// Returns the parameters shown (count_only: that match the search, none drawn).
 template <class P>
-void draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr,
-                 const std::vector<const char*>* groups = nullptr, bool generator_leaves = true) {
+int draw_params(P& p, const char* section, editor_state& e, const tree_spec* keyed = nullptr,
+                const std::vector<const char*>* groups = nullptr, bool generator_leaves = true, bool count_only = false) {
   static const P defaults{};
   static const std::vector<const void*> pointers = default_pointers(defaults);
   param_drawer d{pointers, section, param_source<P>(), e.show_advanced};
+  d.count_only = count_only;
   d.groups = groups;
   d.filter = &e.panel_search;
   d.path_edit = &e.path_edit;
@@ -264,24 +270,53 @@ void draw_params(P& p, const char* section, editor_state& e, const tree_spec* ke
     d(value, info);
   });
   e.hold_post |= d.hold;
+  return d.matched;
 }
 
 
+// The parameters of `p` in `groups` back to their defaults (the struct's own, as the panel's reset).
+template <class P>
+void reset_groups(P& p, std::initializer_list<const char*> groups) {
+  static const P defaults{};
+  static const std::vector<const void*> pointers = default_pointers(defaults);
+  size_t i = 0;
+  const char* group = nullptr;
+  visit_params(p, [&](auto& value, const param_info& info) {
+    using T = std::remove_reference_t<decltype(value)>;
+    const T& def = *static_cast<const T*>(pointers[i++]);
+    if (info.group) group = info.group;
+    if (group && std::any_of(groups.begin(), groups.end(), [&](const char* g) { return std::strcmp(g, group) == 0; })) value = def;
+  });
+}
+
 }  // namespace
+
+void switch_generator(editor_state& e, int g) {
+  preset& doc = e.cur().doc;
+  doc.spec.params = default_params(g);
+  doc.spec.keyframes.clear();   // they name the old generator's parameters
+  reset_groups(doc.mesh, {"Leaves", "Cones and fruit"});
+  reset_groups(doc.render, {"Materials", "Textures"});
+  const std::string label = generator_labels[g];
+  doc.name = "New " + label.substr(0, label.find(" ("));   // "New Self-organizing" (the A/B labels)
+  doc.description.clear();
+  doc.tags.clear();
+  e.frame_new = true;
+}
 
 namespace {
 
-// The Tree tab: the generator, its seed and its parameters (keyed at the step with "From this
-// step on"), and its own panels (L-system text, envelope mesh...).
-void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
+// The Tree tab: the generator (shown while searching too), its seed and its parameters (keyed at
+// the step with "From this step on"), and its own panels (L-system text, envelope mesh...); while
+// searching, the generator's parameters and #define constants that match. Returns how many match.
+int draw_tree_tab(editor_state& e, std::string& key_error, bool searching, bool count_only = false) {
   tree_spec& spec = e.cur().doc.spec;
-  if (!searching) {
+  if (!count_only) {
     int g = int(spec.params.index());
-    if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index())) {
-      spec.params = default_params(g);
-      spec.keyframes.clear();   // they name the old generator's parameters
-      e.frame_new = true;
-    }
+    if (ImGui::Combo("Generator", &g, generator_labels, generator_count) && g != int(spec.params.index()))
+      switch_generator(e, g);
+  }
+  if (!searching) {
     int seed = int(spec.seed & 0x7fffffff);
     if (ImGui::InputInt("Seed", &seed)) spec.seed = uint64_t(std::max(seed, 0));
     ImGui::SameLine();
@@ -300,15 +335,19 @@ void draw_tree_tab(editor_state& e, std::string& key_error, bool searching) {
     draw_from_step_switch(e.keys, spec, e.step);
   }
   const bool generator_leaves = e.cur().doc.mesh.leaves.mode == leaf_mode::generator;
+  const char* section = generator_labels[spec.params.index()];
+  int n = 0;
   if (e.keys.from_step && e.step >= 1) {
     const generator_params before = params_at_step(spec, e.step);
     generator_params shown = before;
-    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec, nullptr, generator_leaves); }, shown);
+    std::visit([&](auto& p) { n = draw_params(p, section, e, &spec, nullptr, generator_leaves, count_only); }, shown);
     if (!(shown == before)) key_error = key_edits(spec, before, shown, e.step);
   } else {
-    std::visit([&](auto& p) { draw_params(p, generator_labels[spec.params.index()], e, &spec, nullptr, generator_leaves); }, spec.params);
+    std::visit([&](auto& p) { n = draw_params(p, section, e, &spec, nullptr, generator_leaves, count_only); }, spec.params);
   }
-  if (!searching) draw_generator_panel(e.generator_panels, spec, e.cur().shown.get());
+  if (searching) n += draw_matching_constants(e.generator_panels, spec, e.panel_search, count_only);
+  else draw_generator_panel(e.generator_panels, spec, e.cur().shown.get());
+  return n;
 }
 
 // Time-of-day presets: a starting point for the lighting sliders.
@@ -337,7 +376,41 @@ void draw_time_of_day(editor_state& e) {
   }
 }
 
-bool begin_tab(panel_tab t) { return ImGui::BeginTabItem(panel_tab_label(t)); }
+// One tab's contents; while searching, only its parameters that match. Returns how many
+// parameters it shows (count_only: how many match the search, nothing drawn).
+int draw_tab(editor_state& e, panel_tab t, std::string& key_error, bool count_only) {
+  // The groups of the shared parameters each tab shows, in the order shown (editor_panel_tabs.h).
+  static const std::vector<const char*> leaves{"Leaves", "Cones and fruit"}, bark_mesh{"Mesh", "Bark mesh", "Bark shape"},
+      materials{"Materials", "Textures"}, season_wind{"Season", "Wind"}, sky{"Sun and sky", "Shadows", "Light shafts and fog"},
+      output{"Level of detail"};
+  const bool searching = !e.panel_search.empty();
+  tree_spec& spec = e.cur().doc.spec;
+  preset& doc = e.cur().doc;
+  int n = 0;
+  switch (t) {
+    case panel_tab::tree: return draw_tree_tab(e, key_error, searching, count_only);
+    case panel_tab::leaves: return draw_params(doc.mesh, "Mesh", e, nullptr, &leaves, true, count_only);
+    case panel_tab::wood:
+      n += draw_params(spec.wood, "Wood", e, nullptr, nullptr, true, count_only);
+      n += draw_params(doc.mesh, "Mesh", e, nullptr, &bark_mesh, true, count_only);
+      return n + draw_params(doc.render, "Render", e, nullptr, &materials, true, count_only);
+    case panel_tab::scene:
+      n += draw_params(doc.render, "Render", e, nullptr, &season_wind, true, count_only);
+      if (!searching) draw_time_of_day(e);
+      return n + draw_params(doc.render, "Render", e, nullptr, &sky, true, count_only);
+    case panel_tab::output:
+      n = draw_params(doc.render, "Render", e, nullptr, &output, true, count_only);
+      if (!searching) draw_output_extras(e);
+      return n;
+    case panel_tab::pruning:
+      if (searching) return 0;
+      if (draw_prune_panel(e.prune, spec, e.cur().shown.get(), e.step, key_error)) clear_error(e);
+      if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
+      return 0;
+    case panel_tab::count: break;
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -349,50 +422,37 @@ void draw_panel(editor_state& e, float top, float bottom) {
                    ImGuiWindowFlags_NoTitleBar);
   ImGui::PushItemWidth(-205 * ui_scale);
   if (const ab_action a = draw_ab_controls(e.ab); a != ab_action::none) handle_ab(e, a);
-  tree_spec& spec = e.cur().doc.spec;
   if (follow_step(e.keys, e.step)) set_status(e, "\"From this step on\" is off again: the timeline moved to another step");
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##search", "Search parameters: name, symbol or help", &e.panel_search);
   const bool searching = !e.panel_search.empty();
   std::string key_error;
-  // The groups of the shared parameters each tab shows, in the order shown (editor_panel_tabs.h).
-  static const std::vector<const char*> leaves{"Leaves", "Cones and fruit"}, bark_mesh{"Mesh", "Bark mesh", "Bark shape"},
-      materials{"Materials", "Textures"}, season_wind{"Season", "Wind"}, sky{"Sun and sky", "Shadows", "Light shafts and fog"},
-      output{"Level of detail"};
-  if (searching) {   // every tab's parameters at once, only those that match
-    draw_tree_tab(e, key_error, true);
-    draw_params(e.cur().doc.mesh, "Mesh", e);
-    draw_params(spec.wood, "Wood", e);
-    draw_params(e.cur().doc.render, "Render", e);
-  } else if (ImGui::BeginTabBar("##panel_tabs")) {
-    if (begin_tab(panel_tab::tree)) {
-      draw_tree_tab(e, key_error, false);
-      ImGui::EndTabItem();
-    }
-    if (begin_tab(panel_tab::leaves)) {
-      draw_params(e.cur().doc.mesh, "Mesh", e, nullptr, &leaves);
-      ImGui::EndTabItem();
-    }
-    if (begin_tab(panel_tab::wood)) {
-      draw_params(spec.wood, "Wood", e);
-      draw_params(e.cur().doc.mesh, "Mesh", e, nullptr, &bark_mesh);
-      draw_params(e.cur().doc.render, "Render", e, nullptr, &materials);
-      ImGui::EndTabItem();
-    }
-    if (begin_tab(panel_tab::scene)) {
-      draw_params(e.cur().doc.render, "Render", e, nullptr, &season_wind);
-      draw_time_of_day(e);
-      draw_params(e.cur().doc.render, "Render", e, nullptr, &sky);
-      ImGui::EndTabItem();
-    }
-    if (begin_tab(panel_tab::output)) {
-      draw_params(e.cur().doc.render, "Render", e, nullptr, &output);
-      draw_output_extras(e);
-      ImGui::EndTabItem();
-    }
-    if (begin_tab(panel_tab::pruning)) {
-      if (draw_prune_panel(e.prune, spec, e.cur().shown.get(), e.step, key_error)) clear_error(e);
-      if (draw_keyframe_panel(e.keys, spec, e.step, key_error)) clear_error(e);
+  // While searching, each tab keeps its place and shows its own matches, their count in its label;
+  // a new search opens the first tab with any, and none at all says so.
+  int counts[int(panel_tab::count)] = {};
+  e.search_matches = -1;
+  if (searching) {
+    e.search_matches = 0;
+    for (int t = 0; t < int(panel_tab::count); ++t) e.search_matches += counts[t] = draw_tab(e, panel_tab(t), key_error, true);
+    if (e.search_matches == 0)
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "No parameter matches \"%s\" (names, symbols, help and #define comments)",
+                         e.panel_search.c_str());
+  }
+  const bool new_search = e.panel_search != e.searched;
+  e.searched = e.panel_search;
+  int open_tab = -1;   // a new search whose matches are all in other tabs opens the first of them
+  if (searching && new_search && e.search_matches > 0 && counts[e.panel_tab_shown] == 0)
+    for (int t = 0; t < int(panel_tab::count) && open_tab < 0; ++t)
+      if (counts[t] > 0) open_tab = t;
+  if (ImGui::BeginTabBar("##panel_tabs")) {
+    for (int t = 0; t < int(panel_tab::count); ++t) {
+      char label[64];
+      if (searching) std::snprintf(label, sizeof label, "%s (%d)###tab%d", panel_tab_label(panel_tab(t)), counts[t], t);
+      else std::snprintf(label, sizeof label, "%s###tab%d", panel_tab_label(panel_tab(t)), t);
+      if (!ImGui::BeginTabItem(label, nullptr, t == open_tab ? ImGuiTabItemFlags_SetSelected : 0)) continue;
+      e.panel_tab_shown = t;
+      if (searching && counts[t] == 0 && e.search_matches > 0) ImGui::TextDisabled("No match in this tab: see the tabs with a count.");
+      draw_tab(e, panel_tab(t), key_error, false);
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();

@@ -7,7 +7,10 @@
 #include <cstdlib>
 #include <sstream>
 
+#include <sys/resource.h>
+
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 namespace sylva::ed {
 
@@ -38,6 +41,22 @@ std::vector<std::string> words(const std::string& s) {
 }
 
 }  // namespace
+
+void idle_mark_start(script_state& sc, uint64_t frames_drawn) {
+  if (!sc.idle_pending) return;
+  sc.idle_pending = false;
+  sc.idle_started = true;
+  sc.idle_from = std::chrono::steady_clock::now();
+  sc.idle_until = sc.idle_from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(sc.idle_span));
+  sc.idle_cpu = process_cpu_seconds();
+  sc.idle_frames = frames_drawn;
+}
+
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 bool load_script(const std::string& path, script_state& sc, std::string& error) {
   std::string text;
@@ -261,8 +280,26 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "expect_window") {   // expect_window shortcuts|library 0|1
       const std::string which = arg.substr(0, arg.find(' '));
       const bool want = arg.substr(arg.find(' ') + 1) == "1";
-      const bool open = which == "shortcuts" ? e.show_shortcuts : which == "library" ? e.browser.open : !want;
+      const bool open = which == "shortcuts" ? e.show_shortcuts : which == "library" ? e.browser.open
+                        : which == "export"  ? e.exporter.open : which == "messages" ? e.show_log : !want;
       if (open != want) return fail(which + (open ? " is open" : " is not open"));
+    } else if (cmd == "expect_search_matches") {   // the panel's search matches N parameters in all tabs
+      if (e.search_matches != std::atoi(arg.c_str())) return fail("the search matches " + std::to_string(e.search_matches));
+    } else if (cmd == "generator") {   // generator NAME: the panel's Generator selector
+      const int g = generator_index(arg);
+      if (g < 0) return fail("no generator " + arg);
+      switch_generator(e, g);
+      sc.frames_left = 2;
+    } else if (cmd == "remember_camera") {
+      sc.camera = e.camera;
+    } else if (cmd == "expect_camera") {   // expect_camera kept|moved: against remember_camera
+      const orbit_camera& c = e.camera;
+      const bool kept = c.target == sc.camera.target && c.distance == sc.camera.distance && c.yaw == sc.camera.yaw &&
+                        c.pitch == sc.camera.pitch;
+      if (kept != (arg == "kept")) return fail(kept ? "the camera did not move" : "the camera moved");
+    } else if (cmd == "expect_popup") {   // expect_popup 0|1: a menu, popup or dialog is open
+      const bool open = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId);
+      if (open != (arg == "1")) return fail(open ? "a popup is open" : "no popup is open");
     } else if (cmd == "expect_message") {   // the status bar's text contains ARG ("" for an empty status)
       if (arg.empty() ? !e.message.empty() : e.message.find(arg) == std::string::npos) return fail("the status reads \"" + e.message + "\"");
     } else if (cmd == "step") {
@@ -332,6 +369,61 @@ bool run_script(editor_state& e, script_state& sc) {
         std::fflush(stdout);
         sc.frame_times.clear();
       }
+    } else if (cmd == "orbit") {   // orbit N: a left drag across the 3D view, one move a frame for N frames
+      const int n = std::max(1, std::atoi(arg.c_str()));
+      int w = 0, h = 0;
+      glfwGetWindowSize(e.window, &w, &h);
+      const float x0 = panel_width() + 0.3f * (float(w) - panel_width()), y0 = 0.5f * float(h);
+      const clock::time_point now = clock::now();
+      if (sc.orbit_step == 0) {
+        e.input.push_move(x0, y0);
+        e.input.push_button(0, true, x0, y0);
+        sc.frame_times.clear();
+        sc.orbit_cheap = e.cheap_frames;
+      } else if (sc.orbit_step <= n + 1) {
+        if (sc.orbit_step > 1) sc.frame_times.push_back(now);   // from the first frame that drags
+        e.input.push_move(x0 + 6.0f * float(sc.orbit_step), y0);
+      }
+      done = sc.orbit_step > n + 1;
+      ++sc.orbit_step;
+      if (done) {
+        e.input.push_button(0, false, x0 + 6.0f * float(n + 1), y0);
+        std::vector<double> ms;
+        for (size_t i = 1; i < sc.frame_times.size(); ++i)
+          ms.push_back(std::chrono::duration<double, std::milli>(sc.frame_times[i] - sc.frame_times[i - 1]).count());
+        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+        std::printf("sylva script: orbit: frame median %.1f ms over %zu frames, %llu drawn cheaper\n", ms.empty() ? 0.0 : ms[ms.size() / 2],
+                    ms.size(), (unsigned long long)(e.cheap_frames - sc.orbit_cheap));
+        sc.orbit_step = 0;
+        sc.frame_times.clear();
+        sc.frames_left = 6;
+      }
+    } else if (cmd == "full_quality") {   // full_quality 0|1: every frame drawn in full (a baseline to measure against)
+      e.full_quality = arg == "1";
+    } else if (cmd == "expect_kept_frames_over") {   // expect_kept_frames_over N: more than N frames showed the kept picture
+      if (e.kept_frames <= uint64_t(std::atoll(arg.c_str()))) return fail(std::to_string(e.kept_frames) + " frames showed the kept picture");
+    } else if (cmd == "expect_cheap_frames") {   // expect_cheap_frames N: frames drawn cheaper so far
+      if (e.cheap_frames != uint64_t(std::atoll(arg.c_str()))) return fail(std::to_string(e.cheap_frames) + " frames drawn cheaper");
+    } else if (cmd == "wait_quiet") {   // until nothing keeps the editor drawing (drawing_reason)
+      done = drawing_reason(e).empty();
+      if (!done && waited > 300) return fail("still drawing for " + drawing_reason(e) + " after 300 s");
+    } else if (cmd == "idle") {   // idle S [MAX]: the editor left alone; its CPU use measured
+      const double span = std::atof(arg.c_str());
+      if (!(span > 0)) return fail("idle needs seconds > 0");
+      if (!sc.idle_started && !sc.idle_pending) {   // measured from the end of this frame (idle_mark_start)
+        sc.idle_pending = true;
+        sc.idle_span = span;
+        return true;
+      }
+      if (sc.idling()) return true;
+      // This frame ends the wait and is not counted; the CPU it used up to here is (building the UI).
+      const double cpu = process_cpu_seconds() - sc.idle_cpu, idled = seconds_since(sc.idle_from), share = 100.0 * cpu / idled;
+      std::printf("sylva script: idle %.1f s: CPU %.3f s, %.1f %% of a core, %llu frames drawn%s%s\n", idled, cpu, share,
+                  (unsigned long long)(e.frames_drawn - 1 - sc.idle_frames), drawing_reason(e).empty() ? "" : "; drawing for ",
+                  drawing_reason(e).c_str());
+      sc.idle_started = false;
+      if (arg.find(' ') != std::string::npos && share > std::atof(arg.substr(arg.find(' ') + 1).c_str()))
+        return fail("the idle editor used " + std::to_string(share) + " % of a core");
     } else if (cmd == "budget") {
       e.cur().worker->node_budget = std::atoll(arg.c_str());
     } else if (cmd == "shot") {

@@ -33,12 +33,25 @@ namespace sylva::ed {
 //   click export_path | X Y    a move, a press and a release queued at once (a quick click on a slow frame)
 //   show_export 0|1 / export_path P / expect_export_path P   the Export dialog
 //   export_as P / expect_file P   Export as... with P chosen, which writes it; waits for the file
-//   expect_window shortcuts|library 0|1 / expect_message TEXT (contained; empty: no message)
+//   expect_window shortcuts|library|export|messages 0|1 / expect_message TEXT (contained; empty: no message)
+//   expect_popup 0|1           whether a menu, popup or dialog is open
 //   step N / expect_step N     the timeline's step
 //   ab_drop / expect_has_b 0|1 Drop B (asks when B has edits) / whether slot B exists
 //   search TEXT / click_path KEY   the panel's search box / a click into a path parameter's field
+//   generator NAME             the Generator selector (a name of `sylva params`: lsystem, ...)
+//   remember_camera / expect_camera kept|moved   the view against the one remembered
+//   expect_search_matches N    the search matches N parameters and #define constants over all tabs
 //   expect_texture_loads N     the user texture files the renderer has read so far
 //   remember_programs / expect_new_programs N   GL programs compiled since (printed with the total)
+//   orbit N                    a left drag across the 3D view, one move a frame for N frames; prints
+//                              the frames' median and how many were drawn cheaper (view_quality.h)
+//   expect_cheap_frames N      the frames drawn cheaper so far
+//   expect_kept_frames_over N  more than N frames showed the last picture again (nothing in it changed)
+//   full_quality 0|1           every frame drawn in full: the baseline for orbit and frame_median
+//   wait_quiet                 until nothing keeps the editor drawing (no growth, LOD build, wind ...)
+//   idle S [MAX]               touches nothing for S seconds, so the editor may idle; prints the CPU
+//                              time the process used (every thread) as a share of one core and the
+//                              frames drawn meanwhile; with MAX, fails above MAX % of a core
 // At the end of the script the editor closes (exit 0); a failed expectation exits with 3.
 struct script_state {
   std::vector<std::string> lines;
@@ -46,11 +59,30 @@ struct script_state {
   std::chrono::steady_clock::time_point started_line = std::chrono::steady_clock::now();
   int frames_left = -1;
   int programs = 0;   // remember_programs
+  orbit_camera camera;   // remember_camera
+  int orbit_step = 0;    // orbit: the moves made so far
+  uint64_t orbit_cheap = 0;
   const tree_skeleton* remembered = nullptr;
   std::shared_ptr<const grow_result> remembered_hold;   // keeps the remembered tree alive
   bool failed = false, finished = false;
   std::vector<std::chrono::steady_clock::time_point> frame_times;   // frame_median: one per frame
+  // idle: asked for (it starts once the frame that asked is drawn), started; its span, its start and
+  // end, and the CPU seconds and frames drawn at its start.
+  bool idle_pending = false, idle_started = false;
+  double idle_span = 0;
+  std::chrono::steady_clock::time_point idle_from, idle_until;
+  double idle_cpu = 0;
+  uint64_t idle_frames = 0;
+  // The script touches nothing now: the frame loop may wait for events (editor.cpp).
+  bool idling() const { return idle_pending || (idle_started && std::chrono::steady_clock::now() < idle_until); }
 };
+
+// Starts an idle the script asked for in this frame, once the frame is drawn (editor.cpp): the
+// frame's own drawing is no part of the quiet it measures.
+void idle_mark_start(script_state& sc, uint64_t frames_drawn);
+
+// CPU seconds the process has used so far, every thread (getrusage).
+double process_cpu_seconds();
 
 // Reads the script at `path` into `sc`; false with `error` set when it cannot be read.
 bool load_script(const std::string& path, script_state& sc, std::string& error);

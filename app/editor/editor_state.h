@@ -23,6 +23,7 @@
 #include "app/editor/export_dialog.h"
 #include "app/editor/input_queue.h"
 #include "app/editor/preset_browser.h"
+#include "app/editor/view_quality.h"
 #include "app/common/worker.h"
 #include "render/io/preset.h"
 #include "render/gl/renderer.h"
@@ -59,10 +60,14 @@ struct editor_state {
   float view_aspect = 16.0f / 9.0f;  // the 3D view's width / height, for framing
   bool frame_new = true;          // frame the camera on the tree of the next request (new preset or generator)
   bool frame_now = false;         // frame the tree on screen now (F)
+  bool keep_view = false;         // the next request is an opened preset: the camera stays (F frames)
   bool framed_side_by_side = false;   // the A/B view was side by side when the tree was last framed
   overlay_view overlays;          // which overlay layers show (UI state; the renderer only draws them)
   bool show_overlays = false, show_panel = true, show_timeline = true, show_advanced = false;
   std::string panel_search;       // the parameter panel's search box
+  std::string searched;           // the search the panel last drew (a new one may open another tab)
+  int search_matches = -1;        // parameters the search matches in every tab (-1: no search)
+  int panel_tab_shown = 0;        // the panel's open tab (panel_tab)
   path_field_edit path_edit;      // a file path being typed in the panel (app/editor/editor_sliders.h)
   std::map<std::string, std::array<float, 2>> path_field_at;   // where each path field was drawn (the scripted test's click)
   // Dialogs.
@@ -87,6 +92,12 @@ struct editor_state {
   std::vector<log_line> log;      // View > Messages
   bool show_log = false, show_shortcuts = false;
   double frame_ms = 0;
+  uint64_t frames_drawn = 0;      // since start (an idle editor draws none: the frame loop waits)
+  uint64_t cheap_frames = 0;      // of them, drawn cheaper while the user interacted (view_quality.h)
+  interactive_view quick_view;    // the cheaper view's half-resolution target
+  uint64_t kept_frames = 0;       // frames that showed the last picture again (nothing in it changed)
+  view_cache kept_view;           // that picture (view_quality.h)
+  bool full_quality = false;      // every frame drawn in full (the scripted measurement's baseline)
   bool screenshot_requested = false;   // F12: the 3D view to ~/Sylva/screenshots/
   std::string screenshot_to;            // Screenshot as...: this path
   std::string screenshot_path;
@@ -150,9 +161,17 @@ std::string elide_text(const std::string& text, float width, const std::function
 void draw_status(editor_state& e, float y, float w);
 void draw_toast(editor_state& e, float left, float top, float right);
 void draw_overlay_legend(editor_state& e, float left, float bottom);
+// Why the next frame is drawn without waiting for input: "wind", "playback", "growing",
+// "thumbnails", "export", "derivation", "levels of detail" or "a command"; "" when the editor may
+// wait for events (the frame loop in editor.cpp). The status bar names wind and playback.
+std::string drawing_reason(const editor_state& e);
 
 // Parameters (editor_params.cpp): the left panel.
 void draw_panel(editor_state& e, float top, float bottom);
+// The Generator selector: a new generator is a new tree, with that generator's defaults and no
+// keyframes, and none of the previous species' look (leaves, cones and fruit, bark materials and
+// textures) or name; it is framed when it arrives.
+void switch_generator(editor_state& e, int generator);
 
 // The document (editor_document.cpp): presets, saving, unsaved work, recovery and undo.
 std::vector<fs::path> preset_dirs();

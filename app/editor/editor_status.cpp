@@ -163,6 +163,23 @@ void draw_toast(editor_state& e, float left, float top, float right) {
   ImGui::PopStyleColor();
 }
 
+std::string drawing_reason(const editor_state& e) {
+  const editor_slot& c = e.cur();
+  if (e.playing) return "playback";
+  if (c.doc.render.wind.enabled || (ab_showing(e.ab) && e.ab.other().doc.render.wind.enabled)) return "wind";
+  for (int i = 0; i < (e.ab.has_b ? 2 : 1); ++i)
+    if (e.ab.slots[i].growth == slot_growth::growing) return "growing";   // its progress bar
+  if (e.browser.open && !thumbnails_ready(e.browser)) return "thumbnails";   // rendered on this thread
+  if (e.exporter.running) return "export";
+  if (const auto& f = e.generator_panels.lsystem.pending; f.valid() && f.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return "derivation";
+  // A new tree's chain is asked for once the tree has settled on screen (editor_lod.cpp).
+  if (c.renderer.ok && c.shown && c.shown->skeleton && (c.lod.building || !c.lod.chain)) return "levels of detail";
+  if (e.close_requested || e.rescale_to > 0 || e.frame_now || e.screenshot_requested || !e.screenshot_to.empty())
+    return "a command";
+  return "";
+}
+
 void draw_status(editor_state& e, float y, float w) {
   ImGui::SetNextWindowPos(ImVec2(0, y));
   ImGui::SetNextWindowSize(ImVec2(w, status_height()));
@@ -196,17 +213,22 @@ void draw_status(editor_state& e, float y, float w) {
   // One state: growing (with progress and Cancel once it takes a while), done, cancelled or failed.
   using g = slot_growth;
   switch (e.cur().growth) {
-    case g::growing:
+    case g::growing: {
+      // A re-mesh (or a preset whose tree needs no growth) has no growth to show progress for.
+      const bool meshing = e.cur().worker->meshing.load();
       if (long_growth(e)) {
-        ImGui::TextUnformatted("growing");
-        ImGui::SameLine();
-        ImGui::ProgressBar(e.cur().worker->progress.load(), ImVec2(160, 0));
+        ImGui::TextUnformatted(meshing ? "meshing (the growth is kept)" : "growing");
+        if (!meshing) {
+          ImGui::SameLine();
+          ImGui::ProgressBar(e.cur().worker->progress.load(), ImVec2(160, 0));
+        }
         ImGui::SameLine();
         if (ImGui::SmallButton("Cancel (Esc)")) cancel_request(e);
       } else {
-        ImGui::TextUnformatted("growing...");
+        ImGui::TextUnformatted(meshing ? "meshing..." : "growing...");
       }
       break;
+    }
     case g::asking: piece(e.cur().growth_text, warn, 0.45f * w); break;
     case g::done: piece("done: " + e.cur().growth_text, ImVec4(0.6f, 0.9f, 0.6f, 1), 0.45f * w); break;
     case g::cancelled: piece("cancelled: " + e.cur().growth_text, warn, 0.45f * w); break;
@@ -231,14 +253,21 @@ void draw_status(editor_state& e, float y, float w) {
     std::snprintf(text, sizeof text, "   %s   frame %.1f ms", ab_compare_text(c[0], c[1]).c_str(), e.frame_ms);
     piece(text, plain, 1e9f, keep);
   } else {
-    std::snprintf(text, sizeof text, "   nodes %zu   leaves %zu   triangles %zu   %s   frame %.1f ms", nodes_at_step(e),
-                  e.cur().renderer.leaves_drawn, e.cur().renderer.triangles_drawn, edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
+    // Triangles as the LOD panel counts them (bark, and two per leaf card), so LOD0's figure there
+    // is this one at the last step; an export's file may hold more (its dialog says "in the file").
+    const renderer_gpu& g = e.cur().renderer;
+    std::snprintf(text, sizeof text, "   nodes %zu   leaves %zu   triangles %zu (bark %zu)   %s   frame %.1f ms", nodes_at_step(e),
+                  g.leaves_drawn, g.triangles_drawn + 2 * g.leaves_drawn, g.triangles_drawn,
+                  edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
     piece(text, plain, 1e9f, keep);
     // The hidden slot's failure still shows (A/B view off).
     if (const std::string p = e.ab.has_b ? ab_slot_problem(e.ab.other().growth, e.ab.other().growth_text) : ""; !p.empty())
       piece(std::string("   ") + (e.ab.selected == 0 ? "B" : "A") + ": " + p, bad);
   }
   if (!e.message.empty()) piece("   " + e.message, e.message_is_error ? bad : ImVec4(0.75f, 0.85f, 0.75f, 1));
+  // What keeps the view drawing every frame, where the user can stop it (otherwise it waits for input).
+  if (const std::string why = drawing_reason(e); why == "wind" || why == "playback")
+    piece(why == "wind" ? "   drawing every frame: the wind blows" : "   drawing every frame: playback", plain);
   if (const std::string lod = editor_lod_status(e.cur().lod); !lod.empty()) piece("   " + lod, plain);
   if (r && !r->mesh.message.empty()) piece("   " + r->mesh.message, warn);   // the leaf cap: growth went on, the foliage stopped
   if (cut) {

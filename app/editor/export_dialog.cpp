@@ -89,7 +89,7 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       d.warning = done->warning;  // a user texture that cannot be used shows before the export
       d.estimate = !done->error.empty() ? "cannot estimate: " + done->error
                                         : "about " + human_bytes(done->bytes) + ", " + std::to_string(done->triangles) +
-                                              " triangles" +
+                                              " triangles in the file" +
                                               (done->animation_steps ? ", " + std::to_string(done->animation_steps) + " steps" : "");
     } else {
       error = !done->error.empty();

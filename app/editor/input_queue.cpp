@@ -1,11 +1,14 @@
 // Keyboard input queue for ImGui 1.86 (see input_queue.h).
 #include "app/editor/input_queue.h"
 
+#include <algorithm>
 #include <bitset>
 #include <cfloat>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+
+#include "app/common/wake.h"
 
 namespace sylva {
 
@@ -30,6 +33,37 @@ void button_callback(GLFWwindow* w, int button, int action, int) {
   double x = 0, y = 0;
   glfwGetCursorPos(w, &x, &y);
   installed->push_button(button, action == GLFW_PRESS, float(x), float(y));
+}
+
+// The window's other events wake the frame loop; the callbacks they replace are still called.
+GLFWscrollfun prev_scroll = nullptr;
+GLFWwindowfocusfun prev_focus = nullptr;
+GLFWcursorenterfun prev_enter = nullptr;
+GLFWwindowclosefun prev_close = nullptr;
+GLFWwindowcontentscalefun prev_scale = nullptr;
+
+void count_event() {
+  if (installed) ++installed->window_events;
+}
+void scroll_callback(GLFWwindow* w, double x, double y) {
+  count_event();
+  if (prev_scroll) prev_scroll(w, x, y);
+}
+void focus_callback(GLFWwindow* w, int focused) {
+  count_event();
+  if (prev_focus) prev_focus(w, focused);
+}
+void enter_callback(GLFWwindow* w, int entered) {
+  count_event();
+  if (prev_enter) prev_enter(w, entered);
+}
+void close_callback(GLFWwindow* w) {
+  count_event();
+  if (prev_close) prev_close(w);
+}
+void scale_callback(GLFWwindow* w, float x, float y) {
+  count_event();
+  if (prev_scale) prev_scale(w, x, y);
 }
 
 }  // namespace
@@ -116,6 +150,37 @@ void install_input_queue(GLFWwindow* window, input_queue* q) {
   glfwSetCharCallback(window, char_callback);
   glfwSetCursorPosCallback(window, cursor_callback);
   glfwSetMouseButtonCallback(window, button_callback);
+  prev_scroll = glfwSetScrollCallback(window, scroll_callback);
+  prev_focus = glfwSetWindowFocusCallback(window, focus_callback);
+  prev_enter = glfwSetCursorEnterCallback(window, enter_callback);
+  prev_close = glfwSetWindowCloseCallback(window, close_callback);
+  prev_scale = glfwSetWindowContentScaleCallback(window, scale_callback);
+  glfwSetWindowSizeCallback(window, [](GLFWwindow*, int, int) { count_event(); });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow*, int, int) { count_event(); });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow*) { count_event(); });   // uncovered: draw again
+  glfwSetWindowIconifyCallback(window, [](GLFWwindow*, int) { count_event(); });
+  glfwSetWindowMaximizeCallback(window, [](GLFWwindow*, int) { count_event(); });
+}
+
+bool next_frame(frame_pacer& p, input_queue& q, bool busy, double timeout_s) {
+  const bool draw = busy || p.settle > 0 || !q.events.empty() || !q.mouse.empty();
+  p.waited = !draw;
+  if (draw) glfwPollEvents();
+  else glfwWaitEventsTimeout(timeout_s);
+  // Input and window events settle over a few frames; work finished elsewhere is shown in one.
+  const uint64_t events = q.next_seq + q.window_events, wakes = ui_wakes.load();
+  const bool woken = wakes != p.seen_wakes;
+  p.seen_wakes = wakes;
+  if (events != p.seen) {
+    p.seen = events;
+    p.settle = settle_frames;
+  } else if (woken) {
+    p.settle = std::max(p.settle, 1);
+  } else if (!draw) {
+    return false;
+  }
+  if (p.settle > 0) --p.settle;
+  return true;
 }
 
 }  // namespace sylva

@@ -37,6 +37,7 @@ struct input_queue {
   float mouse_x = 0, mouse_y = 0;     // the position fed last
   bool buttons[5] = {false, false, false, false, false};
   uint64_t next_seq = 1;
+  uint64_t window_events = 0;         // other window events (scroll, resize, expose, focus, close): the frame pacer counts them
   void push_key(int key, int action) { events.push_back({false, key, action, 0, next_seq++}); }
   void push_char(unsigned c) { events.push_back({true, 0, 0, c, next_seq++}); }
   void push_move(float x, float y) { mouse.push_back({false, 0, false, x, y, next_seq++}); }
@@ -65,7 +66,23 @@ int feed_imgui(input_queue& q, ImGuiIO& io);
 int feed_mouse(input_queue& q, ImGuiIO& io);
 
 // Replaces the ImGui GLFW backend's key and character callbacks (call after
-// ImGui_ImplGlfw_InitForOpenGL) so that events land in `q` instead.
+// ImGui_ImplGlfw_InitForOpenGL) so that events land in `q` instead, and counts the window's other
+// events in q->window_events (the callbacks installed before are still called).
 void install_input_queue(GLFWwindow* window, input_queue* q);
+
+// The frame loop's pacing: it draws while something moves and otherwise waits for events, so an
+// idle editor draws nothing (docs/design/09-editor.md "An editor that idles").
+struct frame_pacer {
+  uint64_t seen = 0;         // input and window events counted at the last frame
+  uint64_t seen_wakes = 0;   // wakes (app/common/wake.h) counted at the last frame
+  int settle = 0;            // frames still to draw: ImGui settles hovers, popups and sizes over a few after an
+                             // event; a wake (a result to show) needs one
+  bool waited = false;   // this frame followed a wait: its interval is no measure of drawing
+};
+inline constexpr int settle_frames = 3;
+// Polls the window's events when `busy` (or input is still queued, or frames are settling), else
+// waits for one at most `timeout_s`. True when a frame is to be drawn: then, or after an event or
+// a wake since the last frame.
+bool next_frame(frame_pacer& p, input_queue& q, bool busy, double timeout_s);
 
 }  // namespace sylva

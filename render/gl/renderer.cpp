@@ -539,7 +539,8 @@ void draw_frame(renderer_gpu& r, const render_params& rp, const orbit_camera& ca
   r.leaves_drawn = leaf_count(r);
   glBindVertexArray(r.empty_vao.id);
   bind_tree_textures(r);
-  draw_shadow_pass(r, rp, f);
+  if (!(r.keep_shadow && r.shadow_drawn)) draw_shadow_pass(r, rp, f);
+  r.shadow_drawn = true;
   draw_lit_pass(r, rp, f, overlays);
   glDisable(GL_DEPTH_TEST);   // the passes from here on draw full-screen triangles
   glBindVertexArray(r.empty_vao.id);

@@ -104,6 +104,11 @@ struct renderer_gpu : tree_gpu {
   frame_counts counts;                // of the last draw_frame
   uint64_t uploads_total = 0;         // every glBufferData/SubData, glTexImage* and storage call so far
   float wind_time = 0;                // seconds; the editor advances it, exports and tests set it
+  // The shadow map of an earlier frame is used again (no shadow pass) while this is set and one
+  // has been drawn since the tree, its step or the map's size last changed: the editor's cheaper
+  // view while the user drags (app/editor/view_quality.h).
+  bool keep_shadow = false;
+  bool shadow_drawn = false;
   float wind_reach = 0;               // metres the sway may carry the tree past its bounds (shadow fit)
 };
 

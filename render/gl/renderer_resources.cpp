@@ -408,6 +408,7 @@ void resize_targets(renderer_gpu& r, int w, int h, int samples) {
 void resize_shadow(renderer_gpu& r, int size) {
   if (r.shadow_size == size) return;
   r.shadow_size = size;
+  r.shadow_drawn = false;
   delete_gl(r.shadow_fbo);
   delete_gl(r.shadow_tex);
   r.shadow_tex = make_depth_texture(size, size, true);

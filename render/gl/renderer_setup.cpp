@@ -157,6 +157,7 @@ void destroy_renderer(renderer_gpu& r) {
 // ---------------------------------------------------------------- uploads
 
 void upload_tree(renderer_gpu& r, const tree_mesh& m) {
+  r.shadow_drawn = false;
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, r.bark_position.id);
   glBufferData(GL_ARRAY_BUFFER, m.position.size() * sizeof(glm::vec3), m.position.data(), GL_STATIC_DRAW);
@@ -224,6 +225,7 @@ void upload_tree(renderer_gpu& r, const tree_mesh& m) {
 }
 
 void set_tree_step(renderer_gpu& r, const tree_skeleton& t, float min_radius, int step) {
+  r.shadow_drawn = false;
   r.step = std::clamp(step, 0, std::max(r.steps, 0));
   if (r.node_count == 0) return;
   std::vector<float> radii = radii_at_step(t, r.step);

@@ -101,6 +101,13 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   export_result r;
+  // Numbers passed on from the user (the CLI checks its options first, the dialog's fields can be
+  // typed): written out, a NaN or infinity makes an invalid file.
+  for (const auto& [name, v] : {std::pair{"seconds per step", o.seconds_per_step}, {"wind loop seconds", o.wind_seconds}})
+    if (std::string e = finite_refusal(name, v); !e.empty()) {
+      r.error = e;
+      return r;
+    }
   if ((ext == ".glb" || ext == ".gltf" || ext == ".obj" || ext == ".fbx") && season_changes_leaves(o.season)) {
     // Fallen leaves out, spring's smaller: on LOD0 and on every level (their baked cards fall with
     // the leaves they were baked from). The copy's look keeps its colours but no longer drops or

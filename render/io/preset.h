@@ -60,6 +60,10 @@ std::string save_preset_file(const preset& p, const std::string& path);
 // it non-empty, and set_preset_param refuses such an assignment, so no edit makes a document that
 // saves but cannot be reopened.
 std::string document_refusal(const preset& p);
+// The first number of the document that is NaN or infinite (finite_refusal, generators/params.h,
+// naming the parameter), or "". JSON has no such numbers, so a document holding one would save
+// as null and not load again; document_refusal starts with this check.
+std::string non_finite_refusal(const preset& p);
 
 // `key=value` for the current generator's params, mesh or render params (CLI --set), or
 // `key@step=value` for a keyframe of a generator parameter (generators/keyframes.h).
@@ -70,7 +74,8 @@ std::string set_preset_param(preset& p, std::string_view assignment);
 // set_preset_param would, so a sweep is refused whole before anything is grown. Returns "" or the error.
 std::string expand_param_sweep(const preset& p, std::string_view assignment, std::vector<std::string>& out);
 
-// The tree `sylva` shows when started without a preset: Honda's tree a (lsystem_params defaults).
+// Honda's tree a (lsystem_params defaults): the editor's tree when no preset is named and the oak
+// (presets/species_oak.json) is not found, and the scripted sessions' starting document.
 preset default_preset();
 
 }  // namespace sylva

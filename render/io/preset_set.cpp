@@ -219,7 +219,18 @@ std::string set_preset_param(preset& p, std::string_view assignment) {
   return "";
 }
 
+std::string non_finite_refusal(const preset& p) {
+  std::string why = std::visit([](const auto& gp) { return non_finite_param(gp); }, p.spec.params);
+  if (why.empty()) why = non_finite_param(p.spec.wood);
+  if (why.empty()) why = non_finite_param(p.mesh);
+  if (why.empty()) why = non_finite_param(p.render);
+  for (const keyframe& k : p.spec.keyframes)
+    for (int i = 0; i < 3 && why.empty(); ++i) why = finite_refusal(k.key + " at step " + std::to_string(k.step), k.value[i]);
+  return why;
+}
+
 std::string document_refusal(const preset& p) {
+  if (std::string e = non_finite_refusal(p); !e.empty()) return e;
   if (std::string e = check_keyframes(p.spec); !e.empty()) return e;
   return check_cuts(p.spec);
 }

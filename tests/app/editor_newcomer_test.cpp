@@ -197,6 +197,74 @@ expect_export_path tree.glb
   EXPECT_NE(r.output.find("ok expect_window library 0"), std::string::npos) << r.output;
 }
 
+// The search box keeps the tabs and the generator selector; it says when nothing matches, and it
+// finds a text L-system's #define constants by their comment ("angle of the limbs from the trunk").
+TEST(EditorNewcomer, SearchSaysWhenNothingMatchesAndFindsDefineConstants) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string pine = leafless("species_pine.json", test_dir("search_fixture"), "pine.json");
+  const std::string script = R"(wait_tree
+search lambda
+expect_search_matches 0
+search limbs from the trunk
+expect_search_matches 1
+search
+expect_search_matches -1
+)";
+  run_result r = run_script("search", script, pine);
+  EXPECT_TRUE(script_passed(r));
+  EXPECT_NE(r.output.find("ok expect_search_matches -1"), std::string::npos) << r.output;
+}
+
+// Opening a preset again keeps the view (F frames it), so before and after compare from one place;
+// a new generator is a new tree: the pine's needles, plated bark and name do not carry over.
+TEST(EditorNewcomer, ReopeningKeepsTheViewAndANewGeneratorDropsTheSpeciesLook) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string pine = leafless("species_pine.json", test_dir("reopen_fixture"), "pine.json");
+  const std::string script = "wait_tree\nkey 1\nset radial_segments=5\nwait_tree\nremember_camera\nopen " + pine + R"(
+expect_prompt Unsaved changes
+answer Discard
+wait_tree
+frames 3
+expect_camera kept
+key f
+expect_camera moved
+expect_param leaf_archetype=needles
+expect_param bark_archetype=plated
+generator lsystem
+wait_tree
+expect_doc_name New L-system
+expect_param leaf_archetype=ovate
+expect_param bark_archetype=furrowed
+)";
+  run_result r = run_script("reopen", script, pine);
+  EXPECT_TRUE(script_passed(r));
+  EXPECT_NE(r.output.find("ok expect_param bark_archetype=furrowed"), std::string::npos) << r.output;
+}
+
+// Esc closes what is on top, as the F1 list says: an open menu, then the library, then the list.
+TEST(EditorNewcomer, EscClosesAMenuTheLibraryAndTheHelp) {
+  if (!have_display()) GTEST_SKIP() << "no DISPLAY";
+  const std::string bush = leafless("self_organizing_seed001_bush.json", test_dir("esc_fixture"), "bush.json");
+  const std::string script = R"(wait_tree
+click 20 10
+expect_popup 1
+key escape
+expect_popup 0
+key ctrl+l
+key f1
+expect_window library 1
+expect_window shortcuts 1
+key escape
+expect_window library 0
+expect_window shortcuts 1
+key escape
+expect_window shortcuts 0
+)";
+  run_result r = run_script("esc", script, bush);
+  EXPECT_TRUE(script_passed(r));
+  EXPECT_NE(r.output.find("ok expect_window shortcuts 0"), std::string::npos) << r.output;
+}
+
 // Side by side in a small window, a long preset name is cut with "…" so that each label fits its
 // half and the selected slot's still ends "(selected)" (it was clipped off).
 TEST(EditorNewcomer, ABLabelsFitTheirHalvesAndKeepSelected) {

@@ -54,7 +54,7 @@ TEST(EditorPanelTabs, EverySharedGroupHasItsTab) {
 }
 
 TEST(EditorPanelTabs, SearchFindsByNameSymbolKeyAndHelp) {
-  // Seed 001's names: its tropism factor is τ.
+  // The tropism weight's symbol is τ.
   self_organizing_params p{};
   std::set<std::string> by_tau, by_word, by_two;
   visit_params(p, [&](auto&, const param_info& info) {
@@ -71,4 +71,12 @@ TEST(EditorPanelTabs, SearchFindsByNameSymbolKeyAndHelp) {
   EXPECT_TRUE(param_matches(season, "Season", "seas"));
   EXPECT_FALSE(param_matches(season, "Season", "wind"));
   EXPECT_FALSE(param_matches(season, "Season", "season wind"));   // every word must match
+  // Words match where a word begins: "angle" is not in "triangles", but is in "angles" and keys.
+  const param_info budget{"lod1_budget", "LOD1 budget", "", 0, 1, "Share of LOD0's triangles"};
+  const param_info angle{"branch_angle", "Branching angle", "β", 0, 90, "Angle of a lateral from its parent"};
+  EXPECT_FALSE(param_matches(budget, "Level of detail", "angle"));
+  EXPECT_TRUE(param_matches(angle, nullptr, "angle"));
+  EXPECT_TRUE(param_matches(angle, nullptr, "ANGLE of"));
+  EXPECT_TRUE(param_matches(budget, nullptr, "triangles"));
+  EXPECT_TRUE(param_matches(budget, nullptr, "budget"));   // the key's second word
 }

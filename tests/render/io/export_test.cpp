@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -342,6 +343,11 @@ TEST(Export, GrowthAnimationHasOneStepNodePerStep) {
   const export_result capped = export_tree(h.t, h.m, {"lsystem", 1}, dir / "capped.glb", h.o);
   EXPECT_EQ(capped.animation_steps, 3);
   EXPECT_LT(capped.bytes, r.bytes);
+  // A NaN speed (typed into the dialog's field) would be written as null bounds: refused by name.
+  h.o.seconds_per_step = std::nanf("");
+  const export_result nan = export_tree(h.t, h.m, {"lsystem", 1}, dir / "nan.glb", h.o);
+  EXPECT_EQ(nan.error, "seconds per step: nan is not a finite number");
+  EXPECT_FALSE(fs::exists(dir / "nan.glb"));
 }
 
 TEST(Export, ObjParsesBackWithMatchingCounts) {

@@ -1,6 +1,7 @@
 // Parameter schema, preset JSON round trips, tolerant loading, --set parsing and atomic writes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -316,6 +317,32 @@ TEST(PresetSet, AssignmentsParseByType) {
     EXPECT_EQ(p, before);
   }
   EXPECT_NE(set_preset_param(p, "r1=5").find("[0.05, 1.2]"), std::string::npos);
+}
+
+// NaN passes a range check (every comparison with it is false): documents are checked for it and
+// for infinity apart, by name, wherever the number sits (the editor reverts such an edit).
+TEST(PresetSet, NonFiniteNumbersAreRefusedByName) {
+  EXPECT_EQ(finite_refusal("x", 1.5), "");
+  EXPECT_EQ(finite_refusal("x", std::nan("")), "x: nan is not a finite number");
+  EXPECT_EQ(finite_refusal("x", -HUGE_VAL), "x: -inf is not a finite number");
+  const preset clean = default_preset();
+  EXPECT_EQ(non_finite_refusal(clean), "");
+  EXPECT_EQ(document_refusal(clean), "");
+  preset p = clean;
+  p.mesh.leaves.size = std::nanf("");
+  std::string why = non_finite_refusal(p);
+  EXPECT_NE(why.find(": nan is not a finite number"), std::string::npos) << why;
+  EXPECT_EQ(document_refusal(p), why);
+  p = clean;
+  p.render.sun_color.y = HUGE_VALF;   // a vec3's component
+  why = non_finite_refusal(p);
+  EXPECT_NE(why.find(": inf is not a finite number"), std::string::npos) << why;
+  p = clean;
+  std::get<lsystem_params>(p.spec.params).r1 = -HUGE_VALF;   // the generator's own parameters
+  EXPECT_NE(non_finite_refusal(p).find("-inf is not a finite number"), std::string::npos);
+  p = clean;
+  p.spec.keyframes.push_back({2, "r1", glm::vec3(std::nanf(""), 0, 0)});
+  EXPECT_EQ(non_finite_refusal(p), "r1 at step 2: nan is not a finite number");
 }
 
 TEST(PresetSet, SweepsExpand) {
