@@ -23,8 +23,11 @@ std::vector<std::string> hidden_keys(const P& p) {
 TEST(EditorLogic, LsystemHondaModeHidesTextSettings) {
   lsystem_params p;
   p.mode = lsystem_mode::honda;
+  // The growth history (seasons, self-pruning) acts on text L-systems' derivations only; a stub's
+  // length shows only with self-pruning on (live crown under 1).
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"source", "turtle_leaf_size", "widths", "pipe_exponent",
-                                                      "tip_radius", "pipe_taper", "module_cap"}));
+                                                      "tip_radius", "pipe_taper", "season_variation", "live_crown",
+                                                      "stub_length", "module_cap"}));
 }
 
 TEST(EditorLogic, LsystemTextModeHidesHondaSliders) {
@@ -33,7 +36,9 @@ TEST(EditorLogic, LsystemTextModeHidesHondaSliders) {
   // The eleven symbols of Honda's production A(s,w) : s >= min -> ... ; mode, derivations, scale,
   // width scale and node cap apply to both models.
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"s0", "w0", "min", "alpha1", "alpha2", "phi1", "phi2", "r1",
-                                                      "r2", "q", "e"}));
+                                                      "r2", "q", "e", "stub_length"}));
+  p.live_crown = 0.7f;   // self-pruning on: the stub length shows
+  EXPECT_EQ(hidden_keys(p).back(), "e");
 }
 
 TEST(EditorLogic, OtherGeneratorsShowEverything) {
@@ -43,10 +48,15 @@ TEST(EditorLogic, OtherGeneratorsShowEverything) {
 
 // Space colonization shows an envelope's own settings only with that envelope.
 TEST(EditorLogic, SpaceColonizationShowsOnlyTheEnvelopesOwnSettings) {
+  // Without forks or leader damage the fork asymmetry, and without self-pruning the stub length, change
+  // nothing and hide too.
   space_colonization_params p;   // an ellipsoid without dents
-  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth"}));
+  EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "fork_asymmetry",
+                                                      "stub_length"}));
   p.envelope = envelope_shape::slab;
   p.envelope_dents = 8;
+  p.leader_damage = 0.05f;
+  p.live_crown = 0.8f;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"envelope_mesh"}));
   p.envelope = envelope_shape::mesh;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness"}));
@@ -64,7 +74,8 @@ TEST(EditorLogic, OwnLeafSettingsShowOnlyWithTheGeneratorsLeaves) {
   };
   const space_colonization_params sc;
   EXPECT_EQ(hidden(sc, true), hidden_keys(sc));
-  EXPECT_EQ(hidden(sc, false), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "leaves_min",
+  EXPECT_EQ(hidden(sc, false), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "fork_asymmetry",
+                                                         "stub_length", "leaves_min",
                                                          "leaves_max", "leaf_size_min", "leaf_size_max", "spiral_a", "spiral_k",
                                                          "spiral_e", "spiral_rounds"}));
   lsystem_params ls;
