@@ -368,8 +368,10 @@ int run_export(const export_args& a) {
     const bool gltf = ext == ".glb" || ext == ".gltf";
     // Profiles (docs/design/03-foliage.md): hero = blade leaves, instanced where glTF can carry
     // them; hero-baked = blade leaves baked into the mesh; game = the LOD chain with its cards.
-    o.gltf_instancing = a.instancing || (a.profile == "hero" && gltf);
-    o.baked_blades = a.profile == "hero" || a.profile == "hero-baked";
+    o.gltf_instancing = a.instancing;
+    int profile = 0;
+    while (export_profile_names[profile] && a.profile != export_profile_names[profile]) ++profile;
+    apply_export_profile(o, export_profile(export_profile_names[profile] ? profile : 0), gltf);
     o.compact = a.compact && (ext == ".glb" || ext == ".gltf");
     if (a.compact && !o.compact) warn(path, "--compact applies to .glb and .gltf; ignored");
     o.growth_animation = a.animation;
@@ -445,12 +447,10 @@ int run_cli(int argc, char** argv) {
   exp->add_option("--width", ex.width, ".png width")->check(CLI::Range(16, 8192));
   exp->add_option("--height", ex.height, ".png height")->check(CLI::Range(16, 8192));
   exp->add_flag("--instancing", ex.instancing, "glTF: leaves as EXT_mesh_gpu_instancing instead of baked quads");
-  exp->add_option("--profile", ex.profile,
-                  "Leaves for the target: plain (default: baked flat cards, every importer, Blender 3.4 included), "
-                  "hero (leaves as blade meshes; glTF instances them with EXT_mesh_gpu_instancing, for three.js, "
-                  "engines and film), hero-baked (blade meshes baked in, for importers without instancing; about 2.6 "
-                  "times plain's size), game (the LOD chain with baked cards and the impostor, as --lods)")
-      ->check(CLI::IsMember({"plain", "hero", "hero-baked", "game"}));
+  std::string profile_help = "How the file carries the leaves:";
+  for (int k = 0; export_profile_names[k]; ++k)
+    profile_help += std::string(k ? "; " : " ") + export_profile_names[k] + (k ? "" : " (default)") + ": " + export_profile_help[k];
+  exp->add_option("--profile", ex.profile, profile_help)->check(CLI::IsMember({"plain", "hero", "hero-baked", "game"}));
   exp->add_flag("--compact", ex.compact,
                 "glTF: quantized vertices (KHR_mesh_quantization), meshopt-compressed buffers (EXT_meshopt_compression), "
                 "opaque textures as JPEG");

@@ -1,6 +1,7 @@
 // Export window: the exporter runs on a helper thread (it takes progress/cancel); PNG renders on the main thread.
 #include "app/editor/export_dialog.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -37,6 +38,7 @@ export_options options_for(const export_dialog_state& d, const export_context& c
   o.growth_animation = d.animation && f >= 0 && export_format_table[f].gltf;
   o.compact = d.compact && f >= 0 && export_format_table[f].gltf;
   o.seconds_per_step = d.seconds_per_step;
+  apply_export_profile(o, export_profile(std::clamp(d.profile, 0, 2)), f >= 0 && export_format_table[f].gltf);
   o.mesh = c.tree->mesh_settings;
   apply_render_params(o, c.doc.render);  // the same materials and user textures as `sylva export`
   return o;
@@ -153,14 +155,25 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("glTF: quantized vertices (KHR_mesh_quantization), EXT_meshopt_compression, opaque textures as JPEG");
+  // The leaves' profile (render/io/export.h); the LOD chain (game) is the command line's --lods.
+  ImGui::SetNextItemWidth(160);
+  if (ImGui::BeginCombo("Leaves", export_profile_names[std::clamp(d.profile, 0, 2)])) {
+    for (int k = 0; k < 3; ++k) {
+      if (ImGui::Selectable(export_profile_names[k], d.profile == k)) d.profile = k;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", export_profile_help[k]);
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("%s", export_profile_help[std::clamp(d.profile, 0, 2)]);
 
   // The size estimate: a dry run of the same export, redone whenever an input changes.
   const bool png = f >= 0 && export_format_table[f].render;
   if (have_tree && f >= 0 && !png) {
     char head[160];
-    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,
+    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d|%d|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,
                   int(d.animation && gltf), int(d.final_tree), double(d.seconds_per_step), int(c.doc.render.bark),
-                  int(d.compact && gltf));
+                  int(d.compact && gltf), d.profile);
     const render_params& rp = c.doc.render;
     const std::string key = std::string(head) + "|" + rp.bark_texture + "|" + rp.leaf_texture + "|" + rp.leaf_opacity;
     if (key != d.estimate_key && !busy) {

@@ -24,6 +24,7 @@ struct export_dialog_state {
   bool animation = false;           // glTF only: steps 0..N as a growth animation
   float seconds_per_step = 0.5f;
   bool compact = false;             // glTF only: quantized, meshopt-compressed, JPEG textures
+  int profile = 0;                  // export_profile: plain, hero or hero-baked (game is the CLI's --lods)
   // The exporter runs on its own thread: a dry run for the size estimate, or the real export.
   std::thread thread;
   std::atomic<uint32_t> cancel{0};

@@ -82,6 +82,22 @@ struct export_options {
   wind_params wind;                     // from the preset's render section (apply_render_params)
 };
 
+// Export profiles (docs/design/03-foliage.md), offered by `sylva export --profile` and the export
+// dialog: how a file carries the leaves.
+enum class export_profile : int { plain = 0, hero, hero_baked, game };
+inline constexpr const char* export_profile_names[] = {"plain", "hero", "hero-baked", "game", nullptr};
+inline constexpr const char* export_profile_help[] = {
+    "flat cards baked in: every importer opens it, Blender 3.4 included",
+    "leaves as blade meshes; glTF instances them (EXT_mesh_gpu_instancing) for three.js, engines and film",
+    "blade meshes baked in, for importers without instancing: about 2.6 times plain's size",
+    "the LOD chain with baked cards and the impostor (as --lods)"};
+// The leaf options of a profile: hero instances the blades in glTF and bakes them elsewhere,
+// hero-baked bakes them; plain and game bake cards (game's LOD chain is prepared by the caller).
+inline void apply_export_profile(export_options& o, export_profile p, bool gltf) {
+  o.baked_blades = p == export_profile::hero || p == export_profile::hero_baked;
+  if (p == export_profile::hero && gltf) o.gltf_instancing = true;
+}
+
 // The material settings of a preset's render params: bark archetype, tints, alpha cutoff and the
 // user's texture paths. The CLI and the export dialog both fill export_options through this.
 void apply_render_params(export_options& o, const render_params& rp);
