@@ -23,13 +23,8 @@ TEST_F(WindRender, TwoMomentsDifferWithWindAndMatchWithout) {
   gl_texture color;
   gl_framebuffer target;
   const int w = 160, hgt = 160;
-  glGenTextures(1, &color.id);
-  glBindTexture(GL_TEXTURE_2D, color.id);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, hgt, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glGenFramebuffers(1, &target.id);
+  ASSERT_EQ(create_color_target(w, hgt, color, target), "");
   glBindFramebuffer(GL_FRAMEBUFFER, target.id);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id, 0);
-  ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
   orbit_camera cam;
   frame_camera(cam, r.bounds_min, r.bounds_max, 1.0f);
   render_params rp;
