@@ -369,9 +369,9 @@ int run_export(const export_args& a) {
     // Profiles (docs/design/03-foliage.md): hero = blade leaves, instanced where glTF can carry
     // them; hero-baked = blade leaves baked into the mesh; game = the LOD chain with its cards.
     o.gltf_instancing = a.instancing;
-    int profile = 0;
-    while (export_profile_names[profile] && a.profile != export_profile_names[profile]) ++profile;
-    apply_export_profile(o, export_profile(export_profile_names[profile] ? profile : 0), gltf);
+    int profile = 0;   // --profile is checked against export_profile_names
+    while (export_profile_names[profile + 1] && a.profile != export_profile_names[profile]) ++profile;
+    apply_export_profile(o, export_profile(profile), gltf);
     o.compact = a.compact && (ext == ".glb" || ext == ".gltf");
     if (a.compact && !o.compact) warn(path, "--compact applies to .glb and .gltf; ignored");
     o.growth_animation = a.animation;
@@ -379,7 +379,7 @@ int run_export(const export_args& a) {
     o.mesh = p.mesh;
     apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
     lod_export_data lods;   // --lods (app/cli/cli_lods.h): LOD1-3 and the impostor
-    if (a.lods || a.profile == "game")
+    if (a.lods || export_profile(profile) == export_profile::game)
       for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
     if (wind && format->wind && !format->render) o.wind_seconds = a.wind;
     else if (wind && !format->wind) warn(path, "--wind applies to " + export_format_list(&export_format::wind) + "; ignored");
@@ -450,7 +450,8 @@ int run_cli(int argc, char** argv) {
   std::string profile_help = "How the file carries the leaves:";
   for (int k = 0; export_profile_names[k]; ++k)
     profile_help += std::string(k ? "; " : " ") + export_profile_names[k] + (k ? "" : " (default)") + ": " + export_profile_help[k];
-  exp->add_option("--profile", ex.profile, profile_help)->check(CLI::IsMember({"plain", "hero", "hero-baked", "game"}));
+  const std::vector<std::string> profiles(export_profile_names, export_profile_names + std::size(export_profile_names) - 1);
+  exp->add_option("--profile", ex.profile, profile_help)->check(CLI::IsMember(profiles));
   exp->add_flag("--compact", ex.compact,
                 "glTF: quantized vertices (KHR_mesh_quantization), meshopt-compressed buffers (EXT_meshopt_compression), "
                 "opaque textures as JPEG");

@@ -400,6 +400,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
     std::array<std::vector<glm::vec3>, leaf_slots> tr, sc, grey;
     std::array<std::vector<glm::vec4>, leaf_slots> rot;
     const leaf_look look = mats.src.leaf_looks();
+    const std::array<blade_mesh, leaf_slots> blades = slot_blades(v.mesh->blade, one, true);   // the prototypes' fine grids
     for (size_t i = 0; i < v.mesh->leaves.size(); ++i) {
       const leaf_instance& l = v.mesh->leaves[i];
       if (!(l.born <= step && step < l.died)) continue;
@@ -409,8 +410,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
       sc[slot].push_back(glm::vec3(std::max(l.size, 1e-6f)));
       // Crown occlusion per instance, times the leaf's colour factor (leaf_color_factor) but for fruit
       // and baked cards, which keep their own colours.
-      const bool plain = slot >= size_t(leaf_archetype_count) || (!one && archetype_is_fruit(leaf_archetype(slot)));
-      const glm::vec3 factor = plain ? glm::vec3(1) : leaf_color_factor(l.node, uint32_t(i), float(l.occlusion) / 255.0f, look.variation, look.sun_tone);
+      const glm::vec3 factor = leaf_color_of(l, i, int(slot), one, look);
       grey[slot].push_back(glm::min(glm::vec3(float(l.occlusion) / 255.0f) * factor, glm::vec3(1.0f)));
     }
     for (int slot = 0; slot < leaf_slots; ++slot) {
@@ -422,12 +422,9 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
         geometry quad;
         // Two sides, unbent: an instance's crown direction would need a normal per instance. The
         // prototype is the blade's full grid (render/mesh/leaf_blade.h), or the flat card.
-        const blade_mesh blade = slot < leaf_archetype_count && v.mesh->blade.on && !one && !archetype_is_fruit(leaf_archetype(slot))
-                                     ? export_blade_mesh(leaf_archetype(slot), v.mesh->blade, true)
-                                     : blade_mesh{};
-        leaf_bake look;
-        look.blade = &blade;
-        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, look);
+        leaf_bake prototype;
+        prototype.blade = &blades[s];
+        bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, prototype);
         mats.quad_triangles[s] = quad.index.size() / 6;
         mats.quad_mesh[s] = d.add_mesh(mats.src.leaf_name(slot), json::array({d.add_primitive(quad, mat, mats.leaf_normal[s])}));
       }

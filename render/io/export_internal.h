@@ -120,6 +120,9 @@ struct leaf_look {
 };
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
                                    const leaf_look& look, const bark_tint& tint = {});
+// Leaf `index` of its mesh (in leaf slot `slot`): its colour factor (leaf_color_factor), or 1 for
+// fruit and a LOD's baked cards, which keep their own colours.
+glm::vec3 leaf_color_of(const leaf_instance& l, size_t index, int slot, bool one_leaf_material, const leaf_look& look);
 
 void view_at(step_view& v, const tree_skeleton& t, const tree_mesh& m, const mesh_params& p, int step);
 

@@ -66,6 +66,11 @@ std::array<blade_mesh, leaf_slots> slot_blades(const leaf_blade_shape& s, bool o
   return out;
 }
 
+glm::vec3 leaf_color_of(const leaf_instance& l, size_t index, int slot, bool one_leaf_material, const leaf_look& look) {
+  const bool own = slot >= leaf_archetype_count || (!one_leaf_material && archetype_is_fruit(leaf_archetype(slot)));
+  return own ? glm::vec3(1) : leaf_color_factor(l.node, uint32_t(index), float(l.occlusion) / 255.0f, look.variation, look.sun_tone);
+}
+
 // A leaf instance as a card of one blade length square (or its blade mesh), base at the petiole
 // (leaf frame of skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture
 // on it: the petiole at the bottom edge of the image (v = 1, glTF's origin is the top-left corner).
@@ -231,9 +236,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
         const size_t slot = size_t(leaf_slot(l, one_leaf_material));
         leaf_bake b = look[part_of(l)];
         b.blade = &blades[slot];
-        // Fruit and a LOD's baked cards keep their own colours (season.h archetype_is_fruit).
-        const bool plain = slot >= size_t(leaf_archetype_count) || (!one_leaf_material && archetype_is_fruit(leaf_archetype(slot)));
-        if (!plain) b.color = leaf_color_factor(l.node, uint32_t(i), float(l.occlusion) / 255.0f, leaf_style.variation, leaf_style.sun_tone);
+        b.color = leaf_color_of(l, i, int(slot), one_leaf_material, leaf_style);
         bake_leaf(parts[part_of(l)].leaves[slot], l, b);
       }
     }
