@@ -20,6 +20,11 @@ inline constexpr const char* leaf_mode_names[] = {"shoots", "tips", "generator",
 enum class leaf_arrangement : int { alternate = 0, opposite, whorled };
 inline constexpr const char* leaf_arrangement_names[] = {"alternate", "opposite", "whorled", nullptr};
 
+// The archetypes whose leaves are needle shoots when blades are on (render/mesh/leaf_shoot.h).
+inline bool archetype_is_needle_shoot(leaf_archetype a) {
+  return a == leaf_archetype::needles || a == leaf_archetype::flat_spray || a == leaf_archetype::needle_tufts;
+}
+
 struct leaf_params {
   leaf_mode mode = leaf_mode::shoots;
   int retention = 1;          // steps a node keeps its leaves: age (step - born) <= retention
@@ -49,6 +54,7 @@ struct leaf_params {
   bool blades = true;         // false: flat cards
   float fold = 14;            // degrees each half of the blade rises about the midrib
   float curl = 22;            // degrees the blade turns down from petiole to tip (negative: up)
+  float needle_spread = 360;  // needle shoots: degrees round the shoot its needles fill (360 all round, less: two ranks)
   float shade_size = 0.3f;    // shade leaves larger, sun leaves smaller: 1 + shade_size (0.5 - sky)
   bool operator==(const leaf_params&) const = default;
 };
@@ -82,6 +88,7 @@ void visit_params(P& p, V&& visitor) {
   v(p.blades, param_info{"leaf_blades", "Leaf blades", "", 0, 1, "Each leaf is a small mesh cut to the outline of its picture, folded along the midrib and curled, in the viewport and in every export (off: flat square cards, lighter for game budgets)"});
   v(p.fold, param_info{"leaf_fold", "Midrib fold", "", 0, 60, "Degrees each half of the blade rises about the midrib: 0 flat, 20-30 a keeled leaf", param_degrees});
   v(p.curl, param_info{"leaf_curl", "Blade curl", "", -90, 90, "Degrees the blade bends down over its length from petiole to tip (negative: up)", param_degrees});
+  v(p.needle_spread, param_info{"leaf_needle_spread", "Needle spread", "", 20, 360, "Needle shoots (pine, spruce and fir, cedar archetypes with blades on): degrees round each shoot its needles stand in. 360: all round the shoot (spruce, pine); 120-200: parted into two ranks to the shoot's sides, raised into a shallow V (fir)", param_degrees});
   v(p.shade_size, param_info{"leaf_shade_size", "Shade leaf size", "", 0, 1, "Leaves deep in the crown grow larger and those under open sky smaller, as shade and sun leaves do: a leaf's size is times 1 + this x (0.5 - its sky visibility from 0 to 1), from the crown occlusion (leaves the generator placed itself keep their sizes)"});
   v(p.planes, param_info{"leaf_planes", "Card planes", "", 1, 3, "Shoots mode: cards each leaf stands as, turned evenly about its blade axis. 1: one flat card; 2 or 3: crossed cards, so a needle shoot reads as a round brush from every side instead of a flat spray (conifers). Multiplies the leaf count"});
 }
@@ -98,6 +105,7 @@ inline bool param_relevant(const leaf_params& p, const void* field, const param_
   if (field == &p.clumping || field == &p.planes) return shoots;
   if (field == &p.clump_size || field == &p.clump_variation) return shoots && p.clumping > 0;
   if (field == &p.fold || field == &p.curl) return p.blades;
+  if (field == &p.needle_spread) return p.blades && archetype_is_needle_shoot(p.archetype);
   return true;
 }
 

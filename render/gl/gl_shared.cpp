@@ -5,6 +5,7 @@
 #include "render/gl/shaders.h"
 #include "render/gl/wind_gl.h"
 #include "render/mesh/leaf_blade.h"
+#include "render/mesh/leaf_shoot.h"
 
 namespace sylva {
 
@@ -16,7 +17,8 @@ namespace {
 std::string with_blade_sizes(std::string s) {
   const size_t eol = s.find('\n');
   const std::string sizes = "const int BLADE_VERTICES = " + std::to_string(coarse_blade_vertices) +
-                            ";\nconst int BLADE_PROTOTYPES = " + std::to_string(blade_prototypes) + ";\n";
+                            ";\nconst int BLADE_PROTOTYPES = " + std::to_string(blade_prototypes) +
+                            ";\nconst int SHOOT_VERTICES = " + std::to_string(shoot_vertices_coarse) + ";\n";
   return eol == std::string::npos ? s : s.substr(0, eol + 1) + sizes + s.substr(eol + 1);
 }
 

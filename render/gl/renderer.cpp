@@ -1,6 +1,7 @@
 // The frame renderer: programs, procedural textures, tree upload, and the passes of
 // docs/design/08-renderer.md.
 #include "render/gl/renderer.h"
+#include "render/mesh/leaf_shoot.h"
 #include "render/gl/shaders.h"
 #include "render/gl/renderer_resources.h"
 
@@ -140,18 +141,29 @@ void set_season_uniforms(const gl_program& p, const season_look& s) {
   set_uniform(p, "u_season_scale", s.deciduous_scale);
 }
 
-void draw_leaves(renderer_gpu& r) {
+void draw_leaves(renderer_gpu& r, const gl_program& p) {
   uint32_t n = leaf_count(r);
   if (!n) return;
   ++r.counts.draw_calls;
   ++r.counts.leaf_draw_calls;
   glBindVertexArray(r.leaf_vao.id);
+  const bool bent = r.blade_shown.on && !r.blade_flat_shown, shoots = bent && r.has_shoots;
+  glUniform1ui(glGetUniformLocation(p.id, "u_shoots"), shoots ? shoot_archetype_mask() : 0u);
+  glUniform1i(glGetUniformLocation(p.id, "u_shoot_pass"), 0);
   // Every leaf is its archetype's coarse blade grid (render/mesh/leaf_blade.h); when none bends, the flat
   // card's two triangles after the grid's in the same index buffer.
-  if (r.blade_shown.on && !r.blade_flat_shown)
-    glDrawElementsInstanced(GL_TRIANGLES, 3 * coarse_blade_triangles, GL_UNSIGNED_SHORT, nullptr, GLsizei(n));
+  constexpr size_t grid = 3 * coarse_blade_triangles, card = 6;
+  if (bent)
+    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(grid), GL_UNSIGNED_SHORT, nullptr, GLsizei(n));
   else
-    glDrawElementsInstanced(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, (void*)(sizeof(uint16_t) * 3 * coarse_blade_triangles), GLsizei(n));
+    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(card), GL_UNSIGNED_SHORT, (void*)(sizeof(uint16_t) * grid), GLsizei(n));
+  if (!shoots) return;
+  // The needle shoots (render/mesh/leaf_shoot.h): a second call with their spikes, where the first
+  // collapsed them and this one collapses every other leaf.
+  ++r.counts.draw_calls;
+  ++r.counts.leaf_draw_calls;
+  glUniform1i(glGetUniformLocation(p.id, "u_shoot_pass"), 1);
+  glDrawElementsInstanced(GL_TRIANGLES, 3 * shoot_triangles_coarse, GL_UNSIGNED_SHORT, (void*)(sizeof(uint16_t) * (grid + card)), GLsizei(n));
 }
 
 // ---------------------------------------------------------------- passes of the frame
@@ -263,7 +275,7 @@ void draw_shadow_pass(renderer_gpu& r, const render_params& rp, const frame_setu
     set_uniform(r.shared->leaf_depth, "u_shadow_pass", 1);   // the impostor's sun card casts (render/gl/impostor.h)
     set_wind_uniforms(r, r.shared->leaf_depth, f.wind);
     set_season_uniforms(r.shared->leaf_depth, season);
-    draw_leaves(r);
+    draw_leaves(r, r.shared->leaf_depth);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
   f.clock.mark(r.timings.shadow);
@@ -357,7 +369,7 @@ void draw_lit_pass(renderer_gpu& r, const render_params& rp, const frame_setup& 
       set_uniform(r.shared->leaf, "u_crown_radii", r.crown_radii);
       set_uniform(r.shared->leaf, "u_normal_blend", rp.leaf_normal_blend);
       set_wind_uniforms(r, r.shared->leaf, f.wind);
-      draw_leaves(r);
+      draw_leaves(r, r.shared->leaf);
     } else if (!r.shared->fallback.failed) {   // a lit shader failed: flat bark, still a tree
       glUseProgram(r.shared->fallback.id);
       set_uniform(r.shared->fallback, "u_viewproj", viewproj);

@@ -50,6 +50,7 @@ struct tree_gpu {
   gl_texture blade_tex;
   leaf_blade_shape blade_shown;
   bool blade_flat_shown = false, blade_uploaded = false;
+  bool has_shoots = false;   // some leaf is a needle shoot's archetype (render/mesh/leaf_shoot.h): a second call draws them
   // The textures the tree is drawn with: the shared procedural maps (gl_shared), or its own when
   // own_bark / own_leaves (then freed with it).
   gl_texture bark_tex, bark_normal_tex, bark_rough_tex, leaf_tex, leaf_normal_tex, leaf_thickness_tex;

@@ -5,6 +5,7 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
+#include "render/mesh/leaf_shoot.h"
 #include "render/mesh/lod_cards.h"
 #include "render/mesh/season.h"
 #include "render/assets/textures.h"
@@ -179,12 +180,21 @@ void upload_blades(renderer_gpu& r, const leaf_blade_shape& shape) {
   const bool flat = r.user_leaf;
   if (r.blade_uploaded && shape == r.blade_shown && flat == r.blade_flat_shown) return;
   std::vector<glm::vec4> table;
-  table.reserve(size_t(2 * blade_prototypes * coarse_blade_vertices));
+  table.reserve(size_t(2 * (blade_prototypes * coarse_blade_vertices + leaf_archetype_count * shoot_vertices_coarse)));
   for (int k = 0; k < blade_prototypes; ++k) {
     const bool card = flat || k == leaf_archetype_count || archetype_is_fruit(leaf_archetype(k));
     const auto grid = card ? coarse_blade(full_card_outline(), leaf_blade_shape{})
                            : coarse_blade(shape.on ? archetype_outline(leaf_archetype(k)) : full_card_outline(), shape);
     for (const blade_vertex& v : grid) table.emplace_back(v.position, v.uv.x), table.emplace_back(v.normal, v.uv.y);
+  }
+  // Then per archetype its needle shoot's coarse spikes (render/mesh/leaf_shoot.h); zeros for the others.
+  for (int k = 0; k < leaf_archetype_count; ++k) {
+    if (flat || !shape.on || !archetype_is_shoot(leaf_archetype(k))) {
+      table.insert(table.end(), size_t(2 * shoot_vertices_coarse), glm::vec4(0));
+      continue;
+    }
+    const leaf_mesh shoot = shoot_prototype(leaf_archetype(k), shape, shoot_pieces_coarse, archetype_swatches(leaf_archetype(k)));
+    for (const blade_vertex& v : shoot.vertex) table.emplace_back(v.position, v.uv.x), table.emplace_back(v.normal, v.uv.y);
   }
   glBindBuffer(GL_TEXTURE_BUFFER, r.blade_table.id);
   glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), GL_STATIC_DRAW);

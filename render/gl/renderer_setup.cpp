@@ -7,6 +7,7 @@
 
 #include "generators/wood.h"
 #include "render/gl/wind_gl.h"
+#include "render/mesh/leaf_shoot.h"
 #include "render/mesh/lod_cards.h"
 #include "render/mesh/season.h"
 #include "render/assets/textures.h"
@@ -91,6 +92,9 @@ bool init_renderer(renderer_gpu& r, std::shared_ptr<gl_shared> shared) {
   std::vector<uint16_t> grid(coarse_blade_indices().begin(), coarse_blade_indices().end());
   constexpr uint16_t tip = coarse_blade_rows * (coarse_blade_columns + 1);
   grid.insert(grid.end(), {0, coarse_blade_columns, tip + coarse_blade_columns, 0, tip + coarse_blade_columns, tip});
+  // Then the needle shoots' spikes (render/mesh/leaf_shoot.h), drawn by a second call.
+  const std::vector<uint16_t> spikes = shoot_indices(shoot_pieces_coarse);
+  grid.insert(grid.end(), spikes.begin(), spikes.end());
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(sizeof(uint16_t) * grid.size()), grid.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, r.leaf_corner.id);
   glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
@@ -189,6 +193,8 @@ void upload_tree(renderer_gpu& r, const tree_mesh& m) {
   if (m.cards) r.cards = m.cards;   // kept when LOD0 comes back: the layers stay valid
   r.index_end = m.index_end;
   r.leaf_end = m.leaf_end;
+  r.has_shoots = std::any_of(m.leaves.begin(), m.leaves.end(),
+                             [](const leaf_instance& l) { return l.texture < leaf_archetype_count && archetype_is_shoot(leaf_archetype(l.texture)); });
   upload_blades(r, m.blade);
   r.final_radius = m.final_radius;
   r.node_count = int(m.final_radius.size());

@@ -128,6 +128,9 @@ uniform int u_shadow_pass;   // 1 in the shadow pass: the impostor's sun card (r
 // The season (render/mesh/season.h season_look): deciduous archetypes' colour range, share kept, size.
 uniform vec3 u_leaf_color; uniform vec3 u_autumn_a; uniform vec3 u_autumn_b; uniform uvec2 u_deciduous;
 uniform uint u_fruit;   // bit k: archetype k is a cone's or fruit's card, in its own colours (season.h archetype_is_fruit)
+// Bit k: archetype k is a needle shoot (render/mesh/leaf_shoot.h), drawn by the second call (u_shoot_pass
+// 1) from its SHOOT_VERTICES spikes after the blade table; each call collapses the other's leaves.
+uniform uint u_shoots; uniform int u_shoot_pass;
 uniform float u_keep; uniform float u_season_scale;
 uniform vec3 u_crown_centre; uniform vec3 u_crown_radii;   // the leaves' ellipsoid (render/mesh/leaf_shading.h)
 out vec3 v_world; out vec3 v_normal; out vec3 v_tangent; out vec3 v_bitangent; out vec2 v_uv; flat out float v_layer;
@@ -155,7 +158,10 @@ void main() {
   // Blade in local XY, normal +Z, petiole at the origin pointing along -Y (skeleton.h): the grid of
   // the leaf's archetype, or the flat card for fruit, baked cards and the impostor.
   int proto = (!plain && !fruit && i_texture < uint(BLADE_PROTOTYPES - 1)) ? int(i_texture) : BLADE_PROTOTYPES - 1;
-  int at = 2 * (proto * BLADE_VERTICES + gl_VertexID);
+  bool shoot = !plain && !fruit && i_texture < 32u && ((u_shoots >> i_texture) & 1u) != 0u;
+  if (shoot != (u_shoot_pass != 0)) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }
+  int at = shoot ? 2 * (BLADE_PROTOTYPES * BLADE_VERTICES + proto * SHOOT_VERTICES + gl_VertexID)
+                 : 2 * (proto * BLADE_VERTICES + gl_VertexID);
   vec4 pa = texelFetch(u_blade, at), pb = texelFetch(u_blade, at + 1);
   vec3 local = pa.xyz * size;
   v_world = i_position + texelFetch(u_radius, int(i_node)).xyz + rotate(i_rotation, local);  // follows its node's bend

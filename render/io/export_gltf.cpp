@@ -400,7 +400,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
     std::array<std::vector<glm::vec3>, leaf_slots> tr, sc, grey;
     std::array<std::vector<glm::vec4>, leaf_slots> rot;
     const leaf_look look = mats.src.leaf_looks();
-    const std::array<blade_mesh, leaf_slots> blades = slot_blades(v.mesh->blade, one, true);   // the prototypes' fine grids
+    const std::array<blade_mesh, leaf_slots> blades = slot_blades(v.mesh->blade, one, true, look);   // the prototypes' fine grids
     for (size_t i = 0; i < v.mesh->leaves.size(); ++i) {
       const leaf_instance& l = v.mesh->leaves[i];
       if (!(l.born <= step && step < l.died)) continue;
@@ -425,7 +425,7 @@ std::string add_tree_nodes(gltf_doc& d, gltf_materials& mats, const step_view& v
         leaf_bake prototype;
         prototype.blade = &blades[s];
         bake_leaf(quad, {glm::vec3(0), glm::vec4(0, 0, 0, 1), 1.0f, 0, 0, 0, 0}, prototype);
-        mats.quad_triangles[s] = quad.index.size() / 6;
+        mats.quad_triangles[s] = quad.index.size() / (blades[s].closed ? 3 : 6);
         mats.quad_mesh[s] = d.add_mesh(mats.src.leaf_name(slot), json::array({d.add_primitive(quad, mat, mats.leaf_normal[s])}));
       }
       json attrs = {{"TRANSLATION", d.add_vectors(tr[s], "VEC3", 0)}, {"ROTATION", d.add_vectors(rot[s], "VEC4", 0)},

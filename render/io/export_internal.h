@@ -18,6 +18,7 @@
 #include "render/io/export.h"
 #include "render/mesh/bark_tint.h"
 #include "render/mesh/leaf_blade.h"
+#include "render/mesh/leaf_shoot.h"
 #include "render/mesh/leaf_shading.h"
 #include "render/mesh/lod_cards.h"
 #include "render/assets/textures.h"
@@ -72,15 +73,14 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material);
 
 // A leaf's blade mesh in card units (render/mesh/leaf_blade.h): the exporters' subset of its
 // archetype's grid, or the full grid for an instanced prototype. Triangles counter-clockwise from +Z.
-struct blade_mesh {
-  std::vector<blade_vertex> vertex;
-  std::vector<uint16_t> index;
-};
-blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool full_grid);
+// A needle shoot (render/mesh/leaf_shoot.h) is closed (`closed`): baked as one face.
+using blade_mesh = leaf_mesh;
+struct leaf_look;
+blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool full_grid, const leaf_look& look);
 // Per leaf slot, the blade to bake (empty: the flat card): the archetypes' own when the mesh's
 // blades are on and no user picture replaces them; fruit and baked cards stay cards.
 std::array<blade_mesh, leaf_archetype_count + max_baked_cards> slot_blades(const leaf_blade_shape& s, bool one_leaf_material,
-                                                                          bool full_grid);
+                                                                          bool full_grid, const leaf_look& look);
 
 // A leaf instance as a card of one blade length square, base at the petiole (leaf frame of
 // skeleton.h: blade in local XY, normal +Z, petiole along -Y) with the whole texture on it: the
@@ -117,6 +117,8 @@ std::vector<int32_t> plant_of_nodes(const tree_skeleton& t);
 struct leaf_look {
   float normal_blend = 0, variation = 0, sun_tone = 0;
   bool blades = false;   // bake the mesh's blades (when on) instead of flat cards
+  int texture_size = 512;     // the leaf materials' pictures, whose texels the needle shoots sample
+  uint64_t texture_seed = 1;
 };
 std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, int step, bool bake, bool one_leaf_material,
                                    const leaf_look& look, const bark_tint& tint = {});
@@ -233,7 +235,9 @@ class material_source {
     return {o_.bark_color, o_.bark_base_color, vertex_colors_ ? o_.bark_base_height : 0.0f};   // NaN: blends() is false
   }
   void without_vertex_colors() { vertex_colors_ = false; }
-  leaf_look leaf_looks() const { return {o_.leaf_normal_blend, o_.leaf_color_variation, o_.leaf_sun_tone, o_.baked_blades}; }
+  leaf_look leaf_looks() const {
+    return {o_.leaf_normal_blend, o_.leaf_color_variation, o_.leaf_sun_tone, o_.baked_blades, size_, o_.texture_seed};
+  }
 
   // The PNGs of a material, made on first use; nullptr after an encoding failure (see error).
   const material_pngs* bark() {

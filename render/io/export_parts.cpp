@@ -43,7 +43,13 @@ int leaf_slot(const leaf_instance& l, bool one_leaf_material) {
   return one_leaf_material ? 0 : std::clamp(int(l.texture), 0, leaf_slots - 1);
 }
 
-blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool full_grid) {
+blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool full_grid, const leaf_look& look) {
+  if (s.on && archetype_is_shoot(a)) {   // a needle shoot (render/mesh/leaf_shoot.h), sampling the material's own picture
+    blade_mesh shoot = shoot_prototype(a, s, full_grid ? shoot_pieces_fine : shoot_pieces_coarse,
+                                       archetype_swatches(a, std::clamp(look.texture_size, 16, 4096), look.texture_seed));
+    shoot.closed = true;
+    return shoot;
+  }
   blade_mesh b;
   const blade_outline& o = archetype_outline(a);
   if (full_grid) {
@@ -58,11 +64,11 @@ blade_mesh export_blade_mesh(leaf_archetype a, const leaf_blade_shape& s, bool f
   return b;
 }
 
-std::array<blade_mesh, leaf_slots> slot_blades(const leaf_blade_shape& s, bool one_leaf_material, bool full_grid) {
+std::array<blade_mesh, leaf_slots> slot_blades(const leaf_blade_shape& s, bool one_leaf_material, bool full_grid, const leaf_look& look) {
   std::array<blade_mesh, leaf_slots> out;
   if (!s.on || one_leaf_material) return out;
   for (int k = 0; k < leaf_archetype_count; ++k)
-    if (!archetype_is_fruit(leaf_archetype(k))) out[size_t(k)] = export_blade_mesh(leaf_archetype(k), s, full_grid);
+    if (!archetype_is_fruit(leaf_archetype(k))) out[size_t(k)] = export_blade_mesh(leaf_archetype(k), s, full_grid, look);
   return out;
 }
 
@@ -99,7 +105,7 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
   const float outer = glm::dot(n, out) < 0 ? -1.0f : 1.0f;   // the side that looks out of the crown
   const size_t count = shape.vertex.size();
   auto face = [&](float side) {
-    const glm::vec3 shift = side == outer ? glm::vec3(0) : -outer * n * (leaf_back_offset * l.size);
+    const glm::vec3 shift = side == outer || shape.closed ? glm::vec3(0) : -outer * n * (leaf_back_offset * l.size);
     const uint32_t base = uint32_t(g.position.size());
     for (size_t j = 0; j < count; ++j) {
       // The back face lists the first two vertices swapped, so both faces' triangles use their
@@ -126,6 +132,10 @@ void bake_leaf(geometry& g, const leaf_instance& l, const leaf_bake& b) {
       else g.index.insert(g.index.end(), {base + a, base + c, base + b1});
     }
   };
+  if (shape.closed) {   // a needle shoot's spikes are closed: one face, every side already outward
+    face(1.0f);
+    return;
+  }
   face(outer);
   if (b.two_sided) face(-outer);
 }
@@ -229,7 +239,7 @@ std::vector<tree_part> split_parts(const tree_skeleton& t, const tree_mesh& m, i
     for (size_t k = 0; k < parts.size(); ++k) shape[k] = crowns[k].ellipsoid(), look[k] = {&shape[k], leaf_style.normal_blend, true};
     leaf_blade_shape baked = m.blade;
     baked.on = baked.on && leaf_style.blades;
-    const std::array<blade_mesh, leaf_slots> blades = slot_blades(baked, one_leaf_material, false);
+    const std::array<blade_mesh, leaf_slots> blades = slot_blades(baked, one_leaf_material, false, leaf_style);
     for (size_t i = 0; i < m.leaves.size(); ++i) {
       const leaf_instance& l = m.leaves[i];
       if (l.born <= step && step < l.died) {

@@ -25,6 +25,7 @@ struct leaf_blade_shape {
   bool on = false;    // false: every leaf is the flat card
   float fold = 0;     // degrees each half of the blade rises about the midrib (a V section)
   float curl = 0;     // degrees the blade turns down over its length (negative: up)
+  float needle_spread = 360;   // needle shoots (leaf_shoot.h): degrees round the shoot the needles fill
   bool operator==(const leaf_blade_shape&) const = default;
 };
 

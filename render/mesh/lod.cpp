@@ -250,6 +250,7 @@ void emit_bark(const bark_input& b, const std::vector<kept_axis>& axes, const me
 struct leaf_input {
   std::vector<leaf_instance> leaves;
   std::vector<uint32_t> code;     // 30-bit Morton code (10 bits per axis), sorted
+  leaf_blade_shape blade;         // LOD0's leaves as geometry: the cards are baked from it
 };
 
 uint32_t spread_bits(uint32_t x) {   // 10 bits -> every third bit
@@ -265,6 +266,7 @@ glm::vec3 leaf_centre(const leaf_instance& l) { return l.position + rotate(l.ori
 
 leaf_input prepare_leaves(const tree_mesh& m) {
   leaf_input in;
+  in.blade = m.blade;
   const int last = m.steps;
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (const leaf_instance& l : m.leaves) {
@@ -422,7 +424,7 @@ void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t
   for (size_t q = 0; q < count; ++q) {
     const merged& p = cards[order[(2 * q + 1) * order.size() / (2 * count)]];
     const auto [a, b] = groups[p.group];
-    baked.sets.push_back(bake_card(&in.leaves[a], b - a, p.fit));
+    baked.sets.push_back(bake_card(&in.leaves[a], b - a, p.fit, card_texture_size, in.blade));
     std::array<int, leaf_archetype_count> votes{};
     for (size_t k = a; k < b; ++k) ++votes[size_t(std::clamp(int(in.leaves[k].texture), 0, leaf_archetype_count - 1))];
     baked.source.push_back(uint8_t(std::max_element(votes.begin(), votes.end()) - votes.begin()));

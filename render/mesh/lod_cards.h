@@ -46,7 +46,10 @@ card_fit fit_card(const leaf_instance* leaves, size_t n, const glm::vec4& orient
 
 // Rasterises leaves[0..n) (their archetype textures, alpha cut-out at 128) orthographically along
 // the card's normal onto the card's square: colour, alpha and the leaves' normals in the card's
-// tangent frame. O(texels the leaves cover).
-leaf_texture_set bake_card(const leaf_instance* leaves, size_t n, const card_fit& c, int size = card_texture_size);
+// tangent frame. With shape.on each leaf is its archetype's coarse blade or needle shoot, bent as
+// the viewport draws it (render/mesh/leaf_blade.h, leaf_shoot.h); otherwise its flat card. O(texels
+// the leaves cover).
+leaf_texture_set bake_card(const leaf_instance* leaves, size_t n, const card_fit& c, int size = card_texture_size,
+                           const leaf_blade_shape& shape = {});
 
 }  // namespace sylva

@@ -562,7 +562,8 @@ tree_mesh mesh_tree(const tree_skeleton& t, const mesh_params& p, uint64_t seed,
   m.steps = std::max(t.steps, 0);
   m.radial_segments = std::clamp(p.radial_segments, 3, 256);
   m.blade = leaf_blade_shape{p.leaves.blades, std::isfinite(p.leaves.fold) ? p.leaves.fold : 0.0f,
-                             std::isfinite(p.leaves.curl) ? p.leaves.curl : 0.0f};
+                             std::isfinite(p.leaves.curl) ? p.leaves.curl : 0.0f,
+                             std::isfinite(p.leaves.needle_spread) ? p.leaves.needle_spread : 360.0f};
   m.index_end.assign(size_t(m.steps) + 1, 0);
   m.leaf_end.assign(size_t(m.steps) + 1, 0);
   if (!structurally_sound(t)) return m;

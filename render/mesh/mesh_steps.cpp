@@ -31,6 +31,7 @@ uint64_t mesh_digest(const tree_mesh& m) {
   bytes(&m.steps, sizeof m.steps), bytes(&m.radial_segments, sizeof m.radial_segments);
   bytes(m.message.data(), m.message.size());
   bytes(&m.blade.on, sizeof m.blade.on), bytes(&m.blade.fold, sizeof m.blade.fold), bytes(&m.blade.curl, sizeof m.blade.curl);
+  bytes(&m.blade.needle_spread, sizeof m.blade.needle_spread);
   return h;
 }
 

@@ -123,6 +123,8 @@ TEST(ParamClass, EachClassRedoesWhatItDeclares) {
   cases.back().second.mesh.leaves.clumping = 0.6f;
   cases.back().second.mesh.radial_segments = 16;
   cases.back().second.mesh.flare_strength = 0.8f;
+  cases.emplace_back("sapling, needle shoots", cases[0].second);   // leaf_needle_spread shows and acts
+  cases.back().second.mesh.leaves.archetype = leaf_archetype::flat_spray;
   for (const auto& [name, p] : cases) {
     SCOPED_TRACE(name);
     const tree_skeleton t = grow(p.spec, grow_options{});

@@ -12,6 +12,7 @@
 #include <tiny_gltf.h>
 
 #include "render/mesh/leaf_blade.h"
+#include "render/mesh/leaf_shoot.h"
 #include "tests/run_sylva.h"
 #include "tests/scratch_dir.h"
 
@@ -124,4 +125,24 @@ TEST(ExportProfile, PlainHeroAndHeroBakedCarryTheLeavesAsTheySay) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("--profile"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.glb"));
+}
+
+// A needle archetype (render/mesh/leaf_shoot.h): hero instances the fine shoot once per material,
+// hero-baked bakes each leaf as the coarse shoot's closed spikes, one face only, and the plain
+// profile keeps the flat card.
+TEST(ExportProfile, NeedleShootsAreInstancedFineAndBakedCoarse) {
+  scratch_dir dir("sylva_export_shoots");
+  const std::string preset = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  auto run = [&](const std::string& profile) {
+    const std::string out = dir / (profile + ".glb");
+    const sylva_run r = run_sylva("", "export '" + preset + "' -o '" + out + "' --profile " + profile + " --set leaf_archetype=needles");
+    EXPECT_EQ(r.code, 0) << r.err;
+    return leaves_of(out);
+  };
+  const leaf_counts plain = run("plain"), hero = run("hero"), baked = run("hero-baked");
+  ASSERT_GT(plain.vertices, size_t(0));
+  const size_t leaves = plain.vertices / 8;   // two faces of four corners
+  EXPECT_EQ(hero.instanced_meshes, size_t(1));
+  EXPECT_EQ(hero.vertices, size_t(shoot_pieces_fine * shoot_piece_vertices));
+  EXPECT_EQ(baked.vertices, leaves * size_t(shoot_vertices_coarse));
 }

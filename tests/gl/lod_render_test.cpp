@@ -173,11 +173,16 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       // leaves' own pixels about as much as LOD0 from itself turned by 1-2 degrees: measured oak
       // 0.908 / 0.863 / 0.863, pine 0.860 / 0.763 / 0.782, maple_cards 0.890 / 0.877 / 0.805 (outline
       // oak 0.961 / 0.951 / 0.955, pine 0.938 / 0.891 / 0.908, maple_cards 0.960 / 0.953 / 0.930). The
-      // floors are those less about 0.02, as before; baking the cards from the blades is left to do.
+      // floors are those less about 0.02, as before.
+      // The pine's leaves are now needle shoots of thin spikes (render/mesh/leaf_shoot.h) and the cards
+      // are baked from the same geometry (bake_card with the blade shape): pine 0.739 / 0.697 / 0.702
+      // (outline 0.904 / 0.885 / 0.890), oak 0.893 / 0.848 / 0.848. Sub-pixel needles make the pine's
+      // texel-for-texel score noisy: LOD0 against itself turned 0.5 degrees scores 0.80, turned 2 degrees
+      // 0.74 (Lod0AgainstItselfTurned), so its levels sit within two degrees' turn of LOD0.
       const std::string n(name);
-      const double floors[3] = {n == "species_oak.json" ? 0.89 : n == "species_pine.json" ? 0.84 : 0.87,
-                                n == "species_oak.json" ? 0.78 : n == "species_pine.json" ? 0.72 : 0.86,
-                                n == "species_oak.json" ? 0.80 : n == "species_pine.json" ? 0.73 : 0.78};
+      const double floors[3] = {n == "species_oak.json" ? 0.89 : n == "species_pine.json" ? 0.72 : 0.87,
+                                n == "species_oak.json" ? 0.82 : n == "species_pine.json" ? 0.68 : 0.86,
+                                n == "species_oak.json" ? 0.82 : n == "species_pine.json" ? 0.68 : 0.78};
       EXPECT_GE(score, floors[k - 1]) << "LOD" << k;
       // The outline (gaps of up to 2 px closed) reaches the goal of 0.9 at every level of the three:
       // measured oak 0.978 / 0.934 / 0.940, pine 0.977 / 0.924 / 0.905, maple_cards 0.976 / 0.970 / 0.971.
@@ -295,9 +300,10 @@ TEST_F(LodRender, ImpostorCardKeepsLod0SilhouetteWhereItTakesOver) {
 
 // The metric's own noise floor (docs/LOD.md): LOD0 against itself with the camera turned by 0.5 and
 // 2 degrees about the tree, at each takeover coverage. The crown's gaps are a pixel or two wide
-// there, so a shift of one pixel changes many of them: the strict IoU drops (measured oak 0.89-0.93,
-// pine 0.82-0.92 at 2 degrees), while the outline IoU, the shape alone, keeps the 0.9 the levels are
-// held to (oak 0.96-0.99, pine 0.93-0.98). So the outline floor measures the levels, not view noise.
+// there, so a shift of one pixel changes many of them: the strict IoU drops (measured oak 0.85-0.89,
+// pine 0.74-0.75 at 2 degrees since its needles are thin spikes), while the outline IoU, the shape
+// alone, keeps about the 0.9 the levels are held to (oak 0.95-0.98, pine 0.89-0.90). So the outline
+// floor measures the levels, not view noise.
 TEST_F(LodRender, Lod0AgainstItselfTurned) {
   for (const char* name : {"species_oak.json", "species_pine.json"}) {
     preset p;
