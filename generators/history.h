@@ -28,5 +28,11 @@ float season_vigour(float amplitude, float anomaly);
 // index of every kept node (empty when nothing changed); the caller recomputes radii and whatever
 // else it keeps per node.
 std::vector<int32_t> self_prune(tree_skeleton& t, float live_crown, float stub_length);
+// A dead stub keeps the girth it grew, as wood does not shrink (Shigo 1985, "How tree branches are
+// attached to trunks"): at `step`, each node that stands as dead wood from dead ≤ step gets at least
+// the pipe radius r_tip·m^(1/n) of the m shoot tips its limb carried through it in the step before
+// it died (Shinozaki 1964; the fallen wood stays in the skeleton with died = that step), and no more
+// than its parent's radius. Nothing changes when t.dead is empty.
+void thicken_stubs(const tree_skeleton& t, int step, float exponent, float r_tip, std::vector<float>& radius);
 
 }  // namespace sylva

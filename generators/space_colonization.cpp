@@ -641,6 +641,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // stored (pipe_exponent = 0), since radii_at_step cannot apply the cap.
   compute_pipe_radii(t.parent, t.born, t.died, t.steps, p.pipe_exponent, p.min_width, t.radius, &t.position,
                      p.pipe_taper);
+  thicken_stubs(t, t.steps, p.pipe_exponent, p.min_width, t.radius);   // stubs keep their girth (history.h)
   const float rmax = p.max_width * p.min_width;
   bool capped = false;
   for (float& r : t.radius)
