@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace sylva {
 
@@ -129,6 +130,24 @@ void thicken_stubs(const tree_skeleton& t, int step, float exponent, float r_tip
     if (const int32_t par = t.parent[i]; par >= 0) r = std::min(r, radius[size_t(par)]);
     radius[i] = std::max(radius[i], r);
   }
+}
+
+glm::vec3 open_side_direction(float azimuth_degrees) {
+  const float a = glm::radians(azimuth_degrees);
+  return {std::cos(a), 0.0f, std::sin(a)};
+}
+
+glm::vec3 lean_to_sky(const glm::vec3& d, float lean, const glm::vec3& open) {
+  if (!(lean > 0)) return d;
+  const glm::vec3 v = d + lean * open;   // Loehle 1986: shoots turn towards the open side's light
+  const float l = glm::length(v);
+  return l > 1e-5f ? v / l : d;
+}
+
+float sky_keep_chance(const glm::vec3& u, float lean, const glm::vec3& open) {
+  if (!(lean > 0)) return 1.0f;
+  const float side = std::clamp(glm::dot(glm::vec3(u.x, 0.0f, u.z), open), -1.0f, 1.0f);
+  return std::clamp(1.0f - lean * 0.5f * (1.0f - side), 0.0f, 1.0f);
 }
 
 }  // namespace sylva

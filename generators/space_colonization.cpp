@@ -532,6 +532,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   std::vector<uint8_t> stuck;
   chunked_results<int32_t> found;   // visit_new_nodes' scratch
   const glm::vec3 up(0, 1, 0);
+  const glm::vec3 open = open_side_direction(p.open_side);
   while (stop.empty()) {
     compact_active(s);
     if (s.alive == 0) { stop = "no attraction points left"; break; }
@@ -592,6 +593,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       const int32_t par = t.parent[size_t(v)];
       const glm::vec3 prev = par >= 0 ? glm::normalize(t.position[size_t(v)] - t.position[size_t(par)]) : up;
       glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, p.tropism_weight);
+      dir = lean_to_sky(dir, p.sky_lean, open);   // phototropism towards the open side (Loehle 1986)
       // An apex continuing its axis turns at most max_turn off its last segment: turned further,
       // it is turned back towards the segment in the plane of the two (a shoot that keeps chasing
       // points beside it would otherwise curl round into a loop). Laterals branch off freely.
