@@ -58,8 +58,8 @@ TEST(EditorLogic, OpenSideShowsOnlyWithALean) {
 
 // Space colonization shows an envelope's own settings only with that envelope.
 TEST(EditorLogic, SpaceColonizationShowsOnlyTheEnvelopesOwnSettings) {
-  // Without forks or leader damage the fork asymmetry, and without self-pruning the stub length, change
-  // nothing and hide too.
+  // Without forks or leader damage the fork asymmetry, without self-pruning the stub length, and
+  // without a lean the open side change nothing and hide too.
   space_colonization_params p;   // an ellipsoid without dents
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "fork_asymmetry",
                                                       "stub_length", "open_side"}));
@@ -67,6 +67,7 @@ TEST(EditorLogic, SpaceColonizationShowsOnlyTheEnvelopesOwnSettings) {
   p.envelope_dents = 8;
   p.leader_damage = 0.05f;
   p.live_crown = 0.8f;
+  p.sky_lean = 0.3f;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"envelope_mesh"}));
   p.envelope = envelope_shape::mesh;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness"}));
