@@ -72,6 +72,7 @@ void place_fruits(const tree_skeleton& t, const fruit_params& p, uint64_t seed, 
   for (size_t i = 0; i < n; ++i) {
     if (!alive(i) || t.parent[i] < 0 || int(t.order[i]) < p.min_order || int(t.order[i]) > p.max_order) continue;
     if (axils ? t.order[size_t(t.parent[i])] >= t.order[i] : parent_of_living[i] != 0) continue;
+    if (int(t.dead_from(i)) <= last) continue;   // a self-pruned limb's dead stub bears nothing (history.h)
     const float y = site(i).y;
     if (y >= lowest && std::isfinite(y)) tips.push_back({rng(seed * 0x100000001B3ull ^ (uint64_t(i) + 0x5851F42D4C957F2Dull)).next(), uint32_t(i)});
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace sylva {
 
@@ -96,6 +97,57 @@ std::vector<int32_t> self_prune(tree_skeleton& t, float live_crown, float stub_l
   }
   t.leaves.resize(w);
   return kept;
+}
+
+void thicken_stubs(const tree_skeleton& t, int step, float exponent, float r_tip, std::vector<float>& radius) {
+  const size_t n = t.size();
+  if (t.dead.empty() || !(exponent > 0) || radius.size() != n) return;
+  const int last = step < 0 ? t.steps : step;
+  // The step each dying limb died in, for its stub (dead) and for the wood that fell with it (died
+  // at the same step below a stub); parents come before their children.
+  std::vector<uint16_t> limb(n, never_died);
+  for (size_t i = 0; i < n; ++i) {
+    if (t.dead[i] != never_died) limb[i] = t.dead[i];
+    else if (const int32_t par = t.parent[i]; par >= 0 && limb[size_t(par)] != never_died && t.died[i] == limb[size_t(par)])
+      limb[i] = limb[size_t(par)];
+  }
+  // The tips each limb carried through each of its nodes in the step before its death k (alive at
+  // k − 1: born before k, fallen not before k).
+  std::vector<float> pipes(n, 0.0f);
+  bool any = false;
+  for (size_t i = n; i-- > 0;) {
+    const uint16_t k = limb[i];
+    if (k == never_died || int(k) > last || !(t.born[i] < k && t.died[i] >= k)) continue;
+    if (pipes[i] == 0) pipes[i] = 1;   // a tip at k − 1
+    any = true;
+    if (const int32_t par = t.parent[i]; par >= 0 && limb[size_t(par)] == k) pipes[size_t(par)] += pipes[i];
+  }
+  if (!any) return;
+  // In index order, so a stub's base is held to its axis before the rest of the stub to it.
+  for (size_t i = 0; i < n; ++i) {
+    if (t.dead[i] == never_died || int(t.dead[i]) > last || !(pipes[i] > 0)) continue;
+    float r = r_tip * std::pow(pipes[i], 1.0f / exponent);   // Shinozaki 1964: r^n = Σ r_tip^n
+    if (const int32_t par = t.parent[i]; par >= 0) r = std::min(r, radius[size_t(par)]);
+    radius[i] = std::max(radius[i], r);
+  }
+}
+
+glm::vec3 open_side_direction(float azimuth_degrees) {
+  const float a = glm::radians(azimuth_degrees);
+  return {std::cos(a), 0.0f, std::sin(a)};
+}
+
+glm::vec3 lean_to_sky(const glm::vec3& d, float lean, const glm::vec3& open) {
+  if (!(lean > 0)) return d;
+  const glm::vec3 v = d + lean * open;   // Loehle 1986: shoots turn towards the open side's light
+  const float l = glm::length(v);
+  return l > 1e-5f ? v / l : d;
+}
+
+float sky_keep_chance(const glm::vec3& u, float lean, const glm::vec3& open) {
+  if (!(lean > 0)) return 1.0f;
+  const float side = std::clamp(glm::dot(glm::vec3(u.x, 0.0f, u.z), open), -1.0f, 1.0f);
+  return std::clamp(1.0f - lean * 0.5f * (1.0f - side), 0.0f, 1.0f);
 }
 
 }  // namespace sylva

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "generators/skeleton.h"
 
 namespace sylva {
@@ -28,5 +30,24 @@ float season_vigour(float amplitude, float anomaly);
 // index of every kept node (empty when nothing changed); the caller recomputes radii and whatever
 // else it keeps per node.
 std::vector<int32_t> self_prune(tree_skeleton& t, float live_crown, float stub_length);
+// A dead stub keeps the girth it grew, as wood does not shrink (Shigo 1985, "How tree branches are
+// attached to trunks"): at `step`, each node that stands as dead wood from dead ≤ step gets at least
+// the pipe radius r_tip·m^(1/n) of the m shoot tips its limb carried through it in the step before
+// it died (Shinozaki 1964; the fallen wood stays in the skeleton with died = that step), and no more
+// than its parent's radius. Nothing changes when t.dead is empty.
+void thicken_stubs(const tree_skeleton& t, int step, float exponent, float r_tip, std::vector<float>& radius);
+
+// Phototropism of the whole tree towards open sky (Loehle 1986, "Phototropism of whole trees:
+// effects of habitat and growth form", Am. Midl. Nat. 116: 190-196): a tree with one open side (a
+// forest edge, a gap) leans its shoots and its crown out towards it. open_side_direction is the
+// horizontal unit vector of the open side, `azimuth` degrees from +x towards +z.
+glm::vec3 open_side_direction(float azimuth_degrees);
+// A shoot's direction d leaned towards the open side ô: normalize(d + ψ·ô); d itself when ψ = 0
+// (or d + ψ·ô is zero).
+glm::vec3 lean_to_sky(const glm::vec3& d, float lean, const glm::vec3& open);
+// The open side also has more light, so more of the crown's free space lies there: the chance
+// that an attraction point at normalised horizontal offset u (|u| <= 1 from the crown's axis) is
+// kept, 1 − ψ·(1 − u·ô)/2 (1 on the open rim, 1 − ψ on the shaded one).
+float sky_keep_chance(const glm::vec3& u, float lean, const glm::vec3& open);
 
 }  // namespace sylva

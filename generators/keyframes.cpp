@@ -53,6 +53,8 @@ constexpr refusal sc_refusals[] = {
     {"offset", "the attraction points are sampled once, before the first step"},
     {"slab_thickness", "the attraction points are sampled once, before the first step"},
     {"envelope_dents", "the attraction points are sampled once, before the first step"},
+    {"sky_lean", "the attraction points are thinned towards the open side once, before the first step"},
+    {"open_side", "the attraction points are thinned towards the open side once, before the first step"},
     {"envelope_dent_depth", "the attraction points are sampled once, before the first step"},
     {"influence_radius", "the point search grid is built for dᵢ once, before the first step"},
     {"kill_distance", "the point search grid is built for dₖ once, before the first step"},

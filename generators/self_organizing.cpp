@@ -598,7 +598,10 @@ tree_skeleton grow_self_organizing(const self_organizing_params& params, const g
           scan_cone(st.grid, st.cone, st.cos_theta, st.reach, t.position[i], st.voxel[i], def, scratch, choices);
           optimal = pick_optimal(r, choices.data(), uint32_t(choices.size()), def);
         }
-        const glm::vec3 dir = safe_normalize(p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism, def);
+        glm::vec3 blend = p.w_default * def + p.w_optimal * optimal + p.w_tropism * p.tropism;
+        // Phototropism towards open sky (history.h, Loehle 1986): a fourth term ψ·ô; none at ψ = 0.
+        if (p.sky_lean > 0) blend += p.sky_lean * open_side_direction(p.open_side);
+        const glm::vec3 dir = safe_normalize(blend, def);
         for (int m = 0; m < plan.metamers; ++m) {
           if (int64_t(t.size()) >= p.node_cap) { rep.hit_node_cap = true; break; }
           const glm::vec3 from = t.position[prev];

@@ -62,6 +62,8 @@ struct self_organizing_params {
   float season_variation = 0;         // years differ: step k's α is α·exp(a·z_k) (generators/history.h)
   float live_crown = 1;               // limbs below (1 − this)·height die and leave stubs (1: none do)
   float stub_length = 0.3f;           // metres of a dead limb that stay as a stub
+  float sky_lean = 0;                 // ψ: phototropism towards the open side (0: none)
+  float open_side = 0;                // degrees from +x towards +z: the azimuth of the open sky
   float w_max = 1.0f, w_min = 0.006f, kappa = 0.5f;
   int terminal_priority_steps = 8;
   so_priority_rank priority_rank = so_priority_rank::average;
@@ -124,7 +126,9 @@ void visit_params(P& p, V&& visitor) {
   v(p.divergence, param_info{"divergence", "Divergence", "φ", 0, 360, "Phyllotactic angle between successive lateral buds (opposite phyllotaxis: between successive pairs)", param_degrees});
   v(p.phyllotaxis, param_info{"phyllotaxis", "Phyllotaxis", "", 0, 2, "spiral: one lateral bud per node, turned by φ from the last; planar: ±β in one plane (flat trees); opposite: a pair of lateral buds on opposite sides of each node, each pair turned by φ from the last (φ = 90°: decussate, as in maples and ashes)", 0, nullptr, so_phyllotaxis_names});
   v(p.live_crown, param_info{"live_crown", "Live crown", "c", 0.05f, 1, "Natural pruning: a limb leaving a stem below (1 − c) of the tree's height at a step dies in that step, and only a short dead stub stays (Wilson 1984; the foresters' live crown ratio) (1: no limb dies)", 0, "Growth history"});
-  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the stem as a dead, leafless stub (0: it falls whole)"});
+  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the stem as a dead, leafless stub, as thick as the limb was when it died (0: it falls whole)"});
+  v(p.sky_lean, param_info{"sky_lean", "Lean to open sky", "ψ", 0, 1, "Phototropism of the whole tree (Loehle 1986): one side is open (a forest edge, a gap), so a shoot's direction gains a fourth term, ξ·default + ζ·optimal + τ·g + ψ·ô (Palubicki 2009 §5 with the open side ô), and the crown leans and grows out towards the light (0: open all round, as Palubicki 2009)"});
+  v(p.open_side, param_info{"open_side", "Open side", "", 0, 360, "Azimuth ô of the open sky the tree leans towards, from +x towards +z", param_degrees});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1.5f, 4, "Pipe model r^n = Σ r_i^n", 0, "Radii"});
   v(p.tip_radius, param_info{"tip_radius", "Tip radius", "r₀", 0.0002f, 0.1f, "Radius of a branch tip in metres", param_log});
   v(p.pipe_taper, param_info{"pipe_taper", "Pipe taper", "τₚ", 0, 1, "Disused pipes (Shinozaki 1964): each metre of internode makes its base this fraction wider than its tip, so every axis tapers from base to tip even where nothing branches off (0: the plain pipe model) (per metre)"});
@@ -133,6 +137,12 @@ void visit_params(P& p, V&& visitor) {
   v(p.spacing, param_info{"spacing", "Spacing", "", 0.1f, 100, "Distance between grid neighbours; random placement uses a square of side spacing·√count"});
   v(p.positions, param_info{"positions", "Positions", "", -1000, 1000, "Explicit tree positions (metres)", param_advanced});
   v(p.node_cap, param_info{"node_cap", "Node cap", "", 1000, 20000000, "Growth stops at this many nodes and says so", param_log | param_advanced});
+}
+
+// The editor shows the open side's azimuth only once the tree leans towards it.
+inline bool param_relevant(const self_organizing_params& p, const void* field, const param_info&) {
+  if (field == &p.open_side) return p.sky_lean > 0;
+  return true;
 }
 
 tree_skeleton grow_self_organizing(const self_organizing_params& p, const grow_options& o, grow_report* report = nullptr,

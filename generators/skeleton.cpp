@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "generators/history.h"
+
 namespace sylva {
 
 int32_t tree_skeleton::add_node(const glm::vec3& p, int32_t par, float r, uint16_t born_step, uint8_t ord) {
@@ -100,6 +102,7 @@ void apply_pipe_radii(tree_skeleton& s, float exponent, float r_tip, float taper
   s.pipe_tip_radius = r_tip;
   s.pipe_taper = std::isfinite(taper) && taper > 0 ? taper : 0.0f;
   compute_pipe_radii(s.parent, s.born, s.died, s.steps, exponent, r_tip, s.radius, &s.position, s.pipe_taper);
+  thicken_stubs(s, s.steps, exponent, r_tip, s.radius);   // dead stubs keep their girth (history.h)
 }
 
 std::vector<float> radii_at_step(const tree_skeleton& s, int step) {
@@ -107,6 +110,7 @@ std::vector<float> radii_at_step(const tree_skeleton& s, int step) {
   if (s.pipe_exponent > 0) {
     compute_pipe_radii(s.parent, s.born, s.died, step, s.pipe_exponent, s.pipe_tip_radius, r, &s.position,
                        s.pipe_taper);
+    thicken_stubs(s, step, s.pipe_exponent, s.pipe_tip_radius, r);
     return r;
   }
   r = s.radius;

@@ -532,6 +532,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   std::vector<uint8_t> stuck;
   chunked_results<int32_t> found;   // visit_new_nodes' scratch
   const glm::vec3 up(0, 1, 0);
+  const glm::vec3 open = open_side_direction(p.open_side);
   while (stop.empty()) {
     compact_active(s);
     if (s.alive == 0) { stop = "no attraction points left"; break; }
@@ -591,7 +592,14 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
       if (!stop.empty() || !room()) continue;
       const int32_t par = t.parent[size_t(v)];
       const glm::vec3 prev = par >= 0 ? glm::normalize(t.position[size_t(v)] - t.position[size_t(par)]) : up;
-      glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, p.tropism_weight);
+      // Pendulous twigs: the new segment's order (a lateral one past its parent's) sets its tropism.
+      float w = p.tropism_weight;
+      if (p.twig_droop > 0) {
+        const int ord = int(t.order[size_t(v)]) + (apex ? 0 : 1);
+        if (ord >= 2) w = std::min(w + p.twig_droop * float(std::min(ord - 1, 3)) / 3.0f, 0.95f);
+      }
+      glm::vec3 dir = growth_direction(acc[size_t(v)], prev, p.tropism, w);
+      dir = lean_to_sky(dir, p.sky_lean, open);   // phototropism towards the open side (Loehle 1986)
       // An apex continuing its axis turns at most max_turn off its last segment: turned further,
       // it is turned back towards the segment in the plane of the two (a shoot that keeps chasing
       // points beside it would otherwise curl round into a loop). Laterals branch off freely.
@@ -641,6 +649,7 @@ tree_skeleton grow_colonization_from_points(const space_colonization_params& p_i
   // stored (pipe_exponent = 0), since radii_at_step cannot apply the cap.
   compute_pipe_radii(t.parent, t.born, t.died, t.steps, p.pipe_exponent, p.min_width, t.radius, &t.position,
                      p.pipe_taper);
+  thicken_stubs(t, t.steps, p.pipe_exponent, p.min_width, t.radius);   // stubs keep their girth (history.h)
   const float rmax = p.max_width * p.min_width;
   bool capped = false;
   for (float& r : t.radius)

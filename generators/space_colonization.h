@@ -48,10 +48,13 @@ struct space_colonization_params {
   float max_turn = 180.0f;     // degrees an axis' apex may turn off its last segment per segment (180: any)
   float leader_damage = 0.0f;   // chance a step that an apex dies and forks (leader damage and recovery)
   float fork_asymmetry = 0.0f;  // share by which a fork's leader turns less, and its other shoot more, than half the fork angle
+  float twig_droop = 0.0f;      // tropism weight added per order past the limbs (pendulous twigs; 0: none)
   // Growth history (generators/history.h), off by default.
   float season_variation = 0.0f;  // amplitude a of the seasons: step k's segments are D·exp(a·z_k) long
   float live_crown = 1.0f;        // limbs below (1 − this)·height die (1: none do)
   float stub_length = 0.3f;       // metres of a dead limb that stay as a stub
+  float sky_lean = 0.0f;          // ψ: phototropism towards the open side (0: none)
+  float open_side = 0.0f;         // degrees from +x towards +z: the azimuth of the open sky
   // Widths: pipe model (seed 003's "Da Vinci" rule).
   float pipe_exponent = 2.0f;
   float min_width = 0.01f;
@@ -96,9 +99,12 @@ void visit_params(P& p, V&& visitor) {
   v(p.max_turn, param_info{"max_turn", "Apex turn limit", "", 1, 180, "Most an axis' apex turns off its last segment in one segment; a low limit keeps a shoot that chases points round it from curling into a loop (180: no limit, as Runions 2007)", param_degrees | param_on_release});
   v(p.leader_damage, param_info{"leader_damage", "Leader damage", "", 0, 0.5f, "Chance each growth step that a shoot's apex dies (frost, browsing, insects) and two shoots below it take over as a fork, whatever the fork length: forks and reiterated limbs at seeded places, as on old trees (Hallé, Oldeman & Tomlinson 1978) (0: apices never die)", param_on_release});
   v(p.fork_asymmetry, param_info{"fork_asymmetry", "Fork asymmetry", "", 0, 0.9f, "Unequal forks: the first shoot of a sympodial fork leaves its course by (1 − this) × half the fork angle and takes over the axis, the second by (1 + this) × half, so a limb forks into a leader and a side limb instead of a symmetric Y (0: symmetric)", param_on_release});
+  v(p.twig_droop, param_info{"twig_droop", "Twig droop", "", 0, 0.6f, "Pendulous twigs: a segment of order o ≥ 2 blends the tropism with weight w + this·min(o − 1, 3)/3 instead of w, so the limbs keep their course and the finer twigs hang from them, as on a silver birch (Betula pendula: Atkinson 1992, J. Ecol. 80) (0: every order alike, as Runions 2007)", param_on_release});
   v(p.season_variation, param_info{"season_variation", "Season variation", "a", 0, 1, "Years differ: each crown step's segments are D·exp(a·z_k) long, z_k a seeded run of good and poor seasons (AR(1), ρ = 0.5, as tree rings show: Fritts 1976), so shoot lengths and the spacing of forks vary from step to step (0: every step alike)", param_on_release, "Growth history"});
   v(p.live_crown, param_info{"live_crown", "Live crown", "c", 0.05f, 1, "Natural pruning: a limb leaving the trunk below (1 − c) of the tree's height at a step dies in that step, and only a short dead stub stays (Wilson 1984; the foresters' live crown ratio) (1: no limb dies)", param_on_release});
-  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the trunk as a dead, leafless stub (0: it falls whole)", param_on_release});
+  v(p.stub_length, param_info{"stub_length", "Stub length", "", 0, 3, "Metres of a self-pruned limb that stay on the trunk as a dead, leafless stub, as thick as the limb was when it died (0: it falls whole)", param_on_release});
+  v(p.sky_lean, param_info{"sky_lean", "Lean to open sky", "ψ", 0, 1, "Phototropism of the whole tree (Loehle 1986): one side is open (a forest edge, a gap), so every new segment turns towards it, n̂ + ψ·ô normalised, and the attraction points thin out on the shaded side (kept with chance 1 − ψ·(1 − u·ô)/2, u the point's offset from the crown's axis), so the crown grows out and leans towards the light (0: open all round, as Runions 2007)", param_on_release});
+  v(p.open_side, param_info{"open_side", "Open side", "", 0, 360, "Azimuth ô of the open sky the tree leans towards, from +x towards +z", param_degrees | param_on_release});
   v(p.pipe_exponent, param_info{"pipe_exponent", "Pipe exponent", "n", 1, 4, "Pipe model r^n = Σ rᵢ^n (the Da Vinci rule; 2 is Leonardo's)", 0, "Widths"});
   v(p.min_width, param_info{"min_width", "Tip radius", "W", 0.0001f, 1, "Radius of a branch tip in metres, the minimum width", param_log});
   v(p.max_width, param_info{"max_width", "Max width", "", 1, 1000, "Largest radius as a multiple of W (50 is a usual cap)", param_log});
@@ -120,6 +126,7 @@ inline bool param_relevant(const space_colonization_params& p, const void* field
   if (field == &p.envelope_mesh) return p.envelope == envelope_shape::mesh;
   if (field == &p.envelope_dent_depth) return p.envelope_dents > 0;
   if (field == &p.stub_length) return p.live_crown < 1;
+  if (field == &p.open_side) return p.sky_lean > 0;
   if (field == &p.fork_asymmetry) return p.fork_length > 0 || p.leader_damage > 0;
   return true;
 }

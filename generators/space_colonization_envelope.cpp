@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "generators/history.h"
 #include "generators/space_colonization.h"
 
 namespace sylva {
@@ -333,12 +334,17 @@ envelope_sample sample_envelope(const space_colonization_params& p_in, uint64_t 
   // mesh with a tiny volume from spinning forever.
   rng r(seed ^ 0xe1e7e10feull);
   const envelope_dents dents(p.envelope_dents, p.envelope_dent_depth, seed);
+  const glm::vec3 open = open_side_direction(p.open_side);
   out.points.reserve(size_t(p.points));
   const int64_t max_tries = int64_t(p.points) * 200 + 1000;
   for (int64_t tries = 0; int64_t(out.points.size()) < p.points && tries < max_tries; ++tries) {
     const glm::vec3 q(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
     const float k = dents.scale(q);
-    if (inside_shape(p.envelope, q / k, is_mesh ? &mesh : nullptr)) out.points.push_back(p.offset + q * h);
+    if (!inside_shape(p.envelope, q / k, is_mesh ? &mesh : nullptr)) continue;
+    // Fewer points on the shaded side of a tree that leans to open sky (history.h, Loehle 1986);
+    // no draw at all without a lean, so such a tree's points are as before.
+    if (p.sky_lean > 0 && !(r.uniform() < sky_keep_chance(q, p.sky_lean, open))) continue;
+    out.points.push_back(p.offset + q * h);
   }
   if (int64_t(out.points.size()) < p.points)
     out.error = "the envelope mesh encloses too little volume: only " + std::to_string(out.points.size()) + " of " +

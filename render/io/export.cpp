@@ -44,6 +44,7 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
   const tree_skeleton t = step >= 0 && step < full.steps ? skeleton_at_step(full, step) : full;
   json nodes;
   json pos = json::array(), par = json::array(), rad = json::array(), born = json::array(), died = json::array(), ord = json::array();
+  json dead = json::array();   // the step from which a node stands as dead wood (a stub), or null
   for (size_t i = 0; i < t.size(); ++i) {
     pos.push_back({t.position[i].x, t.position[i].y, t.position[i].z});
     par.push_back(t.parent[i]);
@@ -51,8 +52,10 @@ std::string skeleton_json(const tree_skeleton& full, const export_info& info, in
     born.push_back(t.born[i]);
     if (t.died[i] == never_died) died.push_back(nullptr); else died.push_back(t.died[i]);
     ord.push_back(t.order[i]);
+    if (t.dead_from(i) == never_died) dead.push_back(nullptr); else dead.push_back(t.dead_from(i));
   }
-  nodes = {{"position", pos}, {"parent", par}, {"radius", rad}, {"born", born}, {"died", died}, {"order", ord}};
+  nodes = {{"position", pos}, {"parent", par}, {"radius", rad}, {"born", born}, {"died", died}, {"order", ord},
+           {"dead", dead}};
   json leaves = json::array();
   for (const leaf& l : t.leaves)
     leaves.push_back({{"position", {l.position.x, l.position.y, l.position.z}},

@@ -42,21 +42,32 @@ TEST(EditorLogic, LsystemTextModeHidesHondaSliders) {
 }
 
 TEST(EditorLogic, OtherGeneratorsShowEverything) {
-  EXPECT_TRUE(hidden_keys(self_organizing_params{}).empty());
   EXPECT_TRUE(hidden_keys(guiding_vectors_params{}).empty());
+}
+
+// The open side's azimuth shows only once the tree leans towards it (Loehle 1986's phototropism).
+TEST(EditorLogic, OpenSideShowsOnlyWithALean) {
+  self_organizing_params so;
+  EXPECT_EQ(hidden_keys(so), (std::vector<std::string>{"open_side"}));
+  so.sky_lean = 0.3f;
+  EXPECT_TRUE(hidden_keys(so).empty());
+  space_colonization_params sc;
+  sc.sky_lean = 0.3f;
+  EXPECT_EQ(hidden_keys(sc).back(), "stub_length");
 }
 
 // Space colonization shows an envelope's own settings only with that envelope.
 TEST(EditorLogic, SpaceColonizationShowsOnlyTheEnvelopesOwnSettings) {
-  // Without forks or leader damage the fork asymmetry, and without self-pruning the stub length, change
-  // nothing and hide too.
+  // Without forks or leader damage the fork asymmetry, without self-pruning the stub length, and
+  // without a lean the open side change nothing and hide too.
   space_colonization_params p;   // an ellipsoid without dents
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "fork_asymmetry",
-                                                      "stub_length"}));
+                                                      "stub_length", "open_side"}));
   p.envelope = envelope_shape::slab;
   p.envelope_dents = 8;
   p.leader_damage = 0.05f;
   p.live_crown = 0.8f;
+  p.sky_lean = 0.3f;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"envelope_mesh"}));
   p.envelope = envelope_shape::mesh;
   EXPECT_EQ(hidden_keys(p), (std::vector<std::string>{"slab_thickness"}));
@@ -75,7 +86,7 @@ TEST(EditorLogic, OwnLeafSettingsShowOnlyWithTheGeneratorsLeaves) {
   const space_colonization_params sc;
   EXPECT_EQ(hidden(sc, true), hidden_keys(sc));
   EXPECT_EQ(hidden(sc, false), (std::vector<std::string>{"slab_thickness", "envelope_mesh", "envelope_dent_depth", "fork_asymmetry",
-                                                         "stub_length", "leaves_min",
+                                                         "stub_length", "open_side", "leaves_min",
                                                          "leaves_max", "leaf_size_min", "leaf_size_max", "spiral_a", "spiral_k",
                                                          "spiral_e", "spiral_rounds"}));
   lsystem_params ls;
@@ -84,7 +95,7 @@ TEST(EditorLogic, OwnLeafSettingsShowOnlyWithTheGeneratorsLeaves) {
   std::vector<std::string> text_hidden = hidden_keys(ls);
   text_hidden.insert(text_hidden.begin() + 11, "turtle_leaf_size");
   EXPECT_EQ(hidden(ls, false), text_hidden);
-  EXPECT_TRUE(hidden(self_organizing_params{}, false).empty());   // it has no leaf rule of its own
+  EXPECT_EQ(hidden(self_organizing_params{}, false), hidden_keys(self_organizing_params{}));   // no leaf rule of its own
 }
 
 TEST(EditorLogic, GuidingVectorScheduleIsOneTable) {

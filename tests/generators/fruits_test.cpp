@@ -70,6 +70,30 @@ TEST(Fruits, TheCountOfTipsBearFruitOfTheirOrderAndCrown) {
   EXPECT_EQ(out[0].node, 21);
 }
 
+// A self-pruned limb's dead stub (generators/history.h) is a tip but bears no fruit: before, the
+// hazel's nuts hung on the bare stubs low on its stems, read as stray leaves under the crown.
+TEST(Fruits, DeadStubsBearNoFruit) {
+  tree_skeleton t = comb();
+  t.dead.assign(t.size(), never_died);
+  for (int k = 1; k <= 5; ++k) t.dead[size_t(2 * k)] = 8;   // the lowest five laterals' ends, dead from step 8
+  fruit_params p;
+  p.count = 100;
+  p.min_order = 1;
+  std::vector<leaf> out;
+  place_fruits(t, p, 7, -10, out);
+  std::set<int32_t> nodes;
+  for (const leaf& l : out) nodes.insert(l.node);
+  EXPECT_EQ(nodes.size(), size_t(5));   // the five upper laterals only
+  for (int32_t i : nodes) EXPECT_GT(t.position[size_t(i)].y, 5.5f);
+  // Before its death a stub was a living tip and bore fruit.
+  t.steps = 7;
+  std::vector<leaf> young;
+  place_fruits(t, p, 7, -10, young);
+  std::set<int32_t> young_nodes;
+  for (const leaf& l : young) young_nodes.insert(l.node);
+  EXPECT_EQ(young_nodes.size(), size_t(7));   // laterals born by step 7
+}
+
 TEST(Fruits, AHigherCountKeepsTheFruitAlreadyPlacedAndZeroPlacesNone) {
   const tree_skeleton t = comb();
   fruit_params p;

@@ -294,3 +294,36 @@ TEST(GrowthHistory, SelfOrganizingLowerLimbsDieAsTheCrownRises) {
   EXPECT_EQ(low_limbs(t, true), 0);
   EXPECT_GT(low_limbs(t, false), 5);
 }
+
+// Self-pruned limbs leave stubs as thick as the limb was when it died, never thicker than the
+// stem that carries them; before, the pipe model made them as thin as twig tips.
+TEST(GrowthHistory, DeadStubsKeepTheGirthOfTheLimbThatDied) {
+  space_colonization_params p = small_crown();
+  p.live_crown = 0.6f;
+  p.stub_length = 0.3f;
+  grow_options o;
+  o.seed = 3;
+  const tree_skeleton t = grow_space_colonization(p, o);
+  ASSERT_EQ(t.dead.size(), t.size());
+  int stubs = 0, thick = 0;
+  for (size_t i = 1; i < t.size(); ++i) {
+    if (t.dead[i] == never_died) continue;
+    const int32_t par = t.parent[size_t(i)];
+    EXPECT_LE(t.radius[i], t.radius[size_t(par)] * 1.0001f) << i;
+    if (t.dead[size_t(par)] != never_died) continue;   // a stub's base, on its living stem
+    ++stubs;
+    thick += t.radius[i] > 2.0f * p.min_width;
+  }
+  ASSERT_GT(stubs, 2);
+  EXPECT_GT(thick, stubs / 2);
+  // The per-step view agrees: at the final step the stubs are as thick as in the final radii, and
+  // before a stub's death it is a live limb with its own pipe radius.
+  const std::vector<float> final_r = radii_at_step(t, t.steps);
+  for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(final_r[i], t.radius[i], 1e-5f + 1e-4f * t.radius[i]) << i;
+  // Nothing changes without dead wood.
+  tree_skeleton live = t;
+  live.dead.clear();
+  std::vector<float> r = live.radius;
+  thicken_stubs(live, live.steps, 2, p.min_width, r);
+  EXPECT_EQ(r, live.radius);
+}

@@ -7,9 +7,11 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "generators/job_pool.h"
+#include "generators/self_organizing.h"
 #include "render/mesh/mesh.h"
 #include "generators/guiding_vectors.h"
 #include "generators/wood.h"
@@ -74,10 +76,12 @@ TEST(JobPool, ParallelMeshIsTheSingleThreadedMeshByteForByte) {
 // from the same stream) and with shedding (pyramids taken away).
 namespace {
 // A shipped preset grown with the pool limited to one thread and with all of it: the same tree.
-void expect_growth_is_the_single_threaded_one(const char* name, size_t min_nodes) {
+// `whole`: without the self-pruning pass, which runs on the finished growth (generators/history.h).
+void expect_growth_is_the_single_threaded_one(const char* name, size_t min_nodes, bool whole = false) {
   SCOPED_TRACE(name);
   preset p;
   ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p).ok);
+  if (auto* so = std::get_if<self_organizing_params>(&p.spec.params); so && whole) so->live_crown = 1;
   const int old = set_job_pool_limit(1);
   const tree_skeleton one = grow(p.spec, grow_options{});
   set_job_pool_limit(old);
@@ -112,7 +116,9 @@ TEST(JobPool, GuidingVectorEdgesBuiltTogetherAreTheOnesBuiltOneByOne) {
 // A step of long cone scans (the bush's fine voxels make large cones) scans them all on the pool
 // first and replays each shoot's choices on the RNG in order: the tree is the single thread's.
 TEST(JobPool, ShadowConesScannedTogetherAreTheSingleThreadedOnes) {
-  expect_growth_is_the_single_threaded_one("species_bush", 3000);
+  // The hazel's growth whole: its self-pruning pass takes most of the stems' side shoots away after
+  // the growth this test is about (a vase of bare stems, about 800 nodes left of 9,400).
+  expect_growth_is_the_single_threaded_one("species_bush", 3000, true);
 }
 
 // Space colonization finds a crown step's new nodes' points on the pool before they take them one

@@ -8,6 +8,8 @@
 #include <set>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "generators/space_colonization.h"
 
 using namespace sylva;
@@ -439,4 +441,39 @@ TEST(SpaceColonization, MaxTurnBoundsEveryApexTurn) {
   EXPECT_EQ(validate_skeleton(held), "");
   EXPECT_GT(held.size(), free.size() / 2);
   EXPECT_LE(largest_continuation_turn(held), 20.05f);
+}
+
+// Pendulous twigs (twig_droop): the finer orders blend more of the downward tropism, so their
+// segments point lower on average, while 0 changes nothing at all.
+TEST(SpaceColonization, TwigDroopHangsTheFinerOrdersOnly) {
+  space_colonization_params p = small_params();
+  p.points = 800;
+  p.tropism = {0, -1, 0};
+  p.tropism_weight = 0.05f;
+  grow_options o;
+  o.seed = 5;
+  const tree_skeleton plain = grow_space_colonization(p, o);
+  // Mean vertical component of the unit segments of orders in [lo, hi], and their count.
+  auto mean_dy = [](const tree_skeleton& t, int lo, int hi, int& n) {
+    double s = 0;
+    n = 0;
+    for (size_t i = 1; i < t.size(); ++i) {
+      if (t.parent[i] < 0 || int(t.order[i]) < lo || int(t.order[i]) > hi) continue;
+      const glm::vec3 d = t.position[i] - t.position[size_t(t.parent[i])];
+      const float l = glm::length(d);
+      if (l > 0) s += double(d.y / l), ++n;
+    }
+    return n ? float(s / n) : 0.0f;
+  };
+  p.twig_droop = 0.5f;
+  const tree_skeleton hanging = grow_space_colonization(p, o);
+  int n0 = 0, n1 = 0;
+  const float fine_plain = mean_dy(plain, 2, 255, n0), fine_hanging = mean_dy(hanging, 2, 255, n1);
+  ASSERT_GT(n0, 50);
+  ASSERT_GT(n1, 50);
+  EXPECT_LT(fine_hanging, fine_plain - 0.05f);
+  // The trunk's straight run and the first segments of the order-0 axis do not feel it.
+  EXPECT_EQ(hanging.position[1], plain.position[1]);
+  p.twig_droop = 0;
+  EXPECT_EQ(grow_space_colonization(p, o).position, plain.position);
 }

@@ -414,6 +414,15 @@ TEST(Export, SkeletonJsonRoundTripsCounts) {
   EXPECT_EQ(doc["nodes"]["parent"][3], h.t.parent[3]);
   EXPECT_TRUE(doc["nodes"]["died"][0].is_null());
   EXPECT_EQ(doc["nodes"]["died"][15], 4);
+  // No dead wood: every node's dead is null.
+  ASSERT_EQ(doc["nodes"]["dead"].size(), h.t.size());
+  EXPECT_TRUE(doc["nodes"]["dead"][15].is_null());
+  // A self-pruned limb's stub (generators/history.h) says from which step it is dead wood.
+  h.t.dead.assign(h.t.size(), never_died);
+  h.t.dead[7] = 3;
+  const auto stub = nlohmann::json::parse(skeleton_json(h.t, {"lsystem", 7}));
+  EXPECT_EQ(stub["nodes"]["dead"][7], 3);
+  EXPECT_TRUE(stub["nodes"]["dead"][6].is_null());
   // At step 2: the root and 1 + 2 internodes.
   EXPECT_EQ(nlohmann::json::parse(skeleton_json(h.t, {"lsystem", 7}, 2))["nodes"]["radius"].size(), size_t(4));
 }
