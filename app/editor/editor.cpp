@@ -63,7 +63,7 @@ void handle_keys(editor_state& e) {
   if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
   if (io.WantTextInput) return;
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.open_picker = true;
+  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.ask(dialog::open_preset);
   if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
   // Undo and redo take one step per press: a held Ctrl+Z does not run through the history (neither
   // the system's key repeats nor ImGui's own, which fires when a slow frame outlasts its delay).

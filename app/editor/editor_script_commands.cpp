@@ -191,7 +191,7 @@ const script_command script_commands[] = {
     }},
     {"menu_export_as", [](script_call& call) -> std::string {   // File > Export as...: the file browser opens
       editor_state& e = call.e; script_state& sc = call.sc;
-      e.browse_export = true;
+      e.ask(dialog::export_as);
       sc.frames_left = 3;
       return "";
     }},
