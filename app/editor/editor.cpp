@@ -15,7 +15,6 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <imgui_internal.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
@@ -31,62 +30,6 @@ namespace sylva {
 namespace {
 
 using namespace ed;
-
-// Esc closes what is on top: an open menu or popup (a modal dialog answers Esc itself, as Cancel),
-// else the library, the F1 list, the message log or the export dialog (unless it is writing).
-void close_on_escape(editor_state& e) {
-  const ImGuiContext& g = *GImGui;
-  if (!g.OpenPopupStack.empty()) {
-    const ImGuiWindow* top = g.OpenPopupStack.back().Window;
-    if (!top || !(top->Flags & ImGuiWindowFlags_Modal)) ImGui::ClosePopupsExceptModals();
-  } else if (e.browser.open) {
-    e.browser.open = false;
-  } else if (e.show_shortcuts) {
-    e.show_shortcuts = false;
-  } else if (e.show_log) {
-    e.show_log = false;
-  } else if (e.exporter.open && !e.exporter.running) {
-    e.exporter.open = false;
-  }
-}
-
-void handle_keys(editor_state& e) {
-  ImGuiIO& io = ImGui::GetIO();
-  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) {
-    if (long_growth(e) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) cancel_request(e);
-    else close_on_escape(e);
-  }
-  const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
-  // The windows' keys work while a text field has the keyboard too (the panel's or the library's
-  // search box): they type nothing there, and a newcomer who clicked into one still gets them.
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_L)) e.browser.open = !e.browser.open;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F1)) e.show_shortcuts = !e.show_shortcuts;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F12)) e.screenshot_requested = true;
-  if (io.WantTextInput) return;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S)) save_command(e);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O)) e.ask(dialog::open_preset);
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q)) request(e, editor_state::then::quit);
-  // Undo and redo take one step per press: a held Ctrl+Z does not run through the history (neither
-  // the system's key repeats nor ImGui's own, which fires when a slow frame outlasts its delay).
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false) && !e.input.is_repeat(GLFW_KEY_Z)) {
-    if (shift) apply_undo(e, e.cur().redo, e.cur().undo);
-    else apply_undo(e, e.cur().undo, e.cur().redo);
-  }
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false) && !e.input.is_repeat(GLFW_KEY_Y)) apply_undo(e, e.cur().redo, e.cur().undo);
-  // Front, right side and top views (Blender's numpad keys; Ctrl: the opposite side).
-  const struct { int kp, row; view_axis axis, opposite; } views[] = {{GLFW_KEY_KP_1, GLFW_KEY_1, view_axis::front, view_axis::back},
-                                                                     {GLFW_KEY_KP_3, GLFW_KEY_3, view_axis::right, view_axis::left},
-                                                                     {GLFW_KEY_KP_7, GLFW_KEY_7, view_axis::top, view_axis::bottom}};
-  for (const auto& v : views)
-    if (ImGui::IsKeyPressed(v.kp) || ImGui::IsKeyPressed(v.row)) snap_view(e.camera, ctrl ? v.opposite : v.axis);
-  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F)) e.frame_now = true;
-  if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_SPACE)) e.playing = !e.playing;
-  const int steps = e.cur().shown && e.cur().shown->skeleton ? e.cur().shown->skeleton->steps : 0;
-  if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) e.step = 0;
-  if (ImGui::IsKeyPressed(GLFW_KEY_END)) e.step = steps;
-  if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) e.step = std::max(0, e.step - 1);
-  if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) e.step = std::min(steps, e.step + 1);
-}
 
 void handle_mouse(editor_state& e, const view_rect& view) {
   const int viewport_height = int(view.h);

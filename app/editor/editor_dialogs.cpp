@@ -50,7 +50,7 @@ std::string screenshot_name() {
 void draw_menu(editor_state& e) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("Open preset...", "Ctrl+O")) e.ask(dialog::open_preset);
+    if (ImGui::MenuItem("Open preset...", shortcut_keys(shortcut::open))) e.ask(dialog::open_preset);
     const std::vector<std::string> recent = recent_presets(e.recent);
     if (ImGui::BeginMenu("Open recent", !recent.empty())) {
       for (const std::string& p : recent)
@@ -58,27 +58,27 @@ void draw_menu(editor_state& e) {
         else if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.c_str());
       ImGui::EndMenu();
     }
-    ImGui::MenuItem("Preset library", "Ctrl+L", &e.browser.open);
-    if (ImGui::MenuItem("Save", "Ctrl+S")) save_command(e);
+    ImGui::MenuItem("Preset library", shortcut_keys(shortcut::library), &e.browser.open);
+    if (ImGui::MenuItem("Save", shortcut_keys(shortcut::save))) save_command(e);
     if (ImGui::MenuItem("Save as...")) e.ask(dialog::save_as);
     if (ImGui::MenuItem("Export...", nullptr, e.exporter.open)) {
       if (e.exporter.open) e.exporter.open = false;
       else open_export_dialog(e);
     }
     if (ImGui::MenuItem("Export as...")) e.ask(dialog::export_as);
-    if (ImGui::MenuItem("Screenshot", "F12")) e.screenshot_requested = true;
+    if (ImGui::MenuItem("Screenshot", shortcut_keys(shortcut::screenshot))) e.screenshot_requested = true;
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("The 3D view, without menus, to %s/screenshots/", e.home.c_str());
     if (ImGui::MenuItem("Screenshot as...")) e.ask(dialog::screenshot_as);
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) request(e, editor_state::then::quit);
+    if (ImGui::MenuItem("Quit", shortcut_keys(shortcut::quit))) request(e, editor_state::then::quit);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
     // Each entry says what it undoes ("Undo Influence radius").
     const std::string undo_label = "Undo " + (e.cur().undo.empty() ? std::string() : change_name(e.cur().undo.back(), e.cur().doc)) + "##undo";
     const std::string redo_label = "Redo " + (e.cur().redo.empty() ? std::string() : change_name(e.cur().doc, e.cur().redo.back())) + "##redo";
-    if (ImGui::MenuItem(undo_label.c_str(), "Ctrl+Z", false, !e.cur().undo.empty())) apply_undo(e, e.cur().undo, e.cur().redo);
-    if (ImGui::MenuItem(redo_label.c_str(), "Ctrl+Shift+Z", false, !e.cur().redo.empty())) apply_undo(e, e.cur().redo, e.cur().undo);
+    if (ImGui::MenuItem(undo_label.c_str(), shortcut_keys(shortcut::undo), false, !e.cur().undo.empty())) apply_undo(e, e.cur().undo, e.cur().redo);
+    if (ImGui::MenuItem(redo_label.c_str(), shortcut_keys(shortcut::redo), false, !e.cur().redo.empty())) apply_undo(e, e.cur().redo, e.cur().undo);
     if (!e.cur().undo.empty() && ImGui::BeginMenu("Undo history")) {   // newest first; a click goes back to it
       int go_back = -1;
       for (size_t k = e.cur().undo.size(); k-- > 0 && e.cur().undo.size() - k <= 20;) {
@@ -100,11 +100,11 @@ void draw_menu(editor_state& e) {
     ImGui::MenuItem("Parameter panel", nullptr, &e.show_panel);
     ImGui::MenuItem("Timeline", nullptr, &e.show_timeline);
     ImGui::MenuItem("Advanced parameters", nullptr, &e.show_advanced);
-    if (ImGui::MenuItem("Frame tree", "F")) e.frame_now = true;
+    if (ImGui::MenuItem("Frame tree", shortcut_keys(shortcut::frame))) e.frame_now = true;
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
-    ImGui::MenuItem("Keyboard and mouse", "F1", &e.show_shortcuts);
+    ImGui::MenuItem("Keyboard and mouse", shortcut_keys(shortcut::help), &e.show_shortcuts);
     ImGui::MenuItem("Messages", nullptr, &e.show_log);
     if (ImGui::MenuItem("About Sylva")) e.ask(dialog::about);
     ImGui::EndMenu();
@@ -155,36 +155,6 @@ void draw_output_extras(editor_state& e) {
   if (ImGui::Button("Export as...")) e.ask(dialog::export_as);
   ImGui::SameLine();
   if (ImGui::Button("Screenshot (F12)")) e.screenshot_requested = true;
-}
-
-void draw_shortcuts(editor_state& e) {
-  if (!e.show_shortcuts) return;
-  ImGui::SetNextWindowSize(ImVec2(560 * ui_scale, 0), ImGuiCond_Appearing);
-  if (ImGui::Begin("Keyboard and mouse", &e.show_shortcuts, ImGuiWindowFlags_AlwaysAutoResize)) {
-    static const char* rows[][2] = {
-        {"Left-drag", "orbit"}, {"Right- or middle-drag", "pan"}, {"Wheel", "zoom"}, {"F", "frame the tree"},
-        {"Ctrl+Z", "undo"}, {"Ctrl+Shift+Z, Ctrl+Y", "redo"}, {"Ctrl+S", "save (Save as for shipped presets)"},
-        {"Ctrl+O", "open a preset"}, {"Ctrl+L", "preset library"}, {"Ctrl+Q", "quit (asks about unsaved changes)"},
-        {"Space", "play / pause the growth"}, {"Home, End", "first / last step"}, {"Left, Right", "one step back / forward"},
-        {"Esc", "cancel a long regrow; else close the open menu, dialog, library or this list"}, {"F12", "screenshot of the 3D view"}, {"F1", "this list"},
-        {"Numpad 1, 3, 7 (or 1, 3, 7)", "front, right, top view (Ctrl: the opposite side)"},
-        {"Click the axis gizmo", "view along that axis"},
-        {"Drag a slider", "change it; Shift: fine steps; Ctrl+click: type a value"},
-        {"Right-click a slider", "reset it to its default"}};
-    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
-      for (const auto& r : rows) {
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(r[0]);
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(r[1]);
-      }
-      ImGui::EndTable();
-    }
-    ImGui::Separator();
-    ImGui::TextWrapped("README.md explains more: \"The editor\" (panels, timeline, presets), \"The four "
-                       "generators\" (the papers behind the parameters), \"Command line\" and \"Rendering at scale\".");
-  }
-  ImGui::End();
 }
 
 void draw_message_log(editor_state& e) {

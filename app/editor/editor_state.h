@@ -32,6 +32,11 @@ struct GLFWwindow;
 
 namespace sylva::ed {
 
+// The editor's keys and mouse gestures, in the order the F1 list shows them: one table
+// (app/editor/editor_shortcuts.cpp) gives the list, the menus' key labels and the keys read.
+enum class shortcut { orbit, pan, zoom, frame, undo, redo, save, open, library, quit, play, first_last, step, escape,
+                      screenshot, help, views, gizmo, slider_drag, slider_reset, count };
+
 // The editor's dialogs: the file browser's four uses, then the modal prompts. Each is asked for
 // (editor_state::ask) and opened on the next frame by draw_dialogs (editor_dialogs.cpp).
 enum class dialog { open_preset, save_as, screenshot_as, export_as, unsaved_changes, large_tree, large_mesh, drop_b,
@@ -219,7 +224,9 @@ void advance_playback(editor_state& e, double dt);
 std::string screenshot_name();
 void draw_menu(editor_state& e);
 void draw_dialogs(editor_state& e);
-void draw_shortcuts(editor_state& e);
+void draw_shortcuts(editor_state& e);   // the F1 list (editor_shortcuts.cpp)
+void handle_keys(editor_state& e);      // this frame's keys, as the shortcut table says
+const char* shortcut_keys(shortcut s);  // its keys as a menu shows them: "Ctrl+O"
 void open_export_dialog(editor_state& e);   // File > Export...: in the user's folder, named after the tree
 void draw_node_budget(editor_state& e);     // the node budget: typed (Enter applies) or picked
 void draw_output_extras(editor_state& e);   // the Output tab: node budget and export
