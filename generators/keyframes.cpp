@@ -164,18 +164,9 @@ int inactive_edits(const tree_spec& spec) {
 }
 
 const char* keyframe_step_meaning(const tree_spec& spec) {
-  switch (spec.params.index()) {
-    case 0: return "a step is one year of growth: a keyframe at step k changes the buds' light, resource and shoots from year k on";
-    case 1: return "a step is one iteration of the algorithm (trunk internodes first): a keyframe at step k changes the nodes grown from iteration k on";
-    case 2: return "a step is one generation of endpoints and shortest paths: a keyframe at step k changes the paths added from generation k on";
-    default: {
-      const auto& l = std::get<lsystem_params>(spec.params);
-      if (l.mode == lsystem_mode::text)
-        return "not available for text L-systems: the turtle reads the string after the last derivation";
-      return "a step is one derivation: a keyframe at step k changes the productions applied in derivation k (minimum "
-             "length now; angles, length and width ratios of the daughters, which appear in step k+1)";
-    }
-  }
+  if (const auto* l = std::get_if<lsystem_params>(&spec.params); l && l->mode == lsystem_mode::text)
+    return "not available for text L-systems: the turtle reads the string after the last derivation";
+  return generator_table[spec.params.index()].step_meaning;
 }
 
 std::string keyframe_refusal(const tree_spec& spec, std::string_view key) {
@@ -193,7 +184,7 @@ std::string keyframe_refusal(const tree_spec& spec, std::string_view key) {
   if (kind == 0)
     return name + " is not a parameter of " + generator_name(spec) + " (see `sylva params`)";
   if (kind == 2) {
-    if (spec.params.index() == 2)
+    if (std::holds_alternative<guiding_vectors_params>(spec.params))
       return name + " is already a per-step schedule; edit its entry for the step instead";
     return name + " is a text or a list, which cannot be keyed";
   }

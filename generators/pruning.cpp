@@ -119,19 +119,9 @@ std::string add_cut(tree_spec& spec, const prune_cut& cut) {
 }
 
 const char* cut_response(const tree_spec& spec) {
-  switch (spec.params.index()) {
-    case 0: return "the cut branch's shadow is removed and its resource flows to the rest, so buds near the cut break "
-                   "(Palubicki et al. 2009, pruning)";
-    case 1: return "the attraction points the cut branch had removed come back and other branches grow to them: many "
-                   "short new shoots, each tipped with leaves, so even a small cut can raise the leaf count well above "
-                   "the uncut tree's (the oak: +84% leaves, +15% nodes for one order-3 branch at step 45)";
-    case 2: return "the cut branch's graph vertices are free again, so later paths and endpoints can take them";
-    default: {
-      const auto& l = std::get<lsystem_params>(spec.params);
-      if (l.mode == lsystem_mode::text) return "not available for text L-systems";
-      return "the cut branch's apices stop: nothing regrows from a cut in Honda's model";
-    }
-  }
+  if (const auto* l = std::get_if<lsystem_params>(&spec.params); l && l->mode == lsystem_mode::text)
+    return "not available for text L-systems";
+  return generator_table[spec.params.index()].cut_response;
 }
 
 }  // namespace sylva

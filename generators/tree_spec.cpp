@@ -15,13 +15,20 @@ int generator_index(const std::string& name) {
 
 const char* generator_name(const tree_spec& s) { return generator_names[s.params.index()]; }
 
+namespace {
+
+// Generator `generator`'s default params (the last generator's for any other number).
+template <size_t... I>
+generator_params default_params_of(int generator, std::index_sequence<I...>) {
+  generator_params out = std::variant_alternative_t<sizeof...(I) - 1, generator_params>{};
+  ((generator == int(I) ? (out = std::variant_alternative_t<I, generator_params>{}, 0) : 0), ...);
+  return out;
+}
+
+}  // namespace
+
 generator_params default_params(int generator) {
-  switch (generator) {
-    case 0: return self_organizing_params{};
-    case 1: return space_colonization_params{};
-    case 2: return guiding_vectors_params{};
-    default: return lsystem_params{};
-  }
+  return default_params_of(generator, std::make_index_sequence<std::variant_size_v<generator_params>>{});
 }
 
 int default_steps(const generator_params& p) {
@@ -66,12 +73,7 @@ tree_skeleton grow(const tree_spec& spec, const grow_options& o, grow_report* re
   const int wanted = o.steps >= 0 ? o.steps : default_steps(spec.params);
   if (report && !report->error && !report->cancelled && report->message.empty() && wanted > 0 &&
       t.size() <= size_t(std::max(1, t.tree_count))) {
-    static const char* const why[] = {
-        "no bud received enough resource to grow (check alpha, the upkeep bm and be, and the shadow settings)",
-        "no attraction point came within reach of the trunk (check the envelope, its offset and d_i)",
-        "no step found an endpoint to grow to (check the endpoints per step and the endpoint volume)",
-        "the axiom and productions drew no internode"};
-    report->message = std::string("nothing grew beyond the seedling: ") + why[spec.params.index()];
+    report->message = std::string("nothing grew beyond the seedling: ") + generator_table[spec.params.index()].nothing_grew;
   }
   // Keyframes and cuts past the last step are legal (generators/keyframes.h) but do nothing: say so.
   if (report && !report->error && !report->cancelled && report->message.empty())

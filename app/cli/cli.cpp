@@ -223,6 +223,133 @@ std::string parse_seed_range(const std::string& s, uint64_t& a, uint64_t& b) {
   return "";
 }
 
+// The batch's variants: the product of the seed range and every --set's values, each variant's
+// values applied once before anything is written (a keyframe may be past the last step of a later
+// variant only), so that a sweep is refused whole, never half-written. "" or the usage error.
+std::string expand_variants(const export_args& a, const preset& base, std::vector<variant>& variants, bool& swept) {
+  std::vector<uint64_t> seeds;
+  if (!a.seeds.empty()) {
+    uint64_t s0, s1;
+    if (std::string e = parse_seed_range(a.seeds, s0, s1); !e.empty()) return e;
+    for (uint64_t s = s0; s <= s1; ++s) seeds.push_back(s);
+  } else {
+    seeds.push_back(a.seed_opt->count() ? a.seed : base.spec.seed);
+  }
+  for (uint64_t s : seeds) variants.push_back({s, {}});
+  swept = false;
+  std::vector<std::string> keyed;   // key@step of each keyframe --set: twice is a contradiction
+  for (const std::string& set : a.sets) {
+    if (const size_t at = set.find('@'), eq = set.find('='); at != std::string::npos && at < eq) {
+      std::string key_at = set.substr(0, eq);
+      if (key_at.rfind("params.", 0) == 0) key_at.erase(0, 7);
+      if (std::find(keyed.begin(), keyed.end(), key_at) != keyed.end())
+        return "--set " + key_at + " is given twice: two values for one key at one step contradict each other";
+      keyed.push_back(key_at);
+    }
+    std::vector<std::string> values;
+    if (std::string e = expand_param_sweep(base, set, values); !e.empty()) return e;
+    swept |= values.size() > 1;
+    std::vector<variant> next;
+    for (const variant& v : variants)
+      for (const std::string& value : values) {
+        next.push_back(v);
+        next.back().sets.push_back(value);
+      }
+    variants = std::move(next);
+    if (variants.size() > max_batch_variants)
+      return std::to_string(variants.size()) + " variants; a batch writes at most " + std::to_string(max_batch_variants) +
+             " files (the seeds times every --set sweep's count)";
+  }
+  std::set<std::vector<std::string>> checked;
+  for (const variant& v : variants) {
+    if (!checked.insert(v.sets).second) continue;   // the same values under another seed
+    preset p = base;
+    for (const std::string& set : v.sets)
+      if (std::string e = set_preset_param(p, set); !e.empty()) return e;
+  }
+  return "";
+}
+
+// One file of the export: p grown and written to path, or rendered (.png); `what` names the
+// variant. Returns the exit code on failure, else -1 with the file's counts in `counts` (a mesh
+// file's; a .png's are left alone).
+int export_one(const export_args& a, const export_format* format, const std::string& ext, preset& p, const std::string& path,
+               const std::string& what, manifest_entry& counts) {
+  const char* cmd = "export";
+  if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0))   // finite already: add_float_option
+    return usage_error(cmd, "--wind needs a loop length (glTF) or a moment (.png) in seconds > 0");
+  const bool wind = a.wind_opt && a.wind_opt->count();
+  if (wind) {
+    p.render.wind.enabled = true;
+    if (std::string msg = clamp_wind(p.render.wind); !msg.empty()) warn(path, msg);
+  }
+  if (format->render) {
+    headless_stats stats;
+    stats.wind_time = wind ? a.wind : 0.0f;
+    const auto t0 = clock_type::now();
+    if (std::string e = render_preset_png(p, a.step, path, a.width, a.height, &stats); !e.empty())
+      return fail(cmd, path + ": " + e);
+    std::printf("%s: %zu triangles, %zu leaves, %dx%d; grow %.1f ms, mesh %.1f ms, total %.1f ms (%s)\n",
+                path.c_str(), stats.triangles, stats.leaves, a.width, a.height, stats.grow_ms, stats.mesh_ms,
+                ms_since(t0), what.c_str());
+    return -1;
+  }
+  auto t0 = clock_type::now();
+  // A mesh over the mesh budget is refused before meshing, on a trial's estimate before growth
+  // when it can be (render/io/mesh_bound.h); the skeleton JSON is never meshed.
+  budgeted_growth g;
+  if (format->mesh) g = grow_for_mesh(p.spec, p.mesh, format);
+  else g.tree = grow(p.spec, grow_options{}, &g.report);
+  const tree_skeleton& t = g.tree;
+  const grow_report& report = g.report;
+  const double grow_ms = ms_since(t0);
+  if (report.error) return fail(cmd, path + ": growth failed: " + report.message);
+  if (!g.refusal.empty()) return fail(cmd, path + ": " + g.refusal);
+  if (!report.message.empty()) warn(path, report.message);
+  if (a.step > t.steps) warn(path, "--step " + std::to_string(a.step) + " is past the last step (" +
+                                       std::to_string(t.steps) + "); exporting the final tree");
+  t0 = clock_type::now();
+  const tree_mesh m = format->mesh ? mesh_tree(t, p.mesh, p.spec.seed) : tree_mesh{};
+  const double mesh_ms = ms_since(t0);
+
+  export_options o;
+  o.step = a.step > t.steps ? -1 : a.step;
+  const bool gltf = ext == ".glb" || ext == ".gltf";
+  // Profiles (docs/design/03-foliage.md): hero = blade leaves, instanced where glTF can carry
+  // them; hero-baked = blade leaves baked into the mesh; game = the LOD chain with its cards.
+  o.gltf_instancing = a.instancing;
+  int profile = 0;   // --profile is checked against export_profile_names
+  while (export_profile_names[profile + 1] && a.profile != export_profile_names[profile]) ++profile;
+  apply_export_profile(o, export_profile(profile), gltf);
+  o.compact = a.compact && (ext == ".glb" || ext == ".gltf");
+  if (a.compact && !o.compact) warn(path, "--compact applies to .glb and .gltf; ignored");
+  o.growth_animation = a.animation;
+  o.seconds_per_step = a.seconds_per_step;
+  o.mesh = p.mesh;
+  apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
+  lod_export_data lods;   // --lods (app/cli/cli_lods.h): LOD1-3 and the impostor
+  if (a.lods || export_profile(profile) == export_profile::game)
+    for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
+  if (wind && format->wind && !format->render) o.wind_seconds = a.wind;
+  else if (wind && !format->wind) warn(path, "--wind applies to " + export_format_list(&export_format::wind) + "; ignored");
+  t0 = clock_type::now();
+  const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
+  const double export_ms = ms_since(t0);
+  if (!r.error.empty()) return fail(cmd, r.error);
+  // Warnings (a user texture that could not be used) do not fail the export: it was written.
+  for (size_t at = 0; at < r.warning.size();) {
+    const size_t end = std::min(r.warning.find('\n', at), r.warning.size());
+    warn(path, r.warning.substr(at, end - at));
+    at = end + 1;
+  }
+  std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
+              path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
+              double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
+  counts.nodes = t.size(), counts.leaves = m.leaves.size(), counts.triangles = m.triangles() + 2 * m.leaves.size();
+  counts.bytes = r.bytes;
+  return -1;
+}
+
 int run_export(const export_args& a) {
   const char* cmd = "export";
   std::string ext = fs::path(a.output).extension().string();
@@ -239,51 +366,10 @@ int run_export(const export_args& a) {
   if (!loaded.ok) return fail(cmd, loaded.error);
   for (const std::string& w : loaded.warnings) warn(a.preset_path, w);
 
-  // Variants: the product of the seed range and every --set's values.
-  std::vector<uint64_t> seeds;
-  if (!a.seeds.empty()) {
-    uint64_t s0, s1;
-    if (std::string e = parse_seed_range(a.seeds, s0, s1); !e.empty()) return usage_error(cmd, e);
-    for (uint64_t s = s0; s <= s1; ++s) seeds.push_back(s);
-  } else {
-    seeds.push_back(a.seed_opt->count() ? a.seed : base.spec.seed);
-  }
   std::vector<variant> variants;
-  for (uint64_t s : seeds) variants.push_back({s, {}});
   bool swept = false;
-  std::vector<std::string> keyed;   // key@step of each keyframe --set: twice is a contradiction
-  for (const std::string& set : a.sets) {
-    if (const size_t at = set.find('@'), eq = set.find('='); at != std::string::npos && at < eq) {
-      std::string key_at = set.substr(0, eq);
-      if (key_at.rfind("params.", 0) == 0) key_at.erase(0, 7);
-      if (std::find(keyed.begin(), keyed.end(), key_at) != keyed.end())
-        return usage_error(cmd, "--set " + key_at + " is given twice: two values for one key at one step contradict each other");
-      keyed.push_back(key_at);
-    }
-    std::vector<std::string> values;
-    if (std::string e = expand_param_sweep(base, set, values); !e.empty()) return usage_error(cmd, e);
-    swept |= values.size() > 1;
-    std::vector<variant> next;
-    for (const variant& v : variants)
-      for (const std::string& value : values) {
-        next.push_back(v);
-        next.back().sets.push_back(value);
-      }
-    variants = std::move(next);
-    if (variants.size() > max_batch_variants)
-      return usage_error(cmd, std::to_string(variants.size()) + " variants; a batch writes at most " +
-                                  std::to_string(max_batch_variants) + " files (the seeds times every --set sweep's count)");
-  }
+  if (std::string e = expand_variants(a, base, variants, swept); !e.empty()) return usage_error(cmd, e);
   const bool batch = variants.size() > 1;
-  // Every variant's values are applied once before anything is written (a keyframe may be past
-  // the last step of a later variant only): a sweep is refused whole, never half-written.
-  std::set<std::vector<std::string>> checked;
-  for (const variant& v : variants) {
-    if (!checked.insert(v.sets).second) continue;   // the same values under another seed
-    preset p = base;
-    for (const std::string& set : v.sets)
-      if (std::string e = set_preset_param(p, set); !e.empty()) return usage_error(cmd, e);
-  }
   // --shard I/N: this job's share of the batch; the manifest records every file written and lets
   // a rerun skip those still complete (app/cli/cli_batch.h).
   int shard_index = 1, shard_count = 1;
@@ -326,79 +412,10 @@ int run_export(const export_args& a) {
     }
     std::string what = "seed " + std::to_string(v.seed);
     for (const std::string& set : v.sets) what += ", " + set;
-
-    if (a.wind_opt && a.wind_opt->count() && !(a.wind > 0))   // finite already: add_float_option
-      return usage_error(cmd, "--wind needs a loop length (glTF) or a moment (.png) in seconds > 0");
-    const bool wind = a.wind_opt && a.wind_opt->count();
-    if (wind) {
-      p.render.wind.enabled = true;
-      if (std::string msg = clamp_wind(p.render.wind); !msg.empty()) warn(path, msg);
-    }
-    if (format->render) {
-      headless_stats stats;
-      stats.wind_time = wind ? a.wind : 0.0f;
-      const auto t0 = clock_type::now();
-      if (std::string e = render_preset_png(p, a.step, path, a.width, a.height, &stats); !e.empty())
-        return fail(cmd, path + ": " + e);
-      std::printf("%s: %zu triangles, %zu leaves, %dx%d; grow %.1f ms, mesh %.1f ms, total %.1f ms (%s)\n",
-                  path.c_str(), stats.triangles, stats.leaves, a.width, a.height, stats.grow_ms, stats.mesh_ms,
-                  ms_since(t0), what.c_str());
-      continue;
-    }
-    auto t0 = clock_type::now();
-    // A mesh over the mesh budget is refused before meshing, on a trial's estimate before growth
-    // when it can be (render/io/mesh_bound.h); the skeleton JSON is never meshed.
-    budgeted_growth g;
-    if (format->mesh) g = grow_for_mesh(p.spec, p.mesh, format);
-    else g.tree = grow(p.spec, grow_options{}, &g.report);
-    const tree_skeleton& t = g.tree;
-    const grow_report& report = g.report;
-    const double grow_ms = ms_since(t0);
-    if (report.error) return fail(cmd, path + ": growth failed: " + report.message);
-    if (!g.refusal.empty()) return fail(cmd, path + ": " + g.refusal);
-    if (!report.message.empty()) warn(path, report.message);
-    if (a.step > t.steps) warn(path, "--step " + std::to_string(a.step) + " is past the last step (" +
-                                         std::to_string(t.steps) + "); exporting the final tree");
-    t0 = clock_type::now();
-    const tree_mesh m = format->mesh ? mesh_tree(t, p.mesh, p.spec.seed) : tree_mesh{};
-    const double mesh_ms = ms_since(t0);
-
-    export_options o;
-    o.step = a.step > t.steps ? -1 : a.step;
-    const bool gltf = ext == ".glb" || ext == ".gltf";
-    // Profiles (docs/design/03-foliage.md): hero = blade leaves, instanced where glTF can carry
-    // them; hero-baked = blade leaves baked into the mesh; game = the LOD chain with its cards.
-    o.gltf_instancing = a.instancing;
-    int profile = 0;   // --profile is checked against export_profile_names
-    while (export_profile_names[profile + 1] && a.profile != export_profile_names[profile]) ++profile;
-    apply_export_profile(o, export_profile(profile), gltf);
-    o.compact = a.compact && (ext == ".glb" || ext == ".gltf");
-    if (a.compact && !o.compact) warn(path, "--compact applies to .glb and .gltf; ignored");
-    o.growth_animation = a.animation;
-    o.seconds_per_step = a.seconds_per_step;
-    o.mesh = p.mesh;
-    apply_render_params(o, p.render);  // bark archetype, tints, alpha cutoff, the user's textures
-    lod_export_data lods;   // --lods (app/cli/cli_lods.h): LOD1-3 and the impostor
-    if (a.lods || export_profile(profile) == export_profile::game)
-      for (const std::string& w : prepare_lod_export(t, m, p, ext == ".glb" || ext == ".gltf", o, lods)) warn(path, w);
-    if (wind && format->wind && !format->render) o.wind_seconds = a.wind;
-    else if (wind && !format->wind) warn(path, "--wind applies to " + export_format_list(&export_format::wind) + "; ignored");
-    t0 = clock_type::now();
-    const export_result r = export_tree(t, m, export_info{generator_name(p.spec), p.spec.seed}, path, o);
-    const double export_ms = ms_since(t0);
-    if (!r.error.empty()) return fail(cmd, r.error);
-    // Warnings (a user texture that could not be used) do not fail the export: it was written.
-    for (size_t at = 0; at < r.warning.size();) {
-      const size_t end = std::min(r.warning.find('\n', at), r.warning.size());
-      warn(path, r.warning.substr(at, end - at));
-      at = end + 1;
-    }
-    std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
-                path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
-                double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
-    if (manifest) {   // rewritten (atomically, synced) at most once a second: a killed job redoes only the last second's files
-      manifest_entry e{i + 1, v.seed, fs::path(path).filename().string(), t.size(), m.leaves.size(),
-                       m.triangles() + 2 * m.leaves.size(), r.bytes, sha256_file(path)};
+    manifest_entry e{i + 1, v.seed, fs::path(path).filename().string()};
+    if (const int code = export_one(a, format, ext, p, path, what, e); code >= 0) return code;
+    if (manifest && !format->render) {   // rewritten (atomically, synced) at most once a second: a killed job redoes only the last second's files
+      e.sha256 = sha256_file(path);
       if (e.sha256.empty()) return fail(cmd, "cannot read back " + path + " to hash it");
       written.push_back(e);
       if (ms_since(manifest_saved) > 1000.0) {

@@ -72,7 +72,6 @@ struct ab_state {
   // Split view: the left part of A is kept here while B is drawn over the whole view.
   unsigned keep_fbo = 0, keep_color = 0;
   int keep_w = 0, keep_h = 0;
-  bool ask_drop = false;            // Drop B with edits in B: the prompt asks first
   bool drop_confirmed = false;      // the prompt's "Drop B": drop without asking again
   // The labels as drawn last frame over each slot's part, and whether both fit their parts.
   std::string labels_shown[2];

@@ -184,7 +184,7 @@ void keep_unrestored(editor_state& e, int slot, const std::string& file, const s
     m += "It could not be moved aside, so it stays where it is and this session does not autosave over it.";
   }
   e.unrestored.push_back(m);
-  e.open_unrestored = true;
+  e.ask(dialog::not_restored);
   set_status(e, m, true);   // also on stderr
 }
 
@@ -207,7 +207,7 @@ void find_recovery(editor_state& e) {
       continue;
     }
     (slot == 0 ? e.recovered_a : e.recovered_b) = true;
-    e.open_recovery = true;
+    e.ask(dialog::restore);
   }
 }
 
@@ -251,7 +251,7 @@ bool save_next_slot(editor_state& e) {
   if (e.ab.has_b && unsaved.front() != e.ab.selected) select_slot(e, unsaved.front());
   if (e.cur().path.empty() || is_installed_preset(e.cur().path)) {
     e.continue_after_save = true;
-    e.open_save_as = true;
+    e.ask(dialog::save_as);
     return false;
   }
   if (!save_to(e, e.cur().path)) {
@@ -291,12 +291,12 @@ void request(editor_state& e, editor_state::then what, const std::string& path) 
   e.pending_path = path;
   e.save_all = false;
   if (what == editor_state::then::quit ? unsaved_slots(e).empty() : !modified(e)) return perform_pending(e);
-  e.open_confirm = true;
+  e.ask(dialog::unsaved_changes);
 }
 
 // Save: to the document's own file, or Save as when it has none or it is a shipped preset.
 void save_command(editor_state& e) {
-  if (e.cur().path.empty() || is_installed_preset(e.cur().path)) e.open_save_as = true;
+  if (e.cur().path.empty() || is_installed_preset(e.cur().path)) e.ask(dialog::save_as);
   else save_to(e, e.cur().path);
 }
 

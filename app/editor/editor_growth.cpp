@@ -110,14 +110,14 @@ void take_new_tree(editor_state& e) {
   if (r->over_budget) {
     if (!newest) return;
     e.budget_answer = r;
-    e.open_budget_prompt = true;
+    e.ask(dialog::large_tree);
     s.growth = slot_growth::asking;
     s.growth_text = "over the node budget: grow it anyway?";
     return;
   }
   if (r->over_mesh_budget && newest) {   // shown as a failure that keeps the tree; the prompt offers a fit
     e.mesh_answer = r;
-    e.open_mesh_prompt = true;
+    e.ask(dialog::large_mesh);
   }
   if (newest) {
     s.growth = r->report.error ? slot_growth::failed : slot_growth::done;

@@ -4,33 +4,61 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <iterator>
 #include <sstream>
 
 namespace sylva {
 
-const char* panel_tab_label(panel_tab t) {
-  static const char* labels[] = {"Tree", "Leaves", "Wood and bark", "Scene", "Output", "Pruning"};
-  return labels[std::min(int(t), int(panel_tab::count) - 1)];
-}
+namespace {
+
+constexpr const char* panel_tab_labels[] = {"Tree", "Leaves", "Wood and bark", "Scene", "Output", "Pruning"};
+static_assert(std::size(panel_tab_labels) == size_t(panel_tab::count), "one label per panel_tab");
+
+// The shared parameters' groups: each one's tab, the struct that declares it, and whether its tab
+// shows it after the tab's own controls. ("Render" is the render struct's section name, for any
+// parameter before its first group.)
+constexpr struct {
+  const char* group;
+  panel_tab tab;
+  shared_params from;
+  bool after_controls;
+} group_table[] = {
+    {"Leaves", panel_tab::leaves, shared_params::mesh, false},
+    {"Cones and fruit", panel_tab::leaves, shared_params::mesh, false},
+    {"Wood", panel_tab::wood, shared_params::wood, false},
+    {"Mesh", panel_tab::wood, shared_params::mesh, false},
+    {"Bark mesh", panel_tab::wood, shared_params::mesh, false},
+    {"Bark shape", panel_tab::wood, shared_params::mesh, false},
+    {"Materials", panel_tab::wood, shared_params::render, false},
+    {"Textures", panel_tab::wood, shared_params::render, false},
+    {"Season", panel_tab::scene, shared_params::render, false},
+    {"Wind", panel_tab::scene, shared_params::render, false},
+    {"Sun and sky", panel_tab::scene, shared_params::render, true},
+    {"Shadows", panel_tab::scene, shared_params::render, true},
+    {"Light shafts and fog", panel_tab::scene, shared_params::render, true},
+    {"Render", panel_tab::scene, shared_params::render, true},
+    {"Level of detail", panel_tab::output, shared_params::render, false},
+};
+
+}  // namespace
+
+const char* panel_tab_label(panel_tab t) { return panel_tab_labels[std::min(int(t), int(panel_tab::count) - 1)]; }
 
 panel_tab tab_of_group(const char* group, bool* known) {
-  static const struct { const char* group; panel_tab tab; } table[] = {
-      {"Leaves", panel_tab::leaves},          {"Cones and fruit", panel_tab::leaves},
-      {"Season", panel_tab::scene},
-      {"Wood", panel_tab::wood},              {"Mesh", panel_tab::wood},
-      {"Bark mesh", panel_tab::wood},         {"Bark shape", panel_tab::wood},
-      {"Materials", panel_tab::wood},         {"Textures", panel_tab::wood},
-      {"Sun and sky", panel_tab::scene},      {"Shadows", panel_tab::scene},
-      {"Light shafts and fog", panel_tab::scene}, {"Wind", panel_tab::scene},
-      {"Render", panel_tab::scene},           {"Level of detail", panel_tab::output},
-  };
-  for (const auto& row : table)
+  for (const auto& row : group_table)
     if (group && std::strcmp(group, row.group) == 0) {
       if (known) *known = true;
       return row.tab;
     }
   if (known) *known = false;
   return panel_tab::scene;
+}
+
+std::vector<const char*> groups_of_tab(panel_tab tab, shared_params from, bool after_controls) {
+  std::vector<const char*> out;
+  for (const auto& row : group_table)
+    if (row.tab == tab && row.from == from && row.after_controls == after_controls) out.push_back(row.group);
+  return out;
 }
 
 namespace {

@@ -379,10 +379,15 @@ void draw_time_of_day(editor_state& e) {
 // One tab's contents; while searching, only its parameters that match. Returns how many
 // parameters it shows (count_only: how many match the search, nothing drawn).
 int draw_tab(editor_state& e, panel_tab t, std::string& key_error, bool count_only) {
-  // The groups of the shared parameters each tab shows, in the order shown (editor_panel_tabs.h).
-  static const std::vector<const char*> leaves{"Leaves", "Cones and fruit"}, bark_mesh{"Mesh", "Bark mesh", "Bark shape"},
-      materials{"Materials", "Textures"}, season_wind{"Season", "Wind"}, sky{"Sun and sky", "Shadows", "Light shafts and fog"},
-      output{"Level of detail"};
+  // The groups of the shared parameters each tab shows (editor_panel_tabs.h).
+  using sp = shared_params;
+  static const std::vector<const char*> leaves = groups_of_tab(panel_tab::leaves, sp::mesh),
+                                        wood = groups_of_tab(panel_tab::wood, sp::wood),
+                                        bark_mesh = groups_of_tab(panel_tab::wood, sp::mesh),
+                                        materials = groups_of_tab(panel_tab::wood, sp::render),
+                                        season_wind = groups_of_tab(panel_tab::scene, sp::render),
+                                        sky = groups_of_tab(panel_tab::scene, sp::render, true),
+                                        output = groups_of_tab(panel_tab::output, sp::render);
   const bool searching = !e.panel_search.empty();
   tree_spec& spec = e.cur().doc.spec;
   preset& doc = e.cur().doc;
@@ -391,7 +396,7 @@ int draw_tab(editor_state& e, panel_tab t, std::string& key_error, bool count_on
     case panel_tab::tree: return draw_tree_tab(e, key_error, searching, count_only);
     case panel_tab::leaves: return draw_params(doc.mesh, "Mesh", e, nullptr, &leaves, true, count_only);
     case panel_tab::wood:
-      n += draw_params(spec.wood, "Wood", e, nullptr, nullptr, true, count_only);
+      n += draw_params(spec.wood, "Wood", e, nullptr, &wood, true, count_only);
       n += draw_params(doc.mesh, "Mesh", e, nullptr, &bark_mesh, true, count_only);
       return n + draw_params(doc.render, "Render", e, nullptr, &materials, true, count_only);
     case panel_tab::scene:

@@ -89,4 +89,20 @@ bool load_script(const std::string& path, script_state& sc, std::string& error);
 // Runs the script's current command; returns false once the script is over.
 bool run_script(editor_state& e, script_state& sc);
 
+// One script line's call to its command's handler (app/editor/editor_script_commands.cpp).
+struct script_call {
+  editor_state& e;
+  script_state& sc;
+  const std::string &cmd, &arg;   // the line's first word, and the rest after one space
+  double waited;                  // seconds this line has been running
+  bool growing;                   // the selected slot's growth is in progress
+  bool done = true;               // false: the command waits, and runs again next frame
+  // Whether a dialog titled `title` was shown this frame.
+  bool shown_prompt(const std::string& title) const;
+};
+// A command's handler: "" when it ran or waits (call.done false), else why it failed.
+using script_handler = std::string (*)(script_call& call);
+// The handler of the command `name`, or null when there is none.
+script_handler find_script_command(const std::string& name);
+
 }  // namespace sylva::ed

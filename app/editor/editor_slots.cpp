@@ -18,7 +18,7 @@ void select_slot(editor_state& e, int slot) {
   // A slot waiting on the over-budget question asks again when it is selected again.
   if (was.growth == slot_growth::asking) was.posted_once = false;
   e.budget_answer.reset();
-  e.open_budget_prompt = false;
+  e.ask(dialog::large_tree, false);
   e.before_open.reset();
   e.counted_tree = nullptr;
   e.prune.selected = -1;   // a pick or a marker drag belongs to the other slot's tree
@@ -54,7 +54,7 @@ void handle_ab(editor_state& e, ab_action a) {
     case ab_action::drop: {
       // Edits made in B are lost with it: ask first (B's own undo history holds them).
       if (!b.undo.empty() && !e.ab.drop_confirmed) {
-        e.ab.ask_drop = true;
+        e.ask(dialog::drop_b);
         return;
       }
       e.ab.drop_confirmed = false;

@@ -32,6 +32,16 @@ struct GLFWwindow;
 
 namespace sylva::ed {
 
+// The editor's keys and mouse gestures, in the order the F1 list shows them: one table
+// (app/editor/editor_shortcuts.cpp) gives the list, the menus' key labels and the keys read.
+enum class shortcut { orbit, pan, zoom, frame, undo, redo, save, open, library, quit, play, first_last, step, escape,
+                      screenshot, help, views, gizmo, slider_drag, slider_reset, count };
+
+// The editor's dialogs: the file browser's four uses, then the modal prompts. Each is asked for
+// (editor_state::ask) and opened on the next frame by draw_dialogs (editor_dialogs.cpp).
+enum class dialog { open_preset, save_as, screenshot_as, export_as, unsaved_changes, large_tree, large_mesh, drop_b,
+                    not_restored, restore, about, count };
+
 namespace fs = std::filesystem;
 
 // Layout sizes at a content scale of 1; multiplied by ui_scale (the monitor's content scale).
@@ -71,9 +81,10 @@ struct editor_state {
   path_field_edit path_edit;      // a file path being typed in the panel (app/editor/editor_sliders.h)
   std::map<std::string, std::array<float, 2>> path_field_at;   // where each path field was drawn (the scripted test's click)
   // Dialogs.
-  bool open_picker = false, open_save_as = false, open_about = false, browse_screenshot = false, browse_export = false;
-  file_browser files;             // app/editor/editor_files.h: Open, Save as, Screenshot as
-  enum class browsing { open, save_as, screenshot, export_to } browse = browsing::open;
+  std::array<bool, size_t(dialog::count)> asked{};   // the dialogs to open on the next frame
+  void ask(dialog d, bool yes = true) { asked[size_t(d)] = yes; }   // (no: the question is withdrawn)
+  file_browser files;             // app/editor/editor_files.h: Open, Save as, Screenshot as, Export as
+  dialog browse = dialog::open_preset;   // what the file browser is open for (one of the first four)
   std::vector<std::string> recent;
   std::string script_answer;      // the scripted test's click on a dialog button (see run_script)
   std::string script_shot;        // the scripted test's screenshot path, taken at the end of the frame
@@ -110,9 +121,8 @@ struct editor_state {
   GLFWwindow* window = nullptr;
   float rescale_to = 0;           // a new content scale to apply before the next frame (0: none)
   std::shared_ptr<const grow_result> budget_answer;   // an over-budget estimate waiting for the user
-  bool open_budget_prompt = false, approve_next = false;
+  bool approve_next = false;
   std::shared_ptr<const grow_result> mesh_answer;     // a tree over the mesh budget, not meshed, waiting for the user
-  bool open_mesh_prompt = false;
   // Nodes alive at the scrubbed step (cached per tree and step).
   const tree_skeleton* counted_tree = nullptr;
   int counted_step = -1;
@@ -120,7 +130,7 @@ struct editor_state {
   // Unsaved work: what to do once the user has answered save / discard / cancel.
   enum class then { nothing, quit, open } pending = then::nothing;
   std::string pending_path;
-  bool open_confirm = false, continue_after_save = false, close_requested = false, quit_confirmed = false;
+  bool continue_after_save = false, close_requested = false, quit_confirmed = false;
   bool save_all = false;          // quitting with A/B: "Save" saves every slot with changes in turn
   // Recovery: each slot's document is autosaved while modified and offered back on the next start
   // (slot A in .recovery.json, slot B in .recovery_b.json).
@@ -128,7 +138,6 @@ struct editor_state {
   double autosave_wait = 0;
   preset autosaved[2];
   bool autosaved_any[2] = {false, false};
-  bool open_recovery = false;
   preset recovered;
   std::string recovered_path;
   bool recovered_a = false;       // slot A's document was recovered
@@ -138,7 +147,6 @@ struct editor_state {
   std::string recovered_b_path;
   // Autosaves that could not be offered back: why, and where each was kept (never overwritten).
   std::vector<std::string> unrestored;
-  bool open_unrestored = false;
   bool autosave_off[2] = {false, false};   // a slot's unusable autosave could not be moved aside
   std::vector<std::string> prompts_shown;   // modal titles drawn this frame (for the scripted test)
   input_queue input;              // keyboard events, fed to ImGui one transition per key per frame
@@ -216,10 +224,11 @@ void advance_playback(editor_state& e, double dt);
 std::string screenshot_name();
 void draw_menu(editor_state& e);
 void draw_dialogs(editor_state& e);
-void draw_shortcuts(editor_state& e);
+void draw_shortcuts(editor_state& e);   // the F1 list (editor_shortcuts.cpp)
+void handle_keys(editor_state& e);      // this frame's keys, as the shortcut table says
+const char* shortcut_keys(shortcut s);  // its keys as a menu shows them: "Ctrl+O"
 void open_export_dialog(editor_state& e);   // File > Export...: in the user's folder, named after the tree
 void draw_node_budget(editor_state& e);     // the node budget: typed (Enter applies) or picked
-void draw_mesh_budget_prompt(editor_state& e);   // "Large mesh": a tree over the mesh budget, not meshed
 void draw_output_extras(editor_state& e);   // the Output tab: node budget and export
 void draw_message_log(editor_state& e);
 

@@ -111,7 +111,12 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
       r.error = e;
       return r;
     }
-  if ((ext == ".glb" || ext == ".gltf" || ext == ".obj" || ext == ".fbx") && season_changes_leaves(o.season)) {
+  const export_format* format = find_export_format(ext);
+  if (!format || !format->writer) {
+    r.error = "cannot export " + path + ": unknown extension \"" + ext + "\" (use .glb, .gltf, .obj, .fbx or .json)";
+    return r;
+  }
+  if (format->mesh && season_changes_leaves(o.season)) {
     // Fallen leaves out, spring's smaller: on LOD0 and on every level (their baked cards fall with
     // the leaves they were baked from). The copy's look keeps its colours but no longer drops or
     // scales leaves, so the second pass below writes the seasonal meshes as they are.
@@ -128,34 +133,52 @@ export_result export_tree(const tree_skeleton& t, const tree_mesh& m, const expo
     so.season.deciduous_scale = 1.0f;
     return export_tree(t, seasonal, info, path, so);
   }
-  if (ext == ".glb" || ext == ".gltf") return export_gltf(t, m, info, path, o, ext == ".glb");
-  if (ext == ".fbx") return export_fbx(t, m, info, path, o);
-  if (ext == ".obj" && !o.lods.empty()) {
-    // One OBJ (and MTL) per level, PNGs shared: tree.obj is LOD0, tree_lod1.obj ... All or nothing.
-    const std::string stem = stem_path(path), ext_text = std::filesystem::path(path).extension().string();
-    std::vector<std::pair<std::string, std::string>> files;
-    r = export_obj(t, m, info, path, o, &files, file_name(stem));
-    for (size_t k = 0; k < o.lods.size() && r.error.empty(); ++k) {
-      if (!o.lods[k].mesh) continue;
-      const export_result l = export_obj(t, *o.lods[k].mesh, info, stem + "_lod" + std::to_string(k + 1) + ext_text, o,
-                                         &files, file_name(stem));
-      if (!l.error.empty()) r.error = l.error;
-    }
-    if (!r.error.empty() || o.dry_run) return r;
-    // The main OBJ last: write_all commits the last file last.
-    std::stable_partition(files.begin(), files.end(), [&](const auto& f) { return f.first != path; });
-    r.error = write_all(files, r);
-    return r;
+  return format->writer(t, m, info, path, o);
+}
+
+export_result write_glb(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                        const export_options& o) {
+  return export_gltf(t, m, info, path, o, true);
+}
+
+export_result write_gltf(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                         const export_options& o) {
+  return export_gltf(t, m, info, path, o, false);
+}
+
+export_result write_fbx(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                        const export_options& o) {
+  return export_fbx(t, m, info, path, o);
+}
+
+export_result write_obj(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                        const export_options& o) {
+  if (o.lods.empty()) return export_obj(t, m, info, path, o);
+  // One OBJ (and MTL) per level, PNGs shared: tree.obj is LOD0, tree_lod1.obj ... All or nothing.
+  export_result r;
+  const std::string stem = stem_path(path), ext_text = std::filesystem::path(path).extension().string();
+  std::vector<std::pair<std::string, std::string>> files;
+  r = export_obj(t, m, info, path, o, &files, file_name(stem));
+  for (size_t k = 0; k < o.lods.size() && r.error.empty(); ++k) {
+    if (!o.lods[k].mesh) continue;
+    const export_result l = export_obj(t, *o.lods[k].mesh, info, stem + "_lod" + std::to_string(k + 1) + ext_text, o,
+                                       &files, file_name(stem));
+    if (!l.error.empty()) r.error = l.error;
   }
-  if (ext == ".obj") return export_obj(t, m, info, path, o);
-  if (ext == ".json") {
-    const std::string text = skeleton_json(t, info, o.step);
-    r.bytes = text.size();
-    if (o.dry_run) return r;
-    r.error = write_all({{path, text}}, r);
-    return r;
-  }
-  r.error = "cannot export " + path + ": unknown extension \"" + ext + "\" (use .glb, .gltf, .obj, .fbx or .json)";
+  if (!r.error.empty() || o.dry_run) return r;
+  // The main OBJ last: write_all commits the last file last.
+  std::stable_partition(files.begin(), files.end(), [&](const auto& f) { return f.first != path; });
+  r.error = write_all(files, r);
+  return r;
+}
+
+export_result write_skeleton_json(const tree_skeleton& t, const tree_mesh&, const export_info& info, const std::string& path,
+                                  const export_options& o) {
+  export_result r;
+  const std::string text = skeleton_json(t, info, o.step);
+  r.bytes = text.size();
+  if (o.dry_run) return r;
+  r.error = write_all({{path, text}}, r);
   return r;
 }
 

@@ -116,9 +116,24 @@ struct export_result {
   int animation_steps = 0;  // steps in the growth animation after the caps
 };
 
+// A format's writer: the tree to `path`, atomically (render/io/export.cpp).
+using export_writer = export_result (*)(const tree_skeleton& t, const tree_mesh& m, const export_info& info,
+                                        const std::string& path, const export_options& o);
+export_result write_glb(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                        const export_options& o);
+export_result write_gltf(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                         const export_options& o);
+export_result write_obj(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                        const export_options& o);   // with --lods, one OBJ per level
+export_result write_skeleton_json(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                                  const export_options& o);
+export_result write_fbx(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
+                        const export_options& o);
+
 // Every format `sylva export` and the editor's export dialog write, in the dialog's order, with
-// what each can carry. The CLI's checks, its messages and the dialog all read this one table: a new
-// format is a row here and a writer in export_tree (or, for a render, app/common/gl_window.h).
+// what each can carry and its writer. The CLI's checks, its messages, the dialog and export_tree
+// all read this one table: a new format is a row here and its writer (or, for a render, none here:
+// app/common/gl_window.h).
 struct export_format {
   const char* ext;      // lower case, with the dot
   const char* label;    // for people: "glTF binary"
@@ -134,15 +149,16 @@ struct export_format {
   // leaf is a blade of 24 vertices (render/mesh/leaf_blade.h, two faces of 12) where a card had 8,
   // so the per-leaf figures measured on cards are taken three times.
   float writer_triangle_bytes, writer_leaf_bytes;
+  export_writer writer;   // null: not written by export_tree (a render)
 };
 inline constexpr export_format export_format_table[] = {
-    // ext     label            lods   wind   render manifest gltf   mesh   writer B/triangle, B/leaf
-    {".glb",  "glTF binary",   true,  true,  false, true,  true,  true, 340,  5100},
-    {".gltf", "glTF + .bin",   true,  true,  false, true,  true,  true, 340,  5100},
-    {".obj",  "OBJ + MTL",     true,  false, false, true,  false, true, 420,  5100},
-    {".json", "skeleton JSON", false, false, false, true,  false, false, 0,    0},
-    {".png",  "render (PNG)",  false, true,  true,  false, false, true, 250,  120},
-    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false, true, 1800, 8700},
+    // ext     label            lods   wind   render manifest gltf   mesh   writer B/triangle, B/leaf, writer
+    {".glb",  "glTF binary",   true,  true,  false, true,  true,  true, 340,  5100, write_glb},
+    {".gltf", "glTF + .bin",   true,  true,  false, true,  true,  true, 340,  5100, write_gltf},
+    {".obj",  "OBJ + MTL",     true,  false, false, true,  false, true, 420,  5100, write_obj},
+    {".json", "skeleton JSON", false, false, false, true,  false, false, 0,    0,    write_skeleton_json},
+    {".png",  "render (PNG)",  false, true,  true,  false, false, true, 250,  120,  nullptr},
+    {".fbx",  "FBX (assimp)",  true,  true,  false, true,  false, true, 1800, 8700, write_fbx},
 };
 inline constexpr int export_format_count = int(sizeof export_format_table / sizeof export_format_table[0]);
 
