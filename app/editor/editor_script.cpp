@@ -263,6 +263,8 @@ bool run_script(editor_state& e, script_state& sc) {
     } else if (cmd == "show_export") {
       e.exporter.open = arg != "0";
       sc.frames_left = 3;
+    } else if (cmd == "export_lods") {   // export_lods 0|1: the Export dialog's "LOD chain" box
+      e.exporter.lods = arg == "1";
     } else if (cmd == "export_path") {   // sets the Export dialog's path as if typed in full
       e.exporter.path = arg;
     } else if (cmd == "export_as") {   // as File > Export as... with PATH chosen (and any replace confirmed)

@@ -25,6 +25,10 @@ struct export_dialog_state {
   float seconds_per_step = 0.5f;
   bool compact = false;             // glTF only: quantized, meshopt-compressed, JPEG textures
   int profile = 0;                  // export_profile: plain, hero or hero-baked (game is the CLI's --lods)
+  // The LOD chain (as `sylva export --lods`): LOD1-3 built from the final tree at the preset's
+  // budgets, written as glTF MSFT_lod, an FBX LOD group or one OBJ per level. The impostor is left
+  // out: its atlas is rendered in a GL context of its own, which the command line opens.
+  bool lods = false;
   // The exporter runs on its own thread: a dry run for the size estimate, or the real export.
   std::thread thread;
   std::atomic<uint32_t> cancel{0};
@@ -33,6 +37,8 @@ struct export_dialog_state {
   bool job_dry = false;
   std::mutex mutex;
   std::optional<export_result> finished;   // set by the thread, taken by the UI
+  std::string finished_lods;               // with `finished`: lod_summary of the chain written ("" without)
+  std::string lod_counts;                  // the last LOD export's (or estimate's) lod_summary, shown in the dialog
   std::string estimate_key;                // what the shown estimate was computed for
   std::string estimate;                    // "", "estimating...", "about 1.2 MiB, 34,000 triangles"
   std::string warning;                     // the last export's warning (a user texture it could not use)
