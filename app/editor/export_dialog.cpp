@@ -9,6 +9,7 @@
 #include <imgui_stdlib.h>
 
 #include "app/common/gl_window.h"
+#include "render/gl/impostor.h"
 #include "render/gl/renderer.h"
 #include "render/mesh/lod.h"
 
@@ -30,6 +31,8 @@ std::string human_bytes(size_t b) {
   else std::snprintf(buf, sizeof buf, "%.1f KiB", double(b) / 1024.0);
   return buf;
 }
+
+bool gltf_format(int f) { return f >= 0 && export_format_table[f].gltf; }
 
 // The LOD chain applies: asked for, and the format carries levels.
 bool lods_apply(const export_dialog_state& d, int f) { return d.lods && f >= 0 && export_format_table[f].lods; }
@@ -53,7 +56,31 @@ void join(export_dialog_state& d) {
   if (d.thread.joinable()) d.thread.join();
 }
 
-void start_job(export_dialog_state& d, const export_context& c, bool dry) {
+// The impostor of a glTF LOD export, rendered here on the UI thread (the editor's GL context is
+// this thread's): a view at a time into the build's own copy of LOD0, so the level the view shows
+// stays uploaded, then read back as PNGs. Null, with `why`, when it cannot be made.
+std::shared_ptr<const export_impostor> render_export_impostor(const export_context& c, std::string& why) {
+  const render_params& rp = c.doc.render;
+  impostor_build b;
+  why = impostor_begin(b, c.renderer, rp, rp.lod.impostor_views, rp.lod.impostor_size, &c.tree->mesh);
+  if (why.empty())
+    while (!impostor_step(b, c.renderer)) {
+    }
+  if (why.empty() && b.st != impostor_build::state::complete) why = b.atlas.error.empty() ? "the atlas failed" : b.atlas.error;
+  auto im = std::make_shared<export_impostor>();
+  if (why.empty()) why = impostor_pngs(b.atlas, im->color_png, im->normal_png);
+  impostor_cancel(b);
+  if (!why.empty()) return nullptr;
+  im->views = b.atlas.views;
+  im->columns = b.atlas.columns;
+  im->rows = b.atlas.rows;
+  im->width = im->height = b.atlas.cell_metres;
+  im->centre = b.atlas.centre;
+  return im;
+}
+
+void start_job(export_dialog_state& d, const export_context& c, bool dry,
+               std::shared_ptr<const export_impostor> impostor = nullptr) {
   join(d);
   {
     std::lock_guard lock(d.mutex);
@@ -69,17 +96,23 @@ void start_job(export_dialog_state& d, const export_context& c, bool dry) {
   o.progress = [&d](float p) { d.progress = p; };
   const export_info info{generator_name(c.tree->spec), c.tree->spec.seed};
   const bool lods = lods_apply(d, format_of(d.path));
-  d.thread = std::thread([&d, tree = c.tree, info, o, path = d.path, lods, lp = c.doc.render.lod]() mutable {
+  d.thread = std::thread([&d, tree = c.tree, info, o, path = d.path, lods, lp = c.doc.render.lod, impostor]() mutable {
     // The chain is built here, off the UI thread, from the final tree (as `sylva export --lods`);
     // its clamped budgets and any level off its budget (with the floor that kept it) are warnings.
     lod_chain chain;
     std::string counts;
+    export_impostor im;
     if (lods) {
       chain = build_lods(*tree->skeleton, tree->mesh, tree->mesh_settings, lp);
       o.lod0_coverage = chain.coverage[0];
       for (int k = 1; k < lod_levels; ++k)
         o.lods.push_back({&chain.level[size_t(k) - 1], chain.coverage[size_t(k)], chain.target[size_t(k)]});
       counts = lod_summary(chain);
+      if (impostor) {
+        im = *impostor;
+        im.coverage = chain.impostor_coverage;
+        o.impostor = &im;
+      }
     }
     export_result r = export_tree(*tree->skeleton, tree->mesh, info, path, o);
     if (lods && !chain.message.empty()) r.warning = chain.message + (r.warning.empty() ? "" : "\n" + r.warning);
@@ -168,9 +201,11 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   const bool lods = d.lods && can_lods;
   if (lods) {
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 520);
-    ImGui::TextDisabled("The final tree's levels, without the impostor: its atlas needs a GL context of its own, which "
-                        "`sylva export --lods` opens. %s",
-                        d.lod_counts.empty() ? "" : d.lod_counts.c_str());
+    ImGui::TextDisabled("%s %s %s",
+                        gltf_format(f) ? "The final tree's levels and the impostor (its atlas renders when you export: "
+                                         "the window pauses for it)."
+                                       : "The final tree's levels (the impostor goes into glTF only).",
+                        d.lod_counts.c_str(), d.impostor_note.c_str());
     ImGui::PopTextWrapPos();
   }
   int scope = d.final_tree || lods ? 1 : 0;
@@ -266,7 +301,16 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       } else {
         if (busy) d.cancel = 1;   // a running estimate gives way to the export
         d.failure.clear();
-        start_job(d, c, false);
+        // glTF with the LOD chain: the impostor as `sylva export --lods` writes it, rendered now on
+        // this thread (a pause of about a second on software GL); without it the levels still go.
+        std::shared_ptr<const export_impostor> impostor;
+        d.impostor_note.clear();
+        if (lods && gltf) {
+          std::string why;
+          impostor = render_export_impostor(c, why);
+          if (!impostor) d.impostor_note = "impostor left out: " + why;
+        }
+        start_job(d, c, false, impostor);
         d.estimate_key.clear();
       }
     }

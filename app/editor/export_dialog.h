@@ -26,9 +26,10 @@ struct export_dialog_state {
   bool compact = false;             // glTF only: quantized, meshopt-compressed, JPEG textures
   int profile = 0;                  // export_profile: plain, hero or hero-baked (game is the CLI's --lods)
   // The LOD chain (as `sylva export --lods`): LOD1-3 built from the final tree at the preset's
-  // budgets, written as glTF MSFT_lod, an FBX LOD group or one OBJ per level. The impostor is left
-  // out: its atlas is rendered in a GL context of its own, which the command line opens.
+  // budgets, written as glTF MSFT_lod, an FBX LOD group or one OBJ per level. glTF also gets the
+  // impostor, its atlas rendered on the UI thread (the editor's GL context) when Export is pressed.
   bool lods = false;
+  std::string impostor_note;               // why the last glTF LOD export has no impostor ("" when it has one)
   // The exporter runs on its own thread: a dry run for the size estimate, or the real export.
   std::thread thread;
   std::atomic<uint32_t> cancel{0};

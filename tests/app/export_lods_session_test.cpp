@@ -1,7 +1,7 @@
 // Issue 54: the Export dialog writes the LOD chain as `sylva export --lods` does, driven as a user
 // would (a scripted session): the "LOD chain" box, then Export as... an FBX and a GLB. The FBX holds
-// its LOD group with the four levels, the GLB its _LOD0.._LOD3 meshes with the chain's triangles,
-// and the status bar the same counts as the command line prints.
+// its LOD group with the four levels, the GLB its _LOD0.._LOD3 meshes with the chain's triangles
+// and the impostor, and the status bar the same counts as the command line prints.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -29,12 +29,15 @@ void replace_all(std::string& s, const std::string& from, const std::string& to)
   for (size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += to.size()) s.replace(at, from.size(), to);
 }
 
-std::array<size_t, lod_levels> glb_levels(const std::string& bytes) {
-  std::array<size_t, lod_levels> out{};
+nlohmann::json glb_json(const std::string& bytes) {
   uint32_t n = 0;
-  if (bytes.size() < 20) return out;
+  if (bytes.size() < 20) return nlohmann::json::object();
   std::memcpy(&n, bytes.data() + 12, 4);
-  const nlohmann::json j = nlohmann::json::parse(bytes.substr(20, n));
+  return nlohmann::json::parse(bytes.substr(20, n));
+}
+
+std::array<size_t, lod_levels> glb_levels(const nlohmann::json& j) {
+  std::array<size_t, lod_levels> out{};
   for (const nlohmann::json& m : j["meshes"]) {
     const std::string name = m.value("name", "");
     const size_t at = name.rfind("_LOD");
@@ -74,9 +77,17 @@ expect_message COUNTS
   const sylva_test::run_result r = run_script("export_lods", script, preset_path);
   ASSERT_TRUE(script_passed(r));
 
-  // The GLB: four levels, each with the chain's triangles.
-  const std::array<size_t, lod_levels> tris = glb_levels(sylva_test::slurp((dir / "t.glb").string()));
+  // The GLB: four levels, each with the chain's triangles, and the impostor rendered on the
+  // editor's own GL thread: LOD0's MSFT_lod lists LOD1-3 and the impostor, with its coverage.
+  const nlohmann::json j = glb_json(sylva_test::slurp((dir / "t.glb").string()));
+  const std::array<size_t, lod_levels> tris = glb_levels(j);
   for (int k = 0; k < lod_levels; ++k) EXPECT_EQ(tris[size_t(k)], c.triangles[size_t(k)]) << "LOD" << k;
+  const nlohmann::json& lod0 = j["nodes"][j["scenes"][0]["nodes"][0].get<size_t>()];
+  ASSERT_TRUE(lod0.contains("extensions")) << lod0.dump();
+  const nlohmann::json& ids = lod0["extensions"]["MSFT_lod"]["ids"];
+  ASSERT_EQ(ids.size(), size_t(4));
+  EXPECT_EQ(j["nodes"][ids[3].get<size_t>()]["name"], "t_impostor");
+  EXPECT_NEAR(lod0["extras"]["MSFT_screencoverage"][4].get<double>(), double(c.impostor_coverage), 1e-6);
   // The FBX: the LOD group (a LodGroup model and attribute) connected over t_LOD0..3.
   fbx::document d;
   ASSERT_EQ(fbx::parse(sylva_test::slurp((dir / "t.fbx").string()), d), "");
