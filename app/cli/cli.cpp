@@ -396,7 +396,14 @@ int run_export(const export_args& a) {
     std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
                 path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
                 double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
-    if (!o.lods.empty()) std::printf("%s: %s\n", path.c_str(), lod_summary(lods.chain).c_str());
+    if (!o.lods.empty()) {
+      std::printf("%s: %s\n", path.c_str(), lod_summary(lods.chain).c_str());
+      // Blades (--profile hero-baked) or a season's fallen leaves change LOD0 in the file, not the
+      // flat-card LOD0 the budgets are shares of: say so rather than print shares that do not hold.
+      if (r.triangles != lods.chain.triangles[0])
+        warn(path, "LOD0 in the file holds " + std::to_string(r.triangles) + " triangles where the levels' budgets count " +
+                       std::to_string(lods.chain.triangles[0]) + " (flat cards, every live leaf): the levels' shares of it differ from their budgets");
+    }
     if (manifest) {   // rewritten (atomically, synced) at most once a second: a killed job redoes only the last second's files
       manifest_entry e{i + 1, v.seed, fs::path(path).filename().string(), t.size(), m.leaves.size(),
                        m.triangles() + 2 * m.leaves.size(), r.bytes, sha256_file(path)};

@@ -73,6 +73,28 @@ TEST(LodBudget, EachFileLevelHoldsItsBudgetOrSaysWhy) {
   }
 }
 
+// Blades in LOD0 (--profile hero-baked) make the file's LOD0 bigger than the flat-card LOD0 the
+// budgets are shares of: the export says so, with both counts, instead of letting the shares pass
+// for budgets held.
+TEST(LodBudget, BladesInLod0AreSaidToChangeTheShares) {
+  sylva_test::scratch_dir dir("sylva-lod-budget-blades");
+  const std::string preset_path = std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json";
+  const sylva_run plain = run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY", "export '" + preset_path + "' -o '" + (dir / "p.glb") + "' --lods");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("LOD0 in the file holds"), std::string::npos) << plain.err;
+  const sylva_run blades = run_sylva("env -u DISPLAY -u WAYLAND_DISPLAY",
+                                     "export '" + preset_path + "' -o '" + (dir / "b.glb") + "' --lods --profile hero-baked");
+  ASSERT_EQ(blades.code, 0) << blades.err;
+  const std::array<size_t, lod_levels> file = glb_level_triangles(slurp(dir / "b.glb")),
+                                       flat = glb_level_triangles(slurp(dir / "p.glb"));
+  ASSERT_GT(file[0], flat[0]);
+  EXPECT_EQ(file[1], flat[1]);   // the levels are the same cards
+  EXPECT_NE(blades.err.find("LOD0 in the file holds " + std::to_string(file[0]) + " triangles where the levels' budgets count " +
+                            std::to_string(flat[0])),
+            std::string::npos)
+      << blades.err;
+}
+
 namespace {
 
 // A straight stem of `internodes` from radius r0 thinning by dr a node, meshed without leaves.
