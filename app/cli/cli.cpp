@@ -464,7 +464,7 @@ int run_cli(int argc, char** argv) {
                 "glTF: quantized vertices (KHR_mesh_quantization), meshopt-compressed buffers (EXT_meshopt_compression), "
                 "opaque textures as JPEG");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
-  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as <name>_LOD0..3 nodes, OBJ one file per level");
+  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as an LOD group of <name>_LOD0..3, OBJ one file per level");
   add_float_option(exp, "--seconds-per-step", ex.seconds_per_step, "glTF animation speed", 0.001f, 60.0f);
   ex.wind_opt = add_float_option(exp, "--wind", ex.wind,
                                  "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "
