@@ -143,8 +143,10 @@ TEST(LodBudget, ALevelKeptAboveItsBudgetSaysWhichFloorAndHowMuch) {
     EXPECT_NE(note.find("the bark floor (trunk and limbs at their coarsest) keeps 6"), std::string::npos) << note;
     EXPECT_NE(note.find("the leaf floor (at least one card) 4"), std::string::npos) << note;
     // Levels that hold their budgets carry no note.
-    for (int k = 1; k < 3; ++k)
-      if (std::abs(double(c.triangles[size_t(k)]) / double(c.target[size_t(k)]) - 1) <= lod_budget_tolerance)
+    for (int k = 1; k < 3; ++k) {
+      if (std::abs(double(c.triangles[size_t(k)]) / double(c.target[size_t(k)]) - 1) <= lod_budget_tolerance) {
         EXPECT_EQ(c.note[size_t(k)], "") << "LOD" << k;
+      }
+    }
   }
 }
