@@ -185,11 +185,13 @@ TEST_F(LodRender, EachLevelKeepsLod0SilhouetteWhereItTakesOver) {
       // 0.842 / 0.851, pine 0.818 / 0.725 / 0.756, maple_cards 0.888 / 0.875 / 0.742 (outline oak
       // 0.949 / 0.956 / 0.949, pine 0.912 / 0.872 / 0.874, maple_cards 0.959 / 0.954 / 0.898). The bark's
       // share of the budget is no lever: 0.15 or 0.45 instead of 0.3 moves each by 0.01-0.03, either
-      // way. The floors are those less about 0.02.
+      // way. The floors are those less about 0.02. With the needle shoots above and the budgets
+      // holding: oak 0.877 / 0.845 / 0.853, pine 0.732 / 0.681 / 0.715 (outline 0.904 / 0.883 /
+      // 0.871), maple_cards 0.888 / 0.875 / 0.753.
       const std::string n(name);
-      const double floors[3] = {n == "species_oak.json" ? 0.86 : n == "species_pine.json" ? 0.72 : 0.87,
-                                n == "species_oak.json" ? 0.82 : n == "species_pine.json" ? 0.68 : 0.85,
-                                n == "species_oak.json" ? 0.82 : n == "species_pine.json" ? 0.68 : 0.72};
+      const double floors[3] = {n == "species_oak.json" ? 0.86 : n == "species_pine.json" ? 0.71 : 0.87,
+                                n == "species_oak.json" ? 0.82 : n == "species_pine.json" ? 0.66 : 0.85,
+                                n == "species_oak.json" ? 0.83 : n == "species_pine.json" ? 0.69 : 0.72};
       EXPECT_GE(score, floors[k - 1]) << "LOD" << k;
       // The outline (gaps of up to 2 px closed) reaches the goal of 0.9 at every level of the three:
       // measured oak 0.978 / 0.934 / 0.940, pine 0.977 / 0.924 / 0.905, maple_cards 0.976 / 0.970 / 0.971.
