@@ -345,6 +345,14 @@ int export_one(const export_args& a, const export_format* format, const std::str
   std::printf("%s: %zu nodes, %zu leaves, %zu triangles, %.1f KB; grow %.1f ms, mesh %.1f ms, export %.1f ms (%s)\n",
               path.c_str(), t.size(), m.leaves.size(), m.triangles() + 2 * m.leaves.size(),
               double(r.bytes) / 1024.0, grow_ms, mesh_ms, export_ms, what.c_str());
+  if (!o.lods.empty()) {
+    std::printf("%s: %s\n", path.c_str(), lod_summary(lods.chain).c_str());
+    // Blades (--profile hero-baked) or a season's fallen leaves change LOD0 in the file, not the
+    // flat-card LOD0 the budgets are shares of: say so rather than print shares that do not hold.
+    if (r.triangles != lods.chain.triangles[0])
+      warn(path, "LOD0 in the file holds " + std::to_string(r.triangles) + " triangles where the levels' budgets count " +
+                     std::to_string(lods.chain.triangles[0]) + " (flat cards, every live leaf): the levels' shares of it differ from their budgets");
+  }
   counts.nodes = t.size(), counts.leaves = m.leaves.size(), counts.triangles = m.triangles() + 2 * m.leaves.size();
   counts.bytes = r.bytes;
   return -1;
@@ -473,7 +481,7 @@ int run_cli(int argc, char** argv) {
                 "glTF: quantized vertices (KHR_mesh_quantization), meshopt-compressed buffers (EXT_meshopt_compression), "
                 "opaque textures as JPEG");
   exp->add_flag("--animation", ex.animation, "glTF: the growth steps as a STEP-interpolated animation");
-  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as <name>_LOD0..3 nodes, OBJ one file per level");
+  exp->add_flag("--lods", ex.lods, "Also write LOD1-LOD3 (budgets: render lod1_budget...) and, glTF, the impostor: glTF as MSFT_lod, FBX as an LOD group of <name>_LOD0..3, OBJ one file per level");
   add_float_option(exp, "--seconds-per-step", ex.seconds_per_step, "glTF animation speed", 0.001f, 60.0f);
   ex.wind_opt = add_float_option(exp, "--wind", ex.wind,
                                  "glTF, FBX: bake the preset's wind (render.wind_*) as a skin and a seamless loop of SECONDS "

@@ -150,13 +150,14 @@ void editor_lod_update(editor_lod& s, renderer_gpu& r, const std::shared_ptr<con
 
 std::string editor_lod_status(const editor_lod& s) {
   if (!s.chain) return s.building ? "LOD0   (building the LOD chain...)" : "";
+  // The counts the exported file's _LODn meshes hold (lod_summary, as `sylva export --lods` prints).
+  const std::string counts = lod_summary(*s.chain);
   char buf[200];
-  const auto& n = s.chain->triangles;
   if (s.uploaded == lod_levels)
-    std::snprintf(buf, sizeof buf, "Impostor (2 triangles)   LOD0-3 triangles (bark + 2 per leaf) %zu / %zu / %zu / %zu", n[0], n[1], n[2], n[3]);
+    std::snprintf(buf, sizeof buf, "Impostor (2 triangles)   %s", counts.c_str());
   else
-    std::snprintf(buf, sizeof buf, "LOD%d%s   LOD0-3 triangles (bark + 2 per leaf) %zu / %zu / %zu / %zu", std::max(s.uploaded, 0),
-                  s.wanted >= lod_levels ? " (impostor distance; no impostor)" : "", n[0], n[1], n[2], n[3]);
+    std::snprintf(buf, sizeof buf, "LOD%d%s   %s", std::max(s.uploaded, 0),
+                  s.wanted >= lod_levels ? " (impostor distance; no impostor)" : "", counts.c_str());
   // Clamped budgets or a tree too small to reduce (build_lods says which).
   std::string out(buf);
   if (!s.impostor_error.empty()) out += "   (impostor: " + s.impostor_error + ")";

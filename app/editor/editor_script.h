@@ -32,6 +32,7 @@ namespace sylva::ed {
 //   type TEXT                  each character's press, character and release, all queued at once
 //   click export_path | X Y    a move, a press and a release queued at once (a quick click on a slow frame)
 //   show_export 0|1 / export_path P / expect_export_path P   the Export dialog
+//   export_lods 0|1                                    its "LOD chain" box (as the CLI's --lods)
 //   export_as P / expect_file P   Export as... with P chosen, which writes it; waits for the file
 //   expect_window shortcuts|library|export|messages 0|1 / expect_message TEXT (contained; empty: no message)
 //   expect_popup 0|1           whether a menu, popup or dialog is open

@@ -331,6 +331,10 @@ const script_command script_commands[] = {
       sc.frames_left = 3;
       return "";
     }},
+    {"export_lods", [](script_call& call) -> std::string {   // export_lods 0|1: the Export dialog's "LOD chain" box
+      call.e.exporter.lods = call.arg == "1";
+      return "";
+    }},
     {"export_path", [](script_call& call) -> std::string {   // sets the Export dialog's path as if typed in full
       editor_state& e = call.e; const std::string& arg = call.arg;
       e.exporter.path = arg;

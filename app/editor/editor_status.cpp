@@ -1,5 +1,6 @@
 // The status bar, the error toast and the growth overlays' legend.
 #include "app/editor/editor_state.h"
+#include "render/mesh/lod.h"   // exported_card_triangles
 
 #include <algorithm>
 #include <cmath>
@@ -253,11 +254,12 @@ void draw_status(editor_state& e, float y, float w) {
     std::snprintf(text, sizeof text, "   %s   frame %.1f ms", ab_compare_text(c[0], c[1]).c_str(), e.frame_ms);
     piece(text, plain, 1e9f, keep);
   } else {
-    // Triangles as the LOD panel counts them (bark, and two per leaf card), so LOD0's figure there
-    // is this one at the last step; an export's file may hold more (its dialog says "in the file").
+    // Triangles as the LOD panel and a flat-card export count them (bark, and exported_card_triangles
+    // per leaf card: a face per side), so LOD0's figure there and the export dialog's "in the file"
+    // are this one at the last step (issue 54); blades (--profile hero) make a file hold more.
     const renderer_gpu& g = e.cur().renderer;
     std::snprintf(text, sizeof text, "   nodes %zu   leaves %zu   triangles %zu (bark %zu)   %s   frame %.1f ms", nodes_at_step(e),
-                  g.leaves_drawn, g.triangles_drawn + 2 * g.leaves_drawn, g.triangles_drawn,
+                  g.leaves_drawn, g.triangles_drawn + exported_card_triangles * g.leaves_drawn, g.triangles_drawn,
                   edit_timing_text(e.last_edit, r, e.upload_ms).c_str(), e.frame_ms);
     piece(text, plain, 1e9f, keep);
     // The hidden slot's failure still shows (A/B view off).

@@ -9,7 +9,9 @@
 #include <imgui_stdlib.h>
 
 #include "app/common/gl_window.h"
+#include "render/gl/impostor.h"
 #include "render/gl/renderer.h"
+#include "render/mesh/lod.h"
 
 namespace sylva {
 
@@ -30,12 +32,18 @@ std::string human_bytes(size_t b) {
   return buf;
 }
 
+bool gltf_format(int f) { return f >= 0 && export_format_table[f].gltf; }
+
+// The LOD chain applies: asked for, and the format carries levels.
+bool lods_apply(const export_dialog_state& d, int f) { return d.lods && f >= 0 && export_format_table[f].lods; }
+
 export_options options_for(const export_dialog_state& d, const export_context& c) {
   export_options o;
   const int steps = c.tree->skeleton->steps;
-  o.step = d.final_tree || c.step >= steps ? -1 : c.step;
   const int f = format_of(d.path);
-  o.growth_animation = d.animation && f >= 0 && export_format_table[f].gltf;
+  const bool lods = lods_apply(d, f);   // the final tree, no growth animation (as the CLI's --lods)
+  o.step = d.final_tree || lods || c.step >= steps ? -1 : c.step;
+  o.growth_animation = d.animation && !lods && f >= 0 && export_format_table[f].gltf;
   o.compact = d.compact && f >= 0 && export_format_table[f].gltf;
   o.seconds_per_step = d.seconds_per_step;
   apply_export_profile(o, export_profile(std::clamp(d.profile, 0, 2)), f >= 0 && export_format_table[f].gltf);
@@ -48,7 +56,31 @@ void join(export_dialog_state& d) {
   if (d.thread.joinable()) d.thread.join();
 }
 
-void start_job(export_dialog_state& d, const export_context& c, bool dry) {
+// The impostor of a glTF LOD export, rendered here on the UI thread (the editor's GL context is
+// this thread's): a view at a time into the build's own copy of LOD0, so the level the view shows
+// stays uploaded, then read back as PNGs. Null, with `why`, when it cannot be made.
+std::shared_ptr<const export_impostor> render_export_impostor(const export_context& c, std::string& why) {
+  const render_params& rp = c.doc.render;
+  impostor_build b;
+  why = impostor_begin(b, c.renderer, rp, rp.lod.impostor_views, rp.lod.impostor_size, &c.tree->mesh);
+  if (why.empty())
+    while (!impostor_step(b, c.renderer)) {
+    }
+  if (why.empty() && b.st != impostor_build::state::complete) why = b.atlas.error.empty() ? "the atlas failed" : b.atlas.error;
+  auto im = std::make_shared<export_impostor>();
+  if (why.empty()) why = impostor_pngs(b.atlas, im->color_png, im->normal_png);
+  impostor_cancel(b);
+  if (!why.empty()) return nullptr;
+  im->views = b.atlas.views;
+  im->columns = b.atlas.columns;
+  im->rows = b.atlas.rows;
+  im->width = im->height = b.atlas.cell_metres;
+  im->centre = b.atlas.centre;
+  return im;
+}
+
+void start_job(export_dialog_state& d, const export_context& c, bool dry,
+               std::shared_ptr<const export_impostor> impostor = nullptr) {
   join(d);
   {
     std::lock_guard lock(d.mutex);
@@ -63,10 +95,30 @@ void start_job(export_dialog_state& d, const export_context& c, bool dry) {
   o.cancel = &d.cancel;
   o.progress = [&d](float p) { d.progress = p; };
   const export_info info{generator_name(c.tree->spec), c.tree->spec.seed};
-  d.thread = std::thread([&d, tree = c.tree, info, o, path = d.path] {
+  const bool lods = lods_apply(d, format_of(d.path));
+  d.thread = std::thread([&d, tree = c.tree, info, o, path = d.path, lods, lp = c.doc.render.lod, impostor]() mutable {
+    // The chain is built here, off the UI thread, from the final tree (as `sylva export --lods`);
+    // its clamped budgets and any level off its budget (with the floor that kept it) are warnings.
+    lod_chain chain;
+    std::string counts;
+    export_impostor im;
+    if (lods) {
+      chain = build_lods(*tree->skeleton, tree->mesh, tree->mesh_settings, lp);
+      o.lod0_coverage = chain.coverage[0];
+      for (int k = 1; k < lod_levels; ++k)
+        o.lods.push_back({&chain.level[size_t(k) - 1], chain.coverage[size_t(k)], chain.target[size_t(k)]});
+      counts = lod_summary(chain);
+      if (impostor) {
+        im = *impostor;
+        im.coverage = chain.impostor_coverage;
+        o.impostor = &im;
+      }
+    }
     export_result r = export_tree(*tree->skeleton, tree->mesh, info, path, o);
+    if (lods && !chain.message.empty()) r.warning = chain.message + (r.warning.empty() ? "" : "\n" + r.warning);
     std::lock_guard lock(d.mutex);
     d.finished = std::move(r);
+    d.finished_lods = counts;
     d.running = false;
   });
 }
@@ -81,12 +133,15 @@ void shutdown_export_dialog(export_dialog_state& d) {
 void draw_export_dialog(export_dialog_state& d, const export_context& c, std::string& status, bool& error) {
   // A finished job reports even when the window was closed meanwhile.
   std::optional<export_result> done;
+  std::string done_lods;
   {
     std::lock_guard lock(d.mutex);
     done.swap(d.finished);
+    done_lods.swap(d.finished_lods);
   }
   if (done) {
     join(d);
+    if (done->error.empty()) d.lod_counts = done_lods;
     if (d.job_dry) {
       d.warning = done->warning;  // a user texture that cannot be used shows before the export
       d.estimate = !done->error.empty() ? "cannot estimate: " + done->error
@@ -97,7 +152,8 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       error = !done->error.empty();
       d.failure = error ? done->error : "";
       status = error ? "Export failed: " + done->error
-                     : "Exported " + d.path + " (" + human_bytes(done->bytes) + ", " + std::to_string(done->files.size()) + " file(s))";
+                     : "Exported " + d.path + " (" + human_bytes(done->bytes) + ", " + std::to_string(done->files.size()) + " file(s))" +
+                           (done_lods.empty() ? "" : "; " + done_lods);
       d.warning = error ? "" : done->warning;
       if (!d.warning.empty()) status += "; warning: " + d.warning.substr(0, d.warning.find('\n'));
       if (!d.warning.empty()) std::fprintf(stderr, "sylva: export warning: %s\n", d.warning.c_str());
@@ -133,23 +189,44 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
     d.shown_path = d.path;
   }
   if (f < 0) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "The extension picks the format: %s", export_format_list(nullptr, " ").c_str());
-  int scope = d.final_tree ? 1 : 0;
+  // The LOD chain (as the command line's --lods): the final tree only, no growth animation.
+  const bool can_lods = f >= 0 && export_format_table[f].lods;
+  ImGui::BeginDisabled(!can_lods);
+  ImGui::Checkbox("LOD chain (LOD0-LOD3)", &d.lods);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", can_lods ? "LOD1-3 at the preset's budgets (Render > Level of detail), built from the final tree: "
+                                       "glTF MSFT_lod, an FBX LOD group (Unreal, Unity), one OBJ per level"
+                                     : "This format carries no levels");
+  const bool lods = d.lods && can_lods;
+  if (lods) {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 520);
+    ImGui::TextDisabled("%s %s %s",
+                        gltf_format(f) ? "The final tree's levels and the impostor (its atlas renders when you export: "
+                                         "the window pauses for it)."
+                                       : "The final tree's levels (the impostor goes into glTF only).",
+                        d.lod_counts.c_str(), d.impostor_note.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  int scope = d.final_tree || lods ? 1 : 0;
+  ImGui::BeginDisabled(lods);
   ImGui::RadioButton("Current step", &scope, 0);
+  ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::RadioButton("Final tree", &scope, 1);
-  d.final_tree = scope == 1;
+  if (!lods) d.final_tree = scope == 1;
   if (have_tree) {
     ImGui::SameLine();
-    ImGui::TextDisabled("(step %d of %d)", d.final_tree ? c.tree->skeleton->steps : c.step, c.tree->skeleton->steps);
+    ImGui::TextDisabled("(step %d of %d)", d.final_tree || lods ? c.tree->skeleton->steps : c.step, c.tree->skeleton->steps);
   }
   const bool gltf = f >= 0 && export_format_table[f].gltf;
-  ImGui::BeginDisabled(!gltf);
+  ImGui::BeginDisabled(!gltf || lods);
   ImGui::Checkbox("Growth animation", &d.animation);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(140);
   ImGui::SliderFloat("s per step", &d.seconds_per_step, 0.05f, 5, "%.2f s", ImGuiSliderFlags_Logarithmic);
   ImGui::EndDisabled();
-  if (d.animation && gltf) ImGui::TextDisabled("Steps 0..N as one mesh each, shown in turn (STEP scale keys).");
+  if (d.animation && gltf && !lods) ImGui::TextDisabled("Steps 0..N as one mesh each, shown in turn (STEP scale keys).");
   ImGui::BeginDisabled(!gltf);
   ImGui::Checkbox("Compact (meshopt)", &d.compact);
   ImGui::EndDisabled();
@@ -170,10 +247,12 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
   // The size estimate: a dry run of the same export, redone whenever an input changes.
   const bool png = f >= 0 && export_format_table[f].render;
   if (have_tree && f >= 0 && !png) {
-    char head[160];
-    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d|%d|%d", c.tree->generation, f, d.final_tree ? -1 : c.step,
+    char head[240];
+    const lod_params& lp = c.doc.render.lod;
+    std::snprintf(head, sizeof head, "%u|%d|%d|%d|%d|%g|%d|%d|%d|%d|%g|%g|%g", c.tree->generation, f, d.final_tree ? -1 : c.step,
                   int(d.animation && gltf), int(d.final_tree), double(d.seconds_per_step), int(c.doc.render.bark),
-                  int(d.compact && gltf), d.profile);
+                  int(d.compact && gltf), d.profile, int(lods), double(lp.lod1_budget), double(lp.lod2_budget),
+                  double(lp.lod3_budget));
     const render_params& rp = c.doc.render;
     const std::string key = std::string(head) + "|" + rp.bark_texture + "|" + rp.leaf_texture + "|" + rp.leaf_opacity;
     if (key != d.estimate_key && !busy) {
@@ -222,7 +301,16 @@ void draw_export_dialog(export_dialog_state& d, const export_context& c, std::st
       } else {
         if (busy) d.cancel = 1;   // a running estimate gives way to the export
         d.failure.clear();
-        start_job(d, c, false);
+        // glTF with the LOD chain: the impostor as `sylva export --lods` writes it, rendered now on
+        // this thread (a pause of about a second on software GL); without it the levels still go.
+        std::shared_ptr<const export_impostor> impostor;
+        d.impostor_note.clear();
+        if (lods && gltf) {
+          std::string why;
+          impostor = render_export_impostor(c, why);
+          if (!impostor) d.impostor_note = "impostor left out: " + why;
+        }
+        start_job(d, c, false, impostor);
         d.estimate_key.clear();
       }
     }

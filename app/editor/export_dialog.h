@@ -25,6 +25,11 @@ struct export_dialog_state {
   float seconds_per_step = 0.5f;
   bool compact = false;             // glTF only: quantized, meshopt-compressed, JPEG textures
   int profile = 0;                  // export_profile: plain, hero or hero-baked (game is the CLI's --lods)
+  // The LOD chain (as `sylva export --lods`): LOD1-3 built from the final tree at the preset's
+  // budgets, written as glTF MSFT_lod, an FBX LOD group or one OBJ per level. glTF also gets the
+  // impostor, its atlas rendered on the UI thread (the editor's GL context) when Export is pressed.
+  bool lods = false;
+  std::string impostor_note;               // why the last glTF LOD export has no impostor ("" when it has one)
   // The exporter runs on its own thread: a dry run for the size estimate, or the real export.
   std::thread thread;
   std::atomic<uint32_t> cancel{0};
@@ -33,6 +38,8 @@ struct export_dialog_state {
   bool job_dry = false;
   std::mutex mutex;
   std::optional<export_result> finished;   // set by the thread, taken by the UI
+  std::string finished_lods;               // with `finished`: lod_summary of the chain written ("" without)
+  std::string lod_counts;                  // the last LOD export's (or estimate's) lod_summary, shown in the dialog
   std::string estimate_key;                // what the shown estimate was computed for
   std::string estimate;                    // "", "estimating...", "about 1.2 MiB, 34,000 triangles"
   std::string warning;                     // the last export's warning (a user texture it could not use)

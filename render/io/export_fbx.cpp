@@ -1,9 +1,9 @@
 // FBX export through assimp (Debian's libassimp): the bark and leaf materials with their PNGs
-// beside the file, the LOD levels as "<tree>_LOD<k>" nodes (Unity's LODGroup convention), and the
+// beside the file, the LOD levels as "<tree>_LOD<k>" nodes (Unity's LODGroup convention) under an
+// FBX LOD group (Unreal's and Unity's importers read it; render/io/fbx_records.h), and the
 // wind skin's joints with the loop as an animation. One all-or-nothing write of every file.
 #include "render/io/export_internal.h"
 
-#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -11,6 +11,7 @@
 #include <assimp/scene.h>
 
 #include "render/io/export_wind.h"
+#include "render/io/fbx_records.h"
 
 namespace sylva::export_internal {
 
@@ -234,64 +235,6 @@ struct fbx_builder {
   }
 };
 
-// Binary FBX 7.5 node records (u64 end offset, u64 property count, u64 property bytes, u8 name
-// length, name, properties, children), re-serialised so that every record with children ends with
-// the 25-byte null record. assimp 5.2 leaves it out under some records (FBXHeaderExtension's
-// CreationTimeStamp), which Blender's importer refuses. "" when the bytes do not parse.
-struct fbx_record {
-  std::string head;                 // the record after its end offset, up to its children
-  std::vector<fbx_record> children;
-};
-bool parse_record(const std::string& d, size_t at, size_t& end, fbx_record& r) {
-  if (at + 25 > d.size()) return false;
-  uint64_t e = 0, props = 0;
-  std::memcpy(&e, d.data() + at, 8);
-  std::memcpy(&props, d.data() + at + 16, 8);
-  const size_t name = uint8_t(d[at + 24]);
-  const size_t body = at + 25 + name + props;
-  if (e > d.size() || body > e) return false;
-  r.head = d.substr(at + 8, body - (at + 8));   // property count and bytes, name, properties
-  size_t p = body;
-  while (p < e) {
-    if (p + 25 == e && d.compare(p, 25, std::string(25, '\0')) == 0) break;   // its null record
-    fbx_record c;
-    size_t ce = 0;
-    if (!parse_record(d, p, ce, c)) return false;
-    r.children.push_back(std::move(c));
-    p = ce;
-  }
-  end = e;
-  return true;
-}
-void write_record(const fbx_record& r, std::string& out) {
-  const size_t at = out.size();
-  out.append(8, '\0');
-  out += r.head;
-  for (const fbx_record& c : r.children) write_record(c, out);
-  if (!r.children.empty()) out.append(25, '\0');
-  const uint64_t end = out.size();
-  std::memcpy(&out[at], &end, 8);
-}
-std::string fbx_with_null_records(const std::string& d) {
-  constexpr size_t header = 27;
-  if (d.size() < header + 25 || d.compare(0, 20, "Kaydara FBX Binary  ") != 0) return "";
-  uint32_t version = 0;
-  std::memcpy(&version, d.data() + 23, 4);
-  if (version < 7500) return "";
-  std::string out = d.substr(0, header);
-  size_t p = header;
-  while (d.compare(p, 25, std::string(25, '\0')) != 0) {
-    fbx_record r;
-    size_t end = 0;
-    if (!parse_record(d, p, end, r)) return "";
-    write_record(r, out);
-    p = end;
-    if (p + 25 > d.size()) return "";
-  }
-  out.append(d, p, std::string::npos);   // the top level's null record and the footer
-  return out;
-}
-
 }  // namespace
 
 export_result export_fbx(const tree_skeleton& t, const tree_mesh& m, const export_info& info, const std::string& path,
@@ -365,7 +308,22 @@ export_result export_fbx(const tree_skeleton& t, const tree_mesh& m, const expor
   const std::string dir = std::filesystem::path(path).parent_path().string();
   for (auto& [name, bytes] : b.files) files.emplace_back((std::filesystem::path(dir) / name).string(), std::move(bytes));
   std::string fbx(static_cast<const char*>(blob->data), blob->size);
-  if (std::string fixed = fbx_with_null_records(fbx); !fixed.empty()) fbx = std::move(fixed);
+  // assimp 5.2 leaves the null record out under some records (FBXHeaderExtension's
+  // CreationTimeStamp), which Blender's importer refuses: the records are written again, each
+  // closed. With levels, the "<tree>" node becomes an FBX LOD group (assimp cannot write one), its
+  // thresholds the screen sizes (percent of the view's height) down to which LOD0..LOD2 show.
+  fbx::document doc;
+  if (std::string why = fbx::parse(fbx, doc); !why.empty()) {
+    if (!o.lods.empty()) r.warning += std::string(r.warning.empty() ? "" : "\n") + "no FBX LOD group: assimp's file: " + why;
+  } else {
+    if (!o.lods.empty()) {
+      std::vector<double> thresholds{100.0 * double(o.lod0_coverage)};
+      for (size_t k = 0; k + 1 < o.lods.size(); ++k) thresholds.push_back(100.0 * double(o.lods[k].coverage));
+      if (std::string why = fbx::make_lod_group(doc, tree, thresholds); !why.empty())
+        r.warning += std::string(r.warning.empty() ? "" : "\n") + "no FBX LOD group: " + why;
+    }
+    fbx = fbx::write(doc);
+  }
   files.emplace_back(path, std::move(fbx));
   r.bytes = files.back().second.size();
   if (o.dry_run) return r;

@@ -1,5 +1,6 @@
 // LOD1-LOD3 from the final tree: a tolerance-driven bark simplifier and a leaf-card merger,
-// each searched for the largest mesh within its share of the triangle budget.
+// each searched for the largest mesh within its share of the triangle budget (the leaves' octree
+// groups and merged cards: render/mesh/lod_leaves.cpp).
 #include "render/mesh/lod.h"
 #include "render/mesh/season.h"
 
@@ -13,11 +14,17 @@
 #include <glm/geometric.hpp>
 
 #include "render/mesh/lod_cards.h"
+#include "render/mesh/lod_leaves.h"
 #include "render/assets/textures.h"
 #include "generators/vec_util.h"
 
 namespace sylva {
 namespace {
+
+using lod_detail::emit_cards;
+using lod_detail::group_leaves;
+using lod_detail::leaf_input;
+using lod_detail::prepare_leaves;
 
 constexpr float pi = 3.14159265f;
 // Below this many triangles LOD0 is already cheap: the levels keep it (bad input).
@@ -36,11 +43,6 @@ glm::vec3 transport(const glm::vec3& n, const glm::vec3& t0, const glm::vec3& t1
   r -= t1 * glm::dot(r, t1);
   const float len = glm::length(r);
   return len > 1e-7f ? r / len : any_perpendicular(t1);
-}
-
-glm::vec3 rotate(const glm::vec4& q, const glm::vec3& v) {
-  const glm::vec3 u(q.x, q.y, q.z);
-  return v + 2.0f * glm::cross(u, glm::cross(u, v) + q.w * v);
 }
 
 // Radial segments a ring of radius r needs so that the polygon strays at most e from the circle:
@@ -105,11 +107,15 @@ struct kept_axis {
   int segments = 3;
 };
 
-// The axes a tolerance e keeps: nodes thinner than e/2 go (with everything above them), rings whose
+// The axes a tolerance e keeps: nodes thinner than e/2 go (with everything above them; a root keeps
+// its first span whatever its radius, so that no level loses its trunk), rings whose
 // removal moves the axis by less than e go, and each axis gets the segments its base radius needs.
 // `lookahead` bounds the chord test so that the cost stays linear.
 // With `out` null only the triangles are counted (the search's inner loop allocates nothing).
-void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>* out, size_t& triangles) {
+// `ring_e` (<= e; 0: e) is the chord test's tolerance alone, so that rings can fill a budget the
+// next coarser segment count or branch cut would jump past.
+void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>* out, size_t& triangles, float ring_e = 0) {
+  if (!(ring_e > 0)) ring_e = e;
   if (out) out->clear();
   kept_axis a;
   triangles = 0;
@@ -120,7 +126,7 @@ void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>* out, si
   static thread_local std::vector<uint32_t> chain;
   for (uint32_t s : b.starts) {
     const int32_t par = t.parent[s];
-    if (r[s] < cut) continue;
+    if (r[s] < cut && par >= 0) continue;   // a trunk always keeps its first span: the bark floor
     // A lateral needs its parent node kept as a ring of the parent axis or as any node with r >= cut.
     if (par >= 0 && r[par] < cut) continue;
     chain.clear();
@@ -152,7 +158,7 @@ void simplify_bark(const bark_input& b, float e, std::vector<kept_axis>* out, si
       for (size_t q = first_skipped; q <= j && ok; ++q) {
         const glm::vec3 p = t.position[chain[q]];
         const float u = len2 > 0 ? std::clamp(glm::dot(p - from, d) / len2, 0.0f, 1.0f) : 0.0f;
-        ok = glm::length(p - (from + u * d)) <= e && std::abs(r[chain[q]] - (from_r + u * (to_r - from_r))) <= e;
+        ok = glm::length(p - (from + u * d)) <= ring_e && std::abs(r[chain[q]] - (from_r + u * (to_r - from_r))) <= ring_e;
       }
       if (ok) ++k;
       else keep(j);
@@ -245,215 +251,32 @@ void emit_bark(const bark_input& b, const std::vector<kept_axis>& axes, const me
   }
 }
 
-// Leaves of the final tree, sorted along a Morton curve over their box, so that the leaves of every
-// octree cell are one contiguous run at every depth.
-struct leaf_input {
-  std::vector<leaf_instance> leaves;
-  std::vector<uint32_t> code;     // 30-bit Morton code (10 bits per axis), sorted
-  leaf_blade_shape blade;         // LOD0's leaves as geometry: the cards are baked from it
-};
-
-uint32_t spread_bits(uint32_t x) {   // 10 bits -> every third bit
-  x &= 0x3ff;
-  x = (x | (x << 16)) & 0x30000ff;
-  x = (x | (x << 8)) & 0x300f00f;
-  x = (x | (x << 4)) & 0x30c30c3;
-  x = (x | (x << 2)) & 0x9249249;
-  return x;
-}
-
-glm::vec3 leaf_centre(const leaf_instance& l) { return l.position + rotate(l.orientation, glm::vec3(0, 0.5f * l.size, 0)); }
-
-leaf_input prepare_leaves(const tree_mesh& m) {
-  leaf_input in;
-  in.blade = m.blade;
-  const int last = m.steps;
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const leaf_instance& l : m.leaves) {
-    if (!(int(l.born) <= last && last < int(l.died)) || !finite3(l.position) || !std::isfinite(l.size)) continue;
-    // Cones and fruit (generators/fruits.h) are too small to show at a LOD's distance, and a baked
-    // card would tint their colours as leaves.
-    if (l.texture < leaf_archetype_count && archetype_is_fruit(leaf_archetype(l.texture))) continue;
-    in.leaves.push_back(l);
-    lo = glm::min(lo, l.position);
-    hi = glm::max(hi, l.position);
+// Why level k's `got` triangles miss its budget `target` by more than lod_budget_tolerance ("" when
+// they do not): the floor that kept it higher (the coarsest bark, one card for the leaves) or what
+// kept it lower, each with its triangles.
+std::string budget_note(int k, size_t got, size_t target, size_t bark_floor, size_t bark_target, size_t bark_tris,
+                        size_t cards, size_t leaves) {
+  if (target == 0) return "";
+  const double off = (double(got) - double(target)) / double(target);
+  if (std::abs(off) <= lod_budget_tolerance) return "";
+  char buf[320];
+  if (off > 0) {
+    if (bark_tris > bark_target)
+      std::snprintf(buf, sizeof buf,
+                    "LOD%d: %zu triangles, %.0f%% over its budget of %zu: the bark floor (trunk and limbs at their coarsest) "
+                    "keeps %zu where the bark's share was %zu, and the leaf floor (at least one card) %zu",
+                    k, got, 100 * off, target, bark_floor, bark_target, cards * exported_card_triangles);
+    else
+      std::snprintf(buf, sizeof buf, "LOD%d: %zu triangles, %.0f%% over its budget of %zu: the leaf floor (at least one card) keeps %zu",
+                    k, got, 100 * off, target, cards * exported_card_triangles);
+  } else if (cards >= leaves) {
+    std::snprintf(buf, sizeof buf, "LOD%d: %zu triangles, %.0f%% under its budget of %zu: it keeps all %zu leaves and %zu bark triangles, "
+                  "and finer bark would pass the budget", k, got, -100 * off, target, leaves, bark_tris);
+  } else {
+    std::snprintf(buf, sizeof buf, "LOD%d: %zu triangles, %.0f%% under its budget of %zu: the leaves' octree cells part no finer "
+                  "within it (%zu cards for %zu leaves)", k, got, -100 * off, target, cards, leaves);
   }
-  const float side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-6f});
-  std::vector<std::pair<uint32_t, uint32_t>> keyed(in.leaves.size());
-  for (size_t k = 0; k < in.leaves.size(); ++k) {
-    const glm::vec3 q = (in.leaves[k].position - lo) / side * 1023.0f;
-    const uint32_t code = spread_bits(uint32_t(q.x)) | (spread_bits(uint32_t(q.y)) << 1) | (spread_bits(uint32_t(q.z)) << 2);
-    keyed[k] = {code, uint32_t(k)};
-  }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<leaf_instance> sorted(in.leaves.size());
-  in.code.resize(keyed.size());
-  for (size_t k = 0; k < keyed.size(); ++k) {
-    sorted[k] = in.leaves[keyed[k].second];
-    in.code[k] = keyed[k].first;
-  }
-  in.leaves.swap(sorted);
-  return in;
-}
-
-// Runs [begin, end) of leaves sharing an octree cell at `depth` (0: the whole box; 10: finest).
-void cells_at(const leaf_input& in, size_t begin, size_t end, int depth, std::vector<std::pair<size_t, size_t>>& out) {
-  const int shift = 3 * (10 - depth);
-  size_t k = begin;
-  while (k < end) {
-    const uint32_t key = shift >= 32 ? 0 : in.code[k] >> shift;
-    size_t j = k + 1;
-    while (j < end && (shift >= 32 ? 0 : in.code[j] >> shift) == key) ++j;
-    out.push_back({k, j});
-    k = j;
-  }
-}
-
-// Groups of at most `cards` runs: the deepest octree level that fits, then its biggest cells split
-// one level further while the budget allows.
-std::vector<std::pair<size_t, size_t>> group_leaves(const leaf_input& in, size_t cards) {
-  std::vector<std::pair<size_t, size_t>> groups, next;
-  const size_t n = in.leaves.size();
-  if (n == 0) return groups;
-  cards = std::max<size_t>(cards, 1);
-  if (cards >= n) {
-    for (size_t k = 0; k < n; ++k) groups.push_back({k, k + 1});
-    return groups;
-  }
-  groups.push_back({0, n});
-  int depth = 0;
-  for (int d = 1; d <= 10; ++d) {
-    next.clear();
-    cells_at(in, 0, n, d, next);
-    if (next.size() > cards) break;
-    groups.swap(next);
-    depth = d;
-  }
-  if (depth < 10) {
-    // Split the biggest groups of `depth` into their children while the count stays in budget.
-    std::vector<size_t> order(groups.size());
-    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-      return groups[a].second - groups[a].first > groups[b].second - groups[b].first;
-    });
-    std::vector<std::pair<size_t, size_t>> split;
-    std::vector<std::vector<std::pair<size_t, size_t>>> children(groups.size());
-    size_t count = groups.size();
-    for (size_t k : order) {
-      split.clear();
-      cells_at(in, groups[k].first, groups[k].second, depth + 1, split);
-      if (count + split.size() - 1 > cards) continue;
-      count += split.size() - 1;
-      children[k] = split;
-    }
-    std::vector<std::pair<size_t, size_t>> out;
-    for (size_t k = 0; k < groups.size(); ++k) {
-      if (children[k].empty()) out.push_back(groups[k]);
-      else out.insert(out.end(), children[k].begin(), children[k].end());
-    }
-    groups.swap(out);
-  }
-  // Leaves that share even the finest cell (a whorl at one node) part into single leaves while the
-  // budget allows.
-  size_t count = groups.size();
-  std::vector<std::pair<size_t, size_t>> out;
-  for (const auto& g : groups) {
-    const size_t extra = g.second - g.first - 1;
-    if (extra > 0 && count + extra <= cards) {
-      count += extra;
-      for (size_t k = g.first; k < g.second; ++k) out.push_back({k, k + 1});
-    } else {
-      out.push_back(g);
-    }
-  }
-  groups.swap(out);
-  return groups;
-}
-
-// One card per group: centred on the group's leaves, oriented as the member nearest that centre,
-// covering the leaves' opaque area (sum of sides^2 times each texture's alpha coverage, over the
-// card texture's) but no wider than 3x the group's spread, so the crown's outline stays.
-// The card texture is baked from the tree's own leaves (render/mesh/lod_cards.h): a few representative
-// groups of the level, at evenly spaced quantiles of their expected coverage, are rasterised onto
-// their cards' planes into `baked`, and every merged card takes the one whose expected coverage is
-// nearest its own; the card's area rule then uses that texture's own opaque share. Without room
-// for more baked textures, the cluster archetype `card_texture` stands in.
-void emit_cards(const leaf_input& in, const std::vector<std::pair<size_t, size_t>>& groups, uint8_t card_texture,
-                float area_gain, baked_card_textures& baked, tree_mesh& m) {
-  m.leaves.clear();
-  m.leaves.reserve(groups.size());
-  struct merged { size_t group, slot; card_fit fit; glm::vec3 centre; float opaque, spread; };
-  std::vector<merged> cards;
-  for (size_t gi = 0; gi < groups.size(); ++gi) {
-    const auto [a, b] = groups[gi];
-    if (b - a == 1) { m.leaves.push_back(in.leaves[a]); continue; }
-    glm::vec3 c(0);
-    float opaque = 0, occl = 0;
-    uint16_t born = 0xffff, died = 0;
-    for (size_t k = a; k < b; ++k) {
-      const leaf_instance& l = in.leaves[k];
-      c += leaf_centre(l);
-      opaque += l.size * l.size * archetype_opaque_share(l.texture);
-      occl += float(l.occlusion);
-      born = std::min(born, l.born);
-      died = std::max(died, l.died);
-    }
-    c /= float(b - a);
-    size_t nearest = a;
-    float spread = 0, best = 1e30f;
-    for (size_t k = a; k < b; ++k) {
-      const glm::vec3 lc = leaf_centre(in.leaves[k]);
-      const float d = glm::length(lc - c);
-      spread = std::max(spread, d + 0.5f * in.leaves[k].size);
-      if (d < best) { best = d; nearest = k; }
-    }
-    leaf_instance card = in.leaves[nearest];
-    card.born = born;
-    card.died = died;
-    card.texture = card_texture;
-    card.occlusion = uint8_t(std::clamp(occl / float(b - a), 0.0f, 255.0f));
-    cards.push_back({gi, m.leaves.size(), fit_card(&in.leaves[a], b - a, card.orientation), c, opaque, spread});
-    m.leaves.push_back(card);
-  }
-  std::vector<std::pair<float, int>> tiles;   // expected coverage, texture index
-  std::vector<size_t> order(cards.size());
-  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return cards[x].fit.coverage < cards[y].fit.coverage; });
-  const size_t room = size_t(max_baked_cards) - std::min(baked.sets.size(), size_t(max_baked_cards));
-  const size_t count = std::min({size_t(cards_per_level), order.size(), room});
-  for (size_t q = 0; q < count; ++q) {
-    const merged& p = cards[order[(2 * q + 1) * order.size() / (2 * count)]];
-    const auto [a, b] = groups[p.group];
-    baked.sets.push_back(bake_card(&in.leaves[a], b - a, p.fit, card_texture_size, in.blade));
-    std::array<int, leaf_archetype_count> votes{};
-    for (size_t k = a; k < b; ++k) ++votes[size_t(std::clamp(int(in.leaves[k].texture), 0, leaf_archetype_count - 1))];
-    baked.source.push_back(uint8_t(std::max_element(votes.begin(), votes.end()) - votes.begin()));
-    baked.opaque.push_back(opaque_share(baked.sets.back().color));
-    tiles.push_back({p.fit.coverage, leaf_archetype_count + int(baked.sets.size()) - 1});
-  }
-  for (const merged& p : cards) {
-    leaf_instance& card = m.leaves[p.slot];
-    float share = archetype_opaque_share(card_texture), best = 1e30f;
-    for (const auto& [cov, tex] : tiles)
-      if (std::abs(cov - p.fit.coverage) < best) {
-        best = std::abs(cov - p.fit.coverage);
-        card.texture = uint8_t(tex);
-        share = baked.opaque[size_t(tex - leaf_archetype_count)];
-      }
-    // The card's opaque area matches its leaves' opaque area (each texture's alpha coverage), so a
-    // sparse card texture standing for solid leaves grows to cover as many pixels. The cap, 3x
-    // the group's spread, lets a tight whorl's card reach the disc its leaves sweep; 2x held oak
-    // LOD3's silhouette IoU at 0.76, 3x gives 0.83 (tests/gl/lod_render_test.cpp, docs/LOD.md).
-    card.size = std::min(std::sqrt(p.opaque / share * area_gain), 3.0f * p.spread);
-    card.position = p.centre - rotate(card.orientation, glm::vec3(0, 0.5f * card.size, 0));
-  }
-  // Sorted by born, with the per-step table, as LOD0's leaves.
-  std::stable_sort(m.leaves.begin(), m.leaves.end(), [](const leaf_instance& x, const leaf_instance& y) { return x.born < y.born; });
-  size_t k = 0;
-  for (int s = 0; s <= m.steps; ++s) {
-    while (k < m.leaves.size() && (int(m.leaves[k].born) <= s || s == m.steps)) ++k;
-    m.leaf_end[size_t(s)] = uint32_t(k);
-  }
+  return buf;
 }
 
 float clamp_budget(float v, int level, std::string& message) {
@@ -469,11 +292,11 @@ float clamp_budget(float v, int level, std::string& message) {
 }  // namespace
 
 size_t final_triangles(const tree_mesh& m) {
-  if (m.index_end.empty()) return 2 * m.leaves.size() + m.index.size() / 3;
+  if (m.index_end.empty()) return exported_card_triangles * m.leaves.size() + m.index.size() / 3;
   const size_t s = m.index_end.size() - 1;
   size_t leaves = 0;
   for (const leaf_instance& l : m.leaves) leaves += int(l.born) <= m.steps && m.steps < int(l.died);
-  return m.index_end[s] / 3 + 2 * leaves;
+  return m.index_end[s] / 3 + exported_card_triangles * leaves;
 }
 
 lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_params& mp, const lod_params& p) {
@@ -495,6 +318,7 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
       c.level[size_t(k) - 1] = m;
       c.triangles[size_t(k)] = t0;
       c.target[size_t(k)] = size_t(double(t0) * c.budget[size_t(k)] / 100.0);
+      c.note[size_t(k)] = "LOD" + std::to_string(k) + ": " + why;
     }
     c.reduced = false;
     c.message += (c.message.empty() ? "" : "; ") + why;
@@ -524,19 +348,33 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     // it leaves: measured on the oak, LOD1's silhouette IoU goes from 0.83 (full share) to 0.97; pine
     // LOD1 from 0.96 (half share) to 0.97 (docs/LOD.md).
     // When every leaf fits anyway, the bark takes the rest.
-    const size_t all_leaves = 2 * leaves.leaves.size();
+    const size_t all_leaves = exported_card_triangles * leaves.leaves.size();
     const size_t bark_target = std::max(size_t(0.3 * double(bark0) * b), target > all_leaves ? target - all_leaves : 0);
     // Largest mesh within budget: bisect the tolerance (log scale) between 1e-6 and 1x the tree.
     float lo = std::log(1e-6f * size), hi = std::log(size);
     size_t tris = 0;
     simplify_bark(bark, std::exp(hi), nullptr, tris);
+    const size_t bark_floor = tris;   // the coarsest bark: the trunk's 3 sides, the limbs thicker than half the tree
     const bool reachable = tris <= bark_target;
     for (int it = 0; it < 16 && reachable; ++it) {   // 2^-16 of the log range: within 0.03 % in e
       const float mid = 0.5f * (lo + hi);
       simplify_bark(bark, std::exp(mid), nullptr, tris);
       if (tris <= bark_target) hi = mid; else lo = mid;
     }
-    simplify_bark(bark, std::exp(hi), &axes, tris);
+    // The finer tolerance passes the bark's share, often by a whole step of segments or cut branches:
+    // more rings at the chosen segments and cut fill what is left (log bisection of the ring
+    // tolerance alone).
+    float ring = hi;
+    if (reachable && lo > std::log(1e-6f * size)) {
+      float rlo = std::log(1e-6f * size), rhi = hi;
+      for (int it = 0; it < 16; ++it) {
+        const float mid = 0.5f * (rlo + rhi);
+        simplify_bark(bark, std::exp(hi), nullptr, tris, std::exp(mid));
+        if (tris <= bark_target) rhi = mid; else rlo = mid;
+      }
+      ring = rhi;
+    }
+    simplify_bark(bark, std::exp(hi), &axes, tris, std::exp(ring));
     tree_mesh& out = c.level[size_t(k) - 1];
     out.steps = m.steps;
     out.radial_segments = m.radial_segments;
@@ -546,7 +384,7 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     out.position.reserve(tris * 2);
     emit_bark(bark, axes, mp, out);
     const size_t bark_tris = out.index.size() / 3;
-    const size_t cards = (target > bark_tris ? target - bark_tris : 0) / 2;
+    const size_t cards = (target > bark_tris ? target - bark_tris : 0) / exported_card_triangles;
     // A merged card stands for its leaves' area; 1.0 keeps the total card area of LOD0.
     emit_cards(leaves, group_leaves(leaves, std::max<size_t>(cards, leaves.leaves.empty() ? 0 : 1)), card_texture, 1.0f,
                *baked, out);
@@ -555,14 +393,21 @@ lod_chain build_lods(const tree_skeleton& t, const tree_mesh& m, const mesh_para
     out.bounds_max = m.bounds_max;
     bake_crown_occlusion(out);
     c.triangles[size_t(k)] = final_triangles(out);
-    if (c.triangles[size_t(k)] > target && c.triangles[size_t(k)] > 0) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "LOD%d: %zu triangles, over its budget of %zu (the trunk and one card per cell stay)", k,
-                    c.triangles[size_t(k)], target);
-      c.message += (c.message.empty() ? "" : "; ") + std::string(buf);
-    }
+    c.note[size_t(k)] = budget_note(k, c.triangles[size_t(k)], target, bark_floor, bark_target, bark_tris,
+                                    out.leaves.size(), leaves.leaves.size());
+    if (!c.note[size_t(k)].empty()) c.message += (c.message.empty() ? "" : "; ") + c.note[size_t(k)];
   }
   return c;
+}
+
+std::string lod_summary(const lod_chain& c) {
+  const auto& n = c.triangles;
+  auto share = [&](int k) { return n[0] ? 100.0 * double(n[size_t(k)]) / double(n[0]) : 0.0; };
+  char buf[240];
+  std::snprintf(buf, sizeof buf, "LOD0-3 triangles %zu / %zu / %zu / %zu (%.1f / %.1f / %.1f %% of LOD0; budgets %g / %g / %g %%)",
+                n[0], n[1], n[2], n[3], share(1), share(2), share(3), double(c.budget[1]), double(c.budget[2]),
+                double(c.budget[3]));
+  return buf;
 }
 
 float screen_coverage(float radius, float distance, float fov_degrees) {

@@ -67,6 +67,12 @@ TEST_F(LodEditor, FarAwayTheImpostorCardStandsInAndTurnsWithTheCamera) {
   draw_frame(r, rp, cam, 64, 64);                      // leaf layers are updated by the next frame
   EXPECT_EQ(r.leaf_layers, leaf_archetype_count + 8);   // the views after the archetypes
   EXPECT_NE(editor_lod_status(s).find("Impostor"), std::string::npos) << editor_lod_status(s);
+  // The LOD view's counts are the file's (issue 54): the chain built for an export of this tree
+  // holds the same triangles, and the status shows them as `sylva export --lods` prints them.
+  const lod_chain exported = build_lods(t, m, p.mesh, rp.lod);
+  EXPECT_EQ(s.chain->triangles, exported.triangles);
+  EXPECT_EQ(exported.triangles[0], final_triangles(m));
+  EXPECT_NE(editor_lod_status(s).find(lod_summary(exported)), std::string::npos) << editor_lod_status(s);
   // Turning the camera by half a view re-uploads the card with the next view.
   const uint64_t uploads = r.uploads_total;
   editor_lod_update(s, r, g, rp, cam, t.steps);

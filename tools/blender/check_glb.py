@@ -124,6 +124,13 @@ if ext == ".fbx":
         print(f"  {node.name}: {len(kids)} meshes, {tris} triangles")
     if want_lods and levels != list(range(want_lods)):
         problems.append(f"LOD levels {levels}, wanted 0..{want_lods - 1}")
+    if want_lods:
+        # The FBX LOD group (a LodGroup model) comes in as an empty whose children are the levels.
+        parents = {o.parent.name if o.parent else None for o in bpy.data.objects if re.search(r"_LOD\d+$", o.name)}
+        group = bpy.data.objects.get(next(iter(parents))) if len(parents) == 1 and None not in parents else None
+        print(f"  LOD group: {group.name + ' (' + group.type + ')' if group else 'none'}, levels' parents {sorted(map(str, parents))}")
+        if not group or group.type != "EMPTY":
+            problems.append(f"the levels do not share one empty parent (the LOD group): parents {sorted(map(str, parents))}")
     arms = [o for o in bpy.data.objects if o.type == "ARMATURE"]
     for a in arms:
         act = a.animation_data.action if a.animation_data else None

@@ -30,14 +30,6 @@ struct lod_scratch : sylva_test::scratch_dir {
   lod_scratch() : scratch_dir("sylva-lod-export") {}
 };
 
-// Triangles a level's files carry: the chain counts a leaf card as the viewport draws it (one
-// quad, culling off), an export writes a face per side (render/mesh/leaf_shading.h).
-size_t exported_triangles(const tree_mesh& m, size_t chain_triangles) {
-  size_t cards = 0;
-  for (const leaf_instance& l : m.leaves) cards += int(l.born) <= m.steps && m.steps < int(l.died);
-  return chain_triangles + 2 * cards;
-}
-
 struct lod_tree {
   preset p;
   tree_skeleton t;
@@ -94,12 +86,13 @@ TEST(LodExport, GltfHasMsftLodWithCoverageAndAnImpostorQuad) {
     const nlohmann::json& n = j["nodes"][ids[k].get<size_t>()];
     EXPECT_EQ(j["meshes"][n["mesh"].get<size_t>()]["name"], names[k]);
   }
-  // Each level's triangles are recorded and fall level by level.
+  // Each level's triangles are recorded and fall level by level; the chain counts them as the file
+  // holds them (a face per side of each leaf card: lod.h final_triangles).
   size_t prev = j["nodes"][size_t(lod0)]["extras"]["triangles"];
-  EXPECT_EQ(prev, exported_triangles(h.m, h.c.triangles[0]));
+  EXPECT_EQ(prev, h.c.triangles[0]);
   for (size_t k = 0; k < 3; ++k) {
     const size_t tris = j["nodes"][ids[k].get<size_t>()]["extras"]["triangles"];
-    EXPECT_EQ(tris, exported_triangles(h.c.level[k], h.c.triangles[k + 1]));
+    EXPECT_EQ(tris, h.c.triangles[k + 1]);
     EXPECT_LT(tris, prev);
     prev = tris;
   }
@@ -147,8 +140,8 @@ TEST(LodExport, ObjWritesOneFilePerLevelAllOrNothing) {
     for (std::string line; std::getline(s, line);) n += line.rfind("f ", 0) == 0;
     return n;
   };
-  EXPECT_EQ(faces("tree.obj"), exported_triangles(h.m, h.c.triangles[0]));
-  EXPECT_EQ(faces("tree_lod2.obj"), exported_triangles(h.c.level[1], h.c.triangles[2]));
+  EXPECT_EQ(faces("tree.obj"), h.c.triangles[0]);
+  EXPECT_EQ(faces("tree_lod2.obj"), h.c.triangles[2]);
   // A failure while staging any file leaves the previous export whole and adds nothing.
   const std::string before = slurp(dir / "tree_lod1.obj");
   fs::remove(dir / "tree_lod3.obj");
@@ -179,7 +172,7 @@ TEST(LodExport, WinterDropsBroadleavesAndTheirBakedCardsOnEveryLevel) {
     return n;
   };
   // The oak's leaves are broadleaves and go in winter; its acorns are fruit cards and stay. So each
-  // level's file holds its bark (the level's triangle count less two per card) and its acorns, each
+  // level's file holds its bark (the level's triangle count less four per card) and its acorns, each
   // written two-sided (two faces, four triangles: render/io/export_parts.cpp), on every level's
   // file, not only LOD0's.
   auto fruits = [](const tree_mesh& m) {
@@ -188,11 +181,11 @@ TEST(LodExport, WinterDropsBroadleavesAndTheirBakedCardsOnEveryLevel) {
   };
   ASSERT_GT(fruits(h.m), size_t(0)) << "the oak carries acorns";
   ASSERT_LT(fruits(h.m), h.m.leaves.size());
-  EXPECT_EQ(faces("tree.obj"), h.c.triangles[0] - 2 * h.m.leaves.size() + 4 * fruits(h.m));
+  EXPECT_EQ(faces("tree.obj"), h.c.triangles[0] - 4 * h.m.leaves.size() + 4 * fruits(h.m));
   for (int k = 1; k < lod_levels; ++k) {
     const tree_mesh& l = h.c.level[size_t(k) - 1];
     ASSERT_GT(l.leaves.size(), fruits(l));
-    EXPECT_EQ(faces("tree_lod" + std::to_string(k) + ".obj"), h.c.triangles[size_t(k)] - 2 * l.leaves.size() + 4 * fruits(l))
+    EXPECT_EQ(faces("tree_lod" + std::to_string(k) + ".obj"), h.c.triangles[size_t(k)] - 4 * l.leaves.size() + 4 * fruits(l))
         << "LOD" << k;
   }
 }
