@@ -16,7 +16,7 @@
 
 namespace sylva {
 
-bool archetype_is_shoot(leaf_archetype a) { return archetype_is_needle_shoot(a); }
+bool archetype_is_shoot(leaf_archetype a) { return archetype_is_needle_shoot(a) || a == leaf_archetype::lanceolate; }
 
 uint32_t shoot_archetype_mask() {
   uint32_t m = 0;
@@ -99,17 +99,21 @@ struct shoot_builder {
   int budget;
   int used = 0;
 
-  // One spike from `base` along unit `dir`, `length` long, its root a triangle of `radius`.
-  void spike(glm::vec3 base, glm::vec3 dir, float length, float radius, glm::vec2 uv) {
+  // One spike from `base` along unit `dir`, `length` long, its root a triangle of `radius`; with
+  // `flat` < 1 the root is squashed to `flat` of that across `wide` (a thin blade broad along `wide`).
+  void spike(glm::vec3 base, glm::vec3 dir, float length, float radius, glm::vec2 uv, glm::vec3 wide = glm::vec3(0), float flat = 1) {
     if (used >= budget) return;
     ++used;
     dir = glm::normalize(dir);
     const glm::vec3 helper = std::abs(dir.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
-    const glm::vec3 e1 = glm::normalize(glm::cross(helper, dir)), e2 = glm::cross(dir, e1);
+    glm::vec3 e1 = wide - dir * glm::dot(wide, dir);
+    e1 = glm::length(e1) > 1e-4f ? glm::normalize(e1) : glm::normalize(glm::cross(helper, dir));
+    const glm::vec3 e2 = glm::cross(dir, e1);
     for (int k = 0; k < 3; ++k) {
       const float a = 2.0943951f * float(k);
-      const glm::vec3 radial = std::cos(a) * e1 + std::sin(a) * e2;
-      m.vertex.push_back({base + radius * radial, radial, uv});
+      // The normal of the ellipse (radius, radius * flat) at angle a.
+      const glm::vec3 normal = glm::normalize(flat * std::cos(a) * e1 + std::sin(a) * e2);
+      m.vertex.push_back({base + radius * (std::cos(a) * e1 + flat * std::sin(a) * e2), normal, uv});
     }
     // The tip's normal leans to the shoot's upper side (the card's +Z), so a spike's tip shades
     // as its flanks seen from above.
@@ -253,6 +257,28 @@ void build_tufts(shoot_builder& b, int pieces, const shoot_swatches& sw, shoot_r
   }
 }
 
+// Salix babylonica (as the lanceolate card, render/assets/archetype_leaves.cpp): a slender hanging
+// shoot with narrow leaves 8-15 cm long lying close along it (8-22 degrees), alternate in a spiral,
+// each a thin blade broad across the shoot, so a strand reads as a loose tassel from every side.
+constexpr int willow_leaves = 18;   // the card's 13 and its tip, a few more as the strand is seen all round
+
+void build_willow(shoot_builder& b, int pieces, const shoot_swatches& sw, shoot_random& g) {
+  const float top = 0.74f;
+  b.spike(glm::vec3(0), glm::vec3(0, 1, 0), top * 1.03f, 0.008f, sw.twig);
+  const int leaves = std::min(pieces - 1, willow_leaves);
+  const glm::vec3 d(0, 1, 0);
+  for (int i = 0; i < leaves; ++i) {
+    const float t = std::clamp(0.05f + 0.9f * (float(i) + g.range(-0.3f, 0.3f)) / float(std::max(leaves - 1, 1)), 0.03f, 0.97f);
+    const float azimuth = glm::radians(144.0f) * float(i) + g.range(-0.3f, 0.3f);   // 2/5 phyllotaxis
+    const glm::vec3 dir = needle_direction(d, glm::radians(g.range(8, 22) * (1.1f - 0.4f * t)), azimuth);
+    glm::vec3 across, up;
+    shoot_frame(d, across, up);
+    const glm::vec3 radial = std::cos(azimuth) * across + std::sin(azimuth) * up;
+    const float len = g.range(0.3f, 0.5f) * (1.0f - 0.3f * t);
+    b.spike(glm::vec3(0, top * t, 0), dir, len, len * 0.045f, sw.needle[size_t(i % 3)], glm::cross(d, radial), 0.15f);
+  }
+}
+
 }  // namespace
 
 leaf_mesh shoot_prototype(leaf_archetype a, const leaf_blade_shape& s, int pieces, const shoot_swatches& sw) {
@@ -263,6 +289,7 @@ leaf_mesh shoot_prototype(leaf_archetype a, const leaf_blade_shape& s, int piece
   shoot_random g{0x9e3779b9u ^ (uint32_t(a) * 0x85ebca6bu) ^ uint32_t(pieces)};
   const float spread = std::isfinite(s.needle_spread) ? std::clamp(s.needle_spread, 20.0f, 360.0f) : 360.0f;
   if (a == leaf_archetype::needles) build_pine(b, pieces, sw, g);
+  else if (a == leaf_archetype::lanceolate) build_willow(b, pieces, sw, g);
   else if (a == leaf_archetype::needle_tufts) build_tufts(b, pieces, sw, g);
   else build_spray(b, pieces, sw, spread, g);
   b.pad();

@@ -1,5 +1,6 @@
 // Needle shoots as geometry (issue 52): the conifer archetypes' cards (pine fascicles, spruce and
-// fir sprays, cedar rosettes) become small twig prototypes whose needles are thin closed
+// fir sprays, cedar rosettes, and the willow's hanging leafy shoot) become small twig prototypes
+// whose needles (or narrow leaves, as flattened spikes) are thin closed
 // three-sided spikes set round real shoot axes, so a close look shows needles standing all round
 // the shoot (or in two ranks) instead of a flat frond. Like the leaf blades (leaf_blade.h), each
 // prototype is made once per species shape and instanced: the viewport draws the coarse prototype
@@ -23,8 +24,8 @@
 
 namespace sylva {
 
-// Pine needles, spruce and fir sprays, cedar rosettes: the archetypes drawn as needle shoots when
-// blades are on (generators/leaves.h archetype_is_needle_shoot).
+// Pine needles, spruce and fir sprays, cedar rosettes (generators/leaves.h archetype_is_needle_shoot)
+// and the willow's lanceolate shoot: the archetypes drawn as shoots when blades are on.
 bool archetype_is_shoot(leaf_archetype a);
 // Bit k set: archetype k is a needle shoot (for the leaf shader).
 uint32_t shoot_archetype_mask();
