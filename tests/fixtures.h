@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "generators/lsystem.h"
+#include "generators/space_colonization.h"
 #include "render/io/export.h"
 #include "render/io/preset.h"
 
@@ -20,6 +21,20 @@ inline sylva::preset shipped_preset(const std::string& name, std::vector<std::st
   const sylva::load_result r = sylva::load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/" + name + ".json", p);
   EXPECT_TRUE(r.ok) << name << ": " << r.error;
   if (warnings) *warnings = r.warnings;
+  return p;
+}
+
+// A space-colonization crown small enough for a test: `points` points in a 4 m box over a 1 m trunk.
+inline sylva::space_colonization_params small_colonization_crown(int points) {
+  sylva::space_colonization_params p;
+  p.points = points;
+  p.size = {4, 4, 4};
+  p.offset = {0, 3, 0};
+  p.segment_length = 0.2f;
+  p.influence_radius = 1.2f;
+  p.kill_distance = 0.3f;
+  p.trunk_length = 1.0f;
+  p.steps = 400;
   return p;
 }
 

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tests/fixtures.h"
 #include "generators/history.h"
 #include "generators/leaves.h"
 #include "generators/lsystem.h"
@@ -19,20 +20,6 @@ namespace {
 
 float seg_length(const tree_skeleton& t, size_t i) {
   return glm::length(t.position[i] - t.position[size_t(t.parent[i])]);
-}
-
-// A space-colonization crown small enough for a test: 600 points in a 4 m box over a 1 m trunk.
-space_colonization_params small_crown() {
-  space_colonization_params p;
-  p.points = 600;
-  p.size = {4, 4, 4};
-  p.offset = {0, 3, 0};
-  p.segment_length = 0.2f;
-  p.influence_radius = 1.2f;
-  p.kill_distance = 0.3f;
-  p.trunk_length = 1.0f;
-  p.steps = 400;
-  return p;
 }
 
 // A trunk of unit internodes, node j at height j born in step j (j = 0..10), and at each trunk node
@@ -74,7 +61,7 @@ TEST(GrowthHistory, SeasonsAreSeededPersistentAndOffAtZero) {
 }
 
 TEST(GrowthHistory, SpaceColonizationSegmentsFollowTheirStepsSeason) {
-  space_colonization_params p = small_crown();
+  space_colonization_params p = sylva_test::small_colonization_crown(600);
   grow_options o;
   o.seed = 5;
   const tree_skeleton plain = grow_space_colonization(p, o);
@@ -104,7 +91,7 @@ TEST(GrowthHistory, SpaceColonizationSegmentsFollowTheirStepsSeason) {
 TEST(GrowthHistory, UnequalForksKeepTheLeaderCloserToItsCourse) {
   // The mean turn of each fork's first and second shoot off the forked internode's course.
   auto turns = [](float asymmetry) {
-    space_colonization_params p = small_crown();
+    space_colonization_params p = sylva_test::small_colonization_crown(600);
     p.fork_length = 0.8f;
     p.fork_angle = 80;
     p.fork_asymmetry = asymmetry;
@@ -143,7 +130,7 @@ TEST(GrowthHistory, DamagedLeadersForkAtSeededPlaces) {
       if (t.parent[i] >= 0 && t.parent[i + 1] == t.parent[i] && t.born[i + 1] == t.born[i]) ++n;
     return n;
   };
-  space_colonization_params p = small_crown();
+  space_colonization_params p = sylva_test::small_colonization_crown(600);
   grow_options o;
   o.seed = 6;
   EXPECT_EQ(forks(grow_space_colonization(p, o)), 0);   // monopodial without damage or fork length
@@ -298,7 +285,7 @@ TEST(GrowthHistory, SelfOrganizingLowerLimbsDieAsTheCrownRises) {
 // Self-pruned limbs leave stubs as thick as the limb was when it died, never thicker than the
 // stem that carries them; before, the pipe model made them as thin as twig tips.
 TEST(GrowthHistory, DeadStubsKeepTheGirthOfTheLimbThatDied) {
-  space_colonization_params p = small_crown();
+  space_colonization_params p = sylva_test::small_colonization_crown(600);
   p.live_crown = 0.6f;
   p.stub_length = 0.3f;
   grow_options o;

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tests/fixtures.h"
 #include "generators/history.h"
 #include "generators/self_organizing.h"
 #include "generators/space_colonization.h"
@@ -19,19 +20,6 @@ float mean_offset(const tree_skeleton& t, const glm::vec3& dir) {
   double s = 0;
   for (const glm::vec3& q : t.position) s += double(glm::dot(glm::vec3(q.x, 0, q.z), dir));
   return t.size() ? float(s / double(t.size())) : 0.0f;
-}
-
-space_colonization_params small_crown() {
-  space_colonization_params p;
-  p.points = 800;
-  p.size = {4, 4, 4};
-  p.offset = {0, 3, 0};
-  p.segment_length = 0.2f;
-  p.influence_radius = 1.2f;
-  p.kill_distance = 0.3f;
-  p.trunk_length = 1.0f;
-  p.steps = 400;
-  return p;
 }
 
 }  // namespace
@@ -55,7 +43,7 @@ TEST(SkyLean, HelpersLeanTowardsTheOpenSideAndAreOffAtZero) {
 }
 
 TEST(SkyLean, SpaceColonizationCrownGrowsOutTowardsTheOpenSide) {
-  space_colonization_params p = small_crown();
+  space_colonization_params p = sylva_test::small_colonization_crown(800);
   grow_options o;
   o.seed = 3;
   const tree_skeleton plain = grow_space_colonization(p, o);

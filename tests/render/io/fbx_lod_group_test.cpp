@@ -13,6 +13,7 @@
 #include <assimp/scene.h>
 
 #include "tests/run_sylva.h"
+#include "tests/fixtures.h"
 #include "tests/scratch_dir.h"
 #include "generators/tree_spec.h"
 #include "render/io/export.h"
@@ -83,8 +84,7 @@ size_t faces_under(const aiScene* s, const aiNode* n) {
 
 TEST(FbxLodGroup, LevelsHangUnderALodGroupWithTheChainsScreenSizes) {
   sylva_test::scratch_dir dir("sylva-fbx-lod-group");
-  preset p;
-  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json", p).ok);
+  const preset p = sylva_test::shipped_preset("lsystem_honda_a");
   const tree_skeleton t = grow(p.spec, grow_options{});
   const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
   const lod_chain c = build_lods(t, m, p.mesh, lod_params{});
@@ -146,8 +146,7 @@ TEST(FbxLodGroup, CliLodsWriteTheGroup) {
 
 TEST(FbxLodGroup, RecordsRoundTripAndBadBytesAreRefused) {
   sylva_test::scratch_dir dir("sylva-fbx-records");
-  preset p;
-  ASSERT_TRUE(load_preset_file(std::string(SYLVA_SOURCE_DIR) + "/presets/lsystem_honda_a.json", p).ok);
+  const preset p = sylva_test::shipped_preset("lsystem_honda_a");
   const tree_skeleton t = grow(p.spec, grow_options{});
   const tree_mesh m = mesh_tree(t, p.mesh, p.spec.seed);
   ASSERT_EQ(export_tree(t, m, {"lsystem", 1}, dir / "t.fbx", export_options{}).error, "");
